@@ -1,0 +1,22 @@
+// Forward dynamics of cable and body: the default O(n) recursion and the
+// paper's dense Lagrange formulation (MODEL.md 2-4, 8; docs/theory.md).
+#pragma once
+
+#include "towsim/dynamics/state.hpp"
+
+namespace towsim {
+
+/// Default formulation: accelerations, tow force, link force and every joint
+/// force at cost O(n), by a backward pass of articulated joint inertias
+/// (f_k = K_k a_{P_k} + b_k) from the body up to the tow point and a forward
+/// pass of accelerations down the chain. In Motion mode the tow point follows
+/// the tow law (s.r0, s.v0 must match it) and F_R is computed; in Force mode
+/// F_R is imposed and the tow point's acceleration is computed.
+/// Results in ws.acc. Also fills ws's kinematics and loads.
+void forward_dynamics(const Model& model, const PhysicalState& s, double t, Workspace& ws);
+
+/// Loads and inertias of every element and of the body for the current
+/// kinematics (shared by both formulations).
+void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws);
+
+}  // namespace towsim

@@ -1,0 +1,44 @@
+// Fluid and gravity loads on cable elements and on the towed body (MODEL.md 3-4).
+#pragma once
+
+#include "towsim/dynamics/state.hpp"
+
+namespace towsim {
+
+/// Smoothed sign: x / sqrt(x^2 + v_s^2) [-]; continuous, odd, -> sgn(x) for |x| >> v_s.
+double smooth_sign(double x, double v_s);
+
+/// Loads on cable element `el` applied at its centre G: weight and buoyancy,
+/// normal pressure drag, tangential friction and the velocity terms of the
+/// ideal-fluid added mass (incl. the Munk moment). The acceleration terms of
+/// the added mass are NOT included: they belong to the mass matrix Mt, Ia.
+/// e: unit axis, edot = de/dt, vG: velocity of G, zG: height of G.
+/// Outputs: F [N, R_g] and moment about G, M [N m, R_g].
+void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot,
+                   const Vec3& vG, double zG, Vec3& F, Vec3& M);
+
+/// Translational inertia of an element at G: m I + ma (I - ee^T) [kg].
+Mat3 element_mass(const Element& el, const Vec3& e);
+
+/// Rotational inertia of an element about G, perpendicular to e: I + Ia [kg m^2].
+inline double element_rot_inertia(const Element& el) { return el.inertia + el.added_inertia; }
+
+/// Body inertia in R_g about O_t and the velocity-dependent inertial terms:
+/// d(momentum, moment of momentum about O_t)/dt = Mw [a_O; alpha] + hw.
+/// Rigid part with absolute velocities, added mass with velocities relative to
+/// the water (Kirchhoff's equations). Needs ws.R, ws.O, ws.vO (compute_kinematics).
+void body_inertia(const Model& model, const PhysicalState& s, Workspace& ws);
+
+/// External loads on the body except the link force: gravity, buoyancy,
+/// sphere, cylinder and lifting-surface loads, damping. Force ws.Fb [N] and
+/// moment about O_t ws.Mb [N m], both R_g.
+void body_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws);
+
+/// Lift coefficient of a lifting surface at angle of attack alpha [rad]:
+/// linear up to stall, then falling smoothly to zero at 90 degrees.
+double lift_coefficient(const LiftingSurface& ls, double alpha);
+
+/// Deflection of a lifting surface at time t [rad].
+double surface_deflection(const LiftingSurface& ls, double t);
+
+}  // namespace towsim

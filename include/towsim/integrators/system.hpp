@@ -1,0 +1,46 @@
+// A formulation as the time integrator sees it: a flat state vector, its time
+// derivative, and a projection after each accepted step (MODEL.md 5).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "towsim/dynamics/state.hpp"
+
+namespace towsim {
+
+using StateVector = std::vector<double>;
+
+/// One formulation's state space. Implementations: the default (unit vectors
+/// e_k, angular velocities, body quaternion) and the paper's (angles in charts).
+class System {
+ public:
+  virtual ~System() = default;
+  /// Flat state of a physical state at time t.
+  virtual StateVector initial(const PhysicalState& s, double t) = 0;
+  /// dy/dt at (y, t). Counts evaluations.
+  virtual void derivative(const StateVector& y, StateVector& dy, double t) = 0;
+  /// After an accepted step: renormalise unit vectors and quaternion, make
+  /// angular velocities normal to their element, re-choose charts, and reset
+  /// the tow point to its imposed motion. Keeps the physical state.
+  virtual void project(StateVector& y, double t) = 0;
+  /// Physical state of y.
+  virtual PhysicalState physical(const StateVector& y) const = 0;
+  /// Full evaluation for output at (y, t): kinematics, forces, joint forces.
+  virtual const Workspace& evaluate(const StateVector& y, double t) = 0;
+  /// What state component i belongs to ("element 3", "body", "tow point").
+  virtual std::string describe(std::size_t i) const = 0;
+  /// odeint's call signature.
+  void operator()(const StateVector& y, StateVector& dy, double t) { derivative(y, dy, t); }
+
+  long rhs_evaluations = 0;  // dynamics evaluations so far
+};
+
+/// The system of the model's formulation (model.sim.formulation).
+std::unique_ptr<System> make_system(const Model& model);
+
+/// Initial physical state of a model (hanging, along a direction; steady via statics).
+PhysicalState initial_state(const Model& model);
+
+}  // namespace towsim

@@ -1,0 +1,214 @@
+// The immutable, compiled description of a towing system (MODEL.md 1-4).
+//
+// A Model is built once by `compile()` from a parsed scenario and never
+// changes during a run. Dynamics are free functions of (model, state, t,
+// workspace); they never see YAML. Notation: docs/theory.md.
+//
+// Frames: global frame R_g with z up, free surface at z = 0. Body axes
+// (x forward, y, z) attached to the towed body at its origin O_t.
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+namespace towsim {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Quat = Eigen::Quaterniond;
+
+/// Water and gravity. `rho == 0` means no fluid at all (vacuum).
+struct Fluid {
+  double rho = 1025.0;  // water density [kg/m^3]
+  double g = 9.81;      // gravitational acceleration [m/s^2], along -z_g
+
+  /// Current profile: velocity U(z) [m/s, R_g] given at depths, linearly
+  /// interpolated in depth, held constant beyond the table's ends. A single
+  /// row means a uniform current. Empty means still water.
+  std::vector<double> current_depth;  // depth = -z of each row [m], increasing
+  std::vector<Vec3> current_velocity;  // U at that depth [m/s, R_g]
+
+  /// Current U at height z [m/s, R_g].
+  Vec3 current(double z) const;
+  /// dU/dz at height z [1/s, R_g] (zero for a uniform current).
+  Vec3 current_gradient(double z) const;
+  bool has_current() const { return !current_velocity.empty(); }
+};
+
+/// Tangential (axial) friction law on a cable element (MODEL.md 3).
+enum class TangentialLaw {
+  Pode,  // F_t = -1/2 rho Cd f D L |u|^2 sgn_s(u.e) e   (paper 2.43)
+  Skin,  // F_t = -1/2 rho pi D L Ct |u.e| (u.e) e       (lumped-mass codes)
+};
+
+/// How the fluid's added mass acts on a cable element (MODEL.md 3).
+enum class AddedMassModel {
+  IdealFluid,  // -dP/dt with P = ma (I - ee^T) u, plus the Munk moment (paper 2.42)
+  Morison,     // acceleration term only: -ma (I - ee^T) du/dt, -Ia alpha
+};
+
+/// One rigid, straight, inextensible cable element i (1 = top).
+struct Element {
+  double length;     // L_i, joint to joint [m] (the paper's 2l)
+  double mass;       // m_i in air [kg] (the paper's 3m)
+  double diameter;   // D_i, hydrodynamic and displacement diameter [m]
+  double inertia;    // I_i = m_i L_i^2 / 12 about G_i, perpendicular to e_i [kg m^2]
+  double added_mass;     // ma_i = Ca rho (pi D^2/4) L_i, normal to e_i [kg]
+  double added_inertia;  // Ia_i = ma_i L_i^2 / 12 [kg m^2]
+  double weight;     // apparent weight (m_i - rho A_i L_i) g, along -z [N]
+  double drag_factor;      // 1/2 rho Cd D L, normal drag: F = -k |u_n| u_n [kg/m]
+  double friction_factor;  // Pode: 1/2 rho Cd f D L; Skin: 1/2 rho pi D L Ct [kg/m]
+};
+
+/// Cable: the chain of elements and its fluid-load options.
+struct Cable {
+  std::vector<Element> elements;  // ordered from the tow point (1) to the end (n)
+  TangentialLaw tangential_law = TangentialLaw::Pode;
+  AddedMassModel added_mass_model = AddedMassModel::IdealFluid;
+  double sign_smoothing_speed = 1e-3;  // v_s in sgn_s(x) = x / sqrt(x^2 + v_s^2) [m/s]
+
+  int n() const { return static_cast<int>(elements.size()); }
+  double total_length() const;
+};
+
+/// A sphere load model on the body: drag, added mass and buoyancy at its centre.
+struct SphereLoad {
+  Vec3 center;        // centre, body axes [m]
+  double radius;      // [m]
+  double drag;        // Cd on the frontal area pi r^2 [-]
+  double added_mass;  // Ca, added mass = Ca rho (4/3 pi r^3) [-]
+};
+
+/// A slender cylinder load model on the body, loaded like a cable element.
+struct CylinderLoad {
+  Vec3 center;        // centre, body axes [m]
+  Vec3 axis;          // unit axis, body axes [-]
+  double length;      // [m]
+  double diameter;    // [m]
+  double normal_drag; // Cd on D*L for the normal flow [-]
+  double axial_drag;  // Ct skin friction on pi D L for the axial flow [-]
+  double added_mass;  // Ca, normal added mass Ca rho pi D^2/4 L [-]
+};
+
+/// A lifting surface (fin, depressor wing) on the body.
+/// Lift and drag from the local angle of attack in the surface's plane.
+struct LiftingSurface {
+  Vec3 center;     // centre of pressure, body axes [m]
+  Vec3 chord;      // unit chord direction (leading edge forward), body axes [-]
+  Vec3 normal;     // unit normal: positive lift side at positive incidence, body axes [-]
+  double area;     // planform area [m^2]
+  double lift_slope;   // dCL/dalpha below stall [1/rad]
+  double stall_angle;  // |alpha| beyond which lift falls off [rad]
+  double drag0;        // zero-lift drag coefficient CD0 [-]
+  double induced_drag; // k in CD = CD0 + k CL^2 [-]
+  /// Deflection delta(t) [rad] about the span axis (chord x normal), as a table;
+  /// one row = constant, empty = 0. Linear interpolation, held at the ends.
+  std::vector<double> deflection_time;   // [s]
+  std::vector<double> deflection_angle;  // [rad]
+};
+
+/// The towed rigid body (MODEL.md 4, paper section 4).
+struct Body {
+  double mass;               // m_B [kg]
+  Mat3 inertia_cg;           // inertia tensor about the CG, body axes [kg m^2]
+  Vec3 cg;                   // r_G, body axes [m]
+  Vec3 link_point;           // r_Q, the ball joint with the cable, body axes [m]
+  double volume = 0.0;       // displaced volume not counted by the load models [m^3]
+  Vec3 cb = Vec3::Zero();    // r_B, centre of buoyancy of `volume`, body axes [m]
+  Mat6 added_mass = Mat6::Zero();  // user 6x6 added mass about O_t, body axes [SI]
+  Mat6 linear_damping = Mat6::Zero();     // D_l: tau = -D_l nu_r, body axes [SI]
+  Mat6 quadratic_damping = Mat6::Zero();  // D_q: tau = -D_q (|nu_r| o nu_r) [SI]
+  std::vector<SphereLoad> spheres;
+  std::vector<CylinderLoad> cylinders;
+  std::vector<LiftingSurface> surfaces;
+  Quat initial_attitude = Quat::Identity();  // body axes -> R_g at t = 0
+
+  // Derived at compile time (compile() fills these):
+  Mat6 rigid_mass;        // M_RB about O_t, body axes [SI]
+  Mat6 fluid_mass;        // M_A: added_mass + sphere and cylinder added masses, about O_t, body axes
+  double displaced_volume;// total: volume + spheres + cylinders [m^3]
+  Vec3 buoyancy_center;   // centre of the total displaced volume, body axes [m]
+};
+
+/// One piece of an imposed tow-point motion (INTERFACE.md).
+struct TowPiece {
+  enum class Type { Ramp, Heave, Turn, Track } type;
+  Vec3 direction = Vec3::UnitX();  // ramp: unit direction [-]
+  double speed = 0;       // ramp: final speed [m/s]
+  double ramp_time = 0;   // ramp: time to reach it [s] (0 = at once)
+  double amplitude = 0;   // heave: [m]
+  double period = 0;      // heave: [s]
+  double start_time = 0;  // heave, turn: [s]
+  double radius = 0;      // turn: [m]
+  bool port = true;       // turn: true = to port (left), false = starboard
+  // track: time, and position relative to the tow start (natural cubic spline)
+  std::vector<double> track_time;  // [s], strictly increasing
+  std::vector<Vec3> track_pos;     // [m, R_g]
+};
+
+/// The tow point O_r: imposed motion (tow force is an output) or imposed force.
+struct Tow {
+  enum class Mode { Motion, Force } mode = Tow::Mode::Motion;
+  Vec3 start = Vec3::Zero();     // O_r at t = 0 [m, R_g]
+  std::vector<TowPiece> pieces;  // Motion: summed (a turn replaces the horizontal path)
+  // Force: F_R(t) tabulated (one row = constant), linear interpolation [s], [N, R_g]
+  std::vector<double> force_time;
+  std::vector<Vec3> force_value;
+};
+
+/// Kinematics of the tow point at one instant.
+struct TowKinematics {
+  Vec3 pos, vel, acc;  // [m], [m/s], [m/s^2], R_g
+};
+
+/// Imposed tow-point kinematics at time t (Motion mode).
+TowKinematics tow_kinematics(const Tow& tow, double t);
+/// Imposed tow force at time t (Force mode) [N, R_g].
+Vec3 tow_force(const Tow& tow, double t);
+
+/// How the run starts.
+struct Initial {
+  enum class Kind { Hanging, Steady, Direction } kind = Kind::Hanging;
+  Vec3 direction = -Vec3::UnitZ();  // Direction: unit vector from the tow point [-]
+};
+
+enum class Integrator { RK4, DOPRI5, CashKarp54 };
+enum class Formulation { Default, Paper };
+
+/// Time integration settings (MODEL.md 5).
+struct Simulation {
+  double duration = 100;        // [s]
+  double time_step = 0.01;      // fixed step, or first step if adaptive [s]
+  double output_interval = 0.1; // [s]
+  Integrator integrator = Integrator::RK4;
+  double tolerance = 1e-6;      // adaptive: relative and absolute error target [-]
+  double max_step = 1.0;        // adaptive: largest step [s]
+  Formulation formulation = Formulation::Default;
+  bool write_nodes = true;      // write nodes.csv
+};
+
+/// The whole compiled system.
+struct Model {
+  std::string name;        // scenario name (file stem or example name)
+  Fluid fluid;
+  Cable cable;
+  bool has_body = false;
+  Body body;
+  Tow tow;
+  Initial initial;
+  Simulation sim;
+};
+
+/// Fill Element's derived fields from its primary data and the fluid.
+/// Cd, f (Pode) or Ct (Skin), and Ca are the cable's coefficients.
+Element make_element(double length, double mass_per_length, double diameter,
+                     double cd, double tangential_coef, TangentialLaw law,
+                     double ca, const Fluid& fluid);
+
+/// Fill Body's derived fields (rigid_mass, fluid_mass, displaced volume).
+void finalize_body(Body& body, const Fluid& fluid);
+
+}  // namespace towsim

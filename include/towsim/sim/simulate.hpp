@@ -1,0 +1,68 @@
+// Running a compiled Model through time and handing samples to an output sink.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "towsim/model/model.hpp"
+
+namespace towsim {
+
+/// Everything written for one output time (INTERFACE.md output files).
+struct Sample {
+  double t = 0;                 // simulated time [s]
+  Vec3 tow_pos, tow_vel;        // O_r = P_0 [m], [m/s], R_g
+  Vec3 tow_force;               // F_R exerted by the vessel on the cable at O_r [N, R_g]
+  std::vector<Vec3> node_pos;   // P_0..P_n [m, R_g]
+  std::vector<Vec3> node_vel;   // velocities of P_0..P_n [m/s, R_g]
+  std::vector<double> tension;  // |force carried through joint k|, k = 0..n [N]
+  bool has_body = false;
+  Vec3 body_pos;                // O_t [m, R_g]
+  Vec3 body_vel;                // velocity of O_t [m/s, R_g]
+  Vec3 body_rpy_deg;            // roll phi, pitch theta, yaw psi (ZYX as in the paper) [deg]
+  Vec3 body_omega;              // angular velocity [rad/s, R_g]
+  Vec3 link_force;              // F_L exerted by the cable on the body at Q [N, R_g]
+};
+
+/// Receives samples in time order. Implementations write files.
+class OutputSink {
+ public:
+  virtual ~OutputSink() = default;
+  /// Record one sample.
+  virtual void write(const Sample& s) = 0;
+  /// Push everything recorded so far to disk.
+  virtual void flush() = 0;
+};
+
+/// A sink that keeps every sample in memory (tests, statics, tools).
+class MemorySink : public OutputSink {
+ public:
+  std::vector<Sample> samples;
+  void write(const Sample& s) override { samples.push_back(s); }
+  void flush() override {}
+};
+
+/// How a run ended and what it cost.
+struct RunStats {
+  std::string status = "ok";   // "ok", "failed" (numerical), "interrupted"
+  std::string message;         // why it failed: time, element or body, quantity
+  double end_time = 0;         // last simulated time reached [s]
+  long steps = 0;              // accepted steps
+  long rejected_steps = 0;     // adaptive: rejected trial steps
+  long rhs_evaluations = 0;    // evaluations of the dynamics
+  double wall_seconds = 0;     // wall-clock time of the integration [s]
+  double max_element_drift = 0;// max |  |P_k - P_{k-1}| / L_k - 1 | seen [-]
+};
+
+/// Progress callback: fraction done in [0, 1].
+using ProgressFn = std::function<void(double)>;
+
+/// Integrate `model` from its initial state to `model.sim.duration`, writing a
+/// sample at t = 0 and every `output_interval`. Never throws on numerical
+/// failure: it stops, flushes the sink and reports it in RunStats.
+/// `stop_flag`, when non-null and set, interrupts the run cleanly.
+RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progress = {},
+                  const volatile int* stop_flag = nullptr);
+
+}  // namespace towsim

@@ -1,0 +1,146 @@
+// Inertia and external loads of the towed body (MODEL.md 4; paper section 4).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "towsim/hydro/loads.hpp"
+
+namespace towsim {
+
+namespace {
+/// Block-diagonal rotation of a 6-vector: [R a; R b].
+Vec6 rotate6(const Mat3& R, const Vec6& v) {
+  Vec6 out;
+  out << R * v.head<3>(), R * v.tail<3>();
+  return out;
+}
+
+/// Add a force F applied at point c (relative to O_t, R_g) to the body loads.
+void add_force(Workspace& ws, const Vec3& c, const Vec3& F) {
+  ws.Fb += F;
+  ws.Mb += c.cross(F);
+}
+
+/// Drag of a sphere load.
+void sphere_loads(const Model& m, const SphereLoad& sp, Workspace& ws) {
+  const Vec3 c = ws.R * sp.center;
+  const Vec3 ur = ws.vO + ws.wB.cross(c) - m.fluid.current(ws.O.z() + c.z());
+  const double area = std::numbers::pi * sp.radius * sp.radius;
+  add_force(ws, c, -0.5 * m.fluid.rho * sp.drag * area * ur.norm() * ur);
+}
+
+/// Normal drag and axial skin friction of a slender cylinder load.
+void cylinder_loads(const Model& m, const CylinderLoad& cy, Workspace& ws) {
+  const Vec3 c = ws.R * cy.center;
+  const Vec3 a = ws.R * cy.axis;
+  const Vec3 u = ws.vO + ws.wB.cross(c) - m.fluid.current(ws.O.z() + c.z());
+  const double ua = u.dot(a);
+  const Vec3 un = u - ua * a;
+  const double rho = m.fluid.rho;
+  Vec3 F = -0.5 * rho * cy.normal_drag * cy.diameter * cy.length * un.norm() * un;
+  F -= 0.5 * rho * std::numbers::pi * cy.diameter * cy.length * cy.axial_drag * std::abs(ua) * ua * a;
+  add_force(ws, c, F);
+}
+
+/// Lift and drag of a lifting surface from its local angle of attack.
+void surface_loads(const Model& m, const LiftingSurface& ls, double t, Workspace& ws) {
+  const Vec3 c = ws.R * ls.center;
+  const Vec3 span = ws.R * ls.chord.cross(ls.normal);
+  // Deflection rotates chord and normal about the span axis.
+  const double d = surface_deflection(ls, t);
+  const Vec3 chord = ws.R * (std::cos(d) * ls.chord - std::sin(d) * ls.normal);
+  const Vec3 normal = ws.R * (std::sin(d) * ls.chord + std::cos(d) * ls.normal);
+  const Vec3 u = ws.vO + ws.wB.cross(c) - m.fluid.current(ws.O.z() + c.z());
+  const Vec3 up = u - u.dot(span) * span;  // velocity in the surface's plane
+  const double V = up.norm();
+  if (V < 1e-12) return;
+  const double alpha = std::atan2(-up.dot(normal), up.dot(chord));
+  const double cl = lift_coefficient(ls, alpha);
+  const double as = ls.stall_angle;
+  double cd = ls.drag0 + ls.induced_drag * cl * cl;
+  const double sa = std::abs(std::sin(alpha));
+  if (std::abs(alpha) > as) cd += 2 * (sa * sa - std::sin(as) * std::sin(as));
+  const double qA = 0.5 * m.fluid.rho * V * V * ls.area;
+  const Vec3 lift_dir = span.cross(up) / V;
+  add_force(ws, c, qA * (cl * lift_dir - cd * up / V));
+}
+}  // namespace
+
+double lift_coefficient(const LiftingSurface& ls, double alpha) {
+  // Reverse flow (|alpha| > 90 deg) mirrors the forward curve.
+  const double half = std::numbers::pi / 2;
+  if (std::abs(alpha) > half) {
+    const double mirrored = (alpha > 0 ? 1 : -1) * (std::numbers::pi - std::abs(alpha));
+    return -lift_coefficient(ls, mirrored);
+  }
+  const double as = ls.stall_angle;
+  if (std::abs(alpha) <= as) return ls.lift_slope * alpha;
+  // Past stall: falls as a cosine from CL_max at stall to zero at 90 degrees.
+  const double s = (std::abs(alpha) - as) / (half - as);
+  return (alpha > 0 ? 1 : -1) * ls.lift_slope * as * std::cos(s * half);
+}
+
+double surface_deflection(const LiftingSurface& ls, double t) {
+  const auto& ts = ls.deflection_time;
+  const auto& ds = ls.deflection_angle;
+  if (ds.empty()) return 0;
+  if (ds.size() == 1 || t <= ts.front()) return ds.front();
+  if (t >= ts.back()) return ds.back();
+  const std::size_t i = std::upper_bound(ts.begin(), ts.end(), t) - ts.begin() - 1;
+  const double s = (t - ts[i]) / (ts[i + 1] - ts[i]);
+  return (1 - s) * ds[i] + s * ds[i + 1];
+}
+
+void body_inertia(const Model& model, const PhysicalState& s, Workspace& ws) {
+  const Body& b = model.body;
+  const Mat3& R = ws.R;
+  // Body-frame velocities, absolute and relative to the water at O_t.
+  const Vec3 vb = R.transpose() * ws.vO;
+  const Vec3 wb = R.transpose() * s.wb;
+  const Vec3 vr = R.transpose() * (ws.vO - model.fluid.current(ws.O.z()));
+  const Vec3 dU = R.transpose() * (model.fluid.current_gradient(ws.O.z()) * ws.vO.z());
+  Vec6 nu, nur;
+  nu << vb, wb;
+  nur << vr, wb;
+  // Kirchhoff: rigid part with nu, fluid part with nu_r (body-frame rates of
+  // change of the velocities contribute -w x v).
+  const Vec6 PR = b.rigid_mass * nu;
+  const Vec6 PA = b.fluid_mass * nur;
+  Vec6 dnu, dnur, h;
+  dnu << -wb.cross(vb), Vec3::Zero();
+  dnur << -dU - wb.cross(vr), Vec3::Zero();
+  h = b.rigid_mass * dnu + b.fluid_mass * dnur;
+  h.head<3>() += wb.cross(PR.head<3>()) + wb.cross(PA.head<3>());
+  h.tail<3>() += wb.cross(PR.tail<3>()) + vb.cross(PR.head<3>()) + wb.cross(PA.tail<3>()) +
+                 vr.cross(PA.head<3>());
+  // To R_g.
+  Mat6 B = Mat6::Zero();
+  B.topLeftCorner<3, 3>() = R;
+  B.bottomRightCorner<3, 3>() = R;
+  ws.Mw = B * (b.rigid_mass + b.fluid_mass) * B.transpose();
+  ws.hw = rotate6(R, h);
+}
+
+void body_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
+  const Body& b = model.body;
+  const double rho = model.fluid.rho, g = model.fluid.g;
+  ws.Fb.setZero();
+  ws.Mb.setZero();
+  // Gravity at the CG, buoyancy at the centre of the displaced volume.
+  add_force(ws, ws.R * b.cg, Vec3(0, 0, -b.mass * g));
+  add_force(ws, ws.R * b.buoyancy_center, Vec3(0, 0, rho * g * b.displaced_volume));
+  if (rho == 0) return;
+  for (const auto& sp : b.spheres) sphere_loads(model, sp, ws);
+  for (const auto& cy : b.cylinders) cylinder_loads(model, cy, ws);
+  for (const auto& ls : b.surfaces) surface_loads(model, ls, t, ws);
+  // Generic damping on the body-frame velocity relative to the water.
+  if (!b.linear_damping.isZero() || !b.quadratic_damping.isZero()) {
+    Vec6 nur;
+    nur << ws.R.transpose() * (ws.vO - model.fluid.current(ws.O.z())), ws.R.transpose() * s.wb;
+    const Vec6 tau = -b.linear_damping * nur - b.quadratic_damping * nur.cwiseAbs().cwiseProduct(nur);
+    ws.Fb += ws.R * tau.head<3>();
+    ws.Mb += ws.R * tau.tail<3>();
+  }
+}
+
+}  // namespace towsim

@@ -1,0 +1,114 @@
+// Default formulation: O(n) articulated recursion along the chain
+// (docs/theory.md "Linear-cost recursion"; MODEL.md 8).
+//
+// For the part of the system below joint k (elements k+1..n and the body),
+// the force f_k it receives through the joint is affine in the joint's
+// acceleration: f_k = K_k a_{P_k} + b_k. A backward pass builds (K_k, b_k)
+// from the body up; a forward pass then gives each element's angular
+// acceleration from the acceleration of the joint above it.
+#include "towsim/dynamics/dynamics.hpp"
+#include "towsim/hydro/loads.hpp"
+
+namespace towsim {
+
+namespace {
+
+/// Body at the end of the chain: its (K_n, b_n) for the link force
+/// F_L = K_n a_Q + b_n, after eliminating its angular acceleration.
+void body_articulated(const Model& model, Workspace& ws) {
+  const std::size_t n = model.cable.elements.size();
+  const Vec3 r = ws.rQ;  // Q - O_t [m, R_g]
+  const Mat3 Rx = skew(r);
+  const Mat3 Mll = ws.Mw.topLeftCorner<3, 3>(), Mla = ws.Mw.topRightCorner<3, 3>();
+  const Mat3 Mal = ws.Mw.bottomLeftCorner<3, 3>(), Maa = ws.Mw.bottomRightCorner<3, 3>();
+  const Vec3 hl = ws.hw.head<3>(), ha = ws.hw.tail<3>();
+  // a_O = a_Q + [r]x alpha + w, with w the centripetal part.
+  ws.wcent = ws.wB.cross(ws.wB.cross(-r));
+  ws.CB = Mal - Rx * Mll;
+  const Mat3 DB = ws.CB * Rx + Maa - Rx * Mla;  // inertia about Q
+  ws.PhiB = DB.inverse();
+  ws.rhsB = ws.Mb - r.cross(ws.Fb) - ha + r.cross(hl);
+  ws.K[n] = Mll - ws.CB.transpose() * ws.PhiB * ws.CB;
+  ws.b[n] = Mll * ws.wcent + ws.CB.transpose() * ws.PhiB * (ws.rhsB - ws.CB * ws.wcent) + hl - ws.Fb;
+}
+
+/// Backward pass: articulated inertia K_{k-1} and bias b_{k-1} seen at the top
+/// joint of element k, from those at its bottom joint.
+void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
+  const auto& els = model.cable.elements;
+  for (std::size_t k = els.size(); k-- > 0;) {
+    const Element& el = els[k];
+    const double L = el.length;
+    const Vec3& e = s.e[k];
+    const Mat3& Mt = ws.Mt[k];
+    const Mat3& Kk = ws.K[k + 1];
+    const Vec3& bk = ws.b[k + 1];
+    ws.c[k] = -s.w[k].squaredNorm() * e;  // centripetal part of d2e/dt2
+    const Vec3& c = ws.c[k];
+    // Rotation about the top joint, projected on the plane normal to e:
+    // [P (L^2/4 Mt + L^2 K) P + Ir P] beta = r0 - Gm a_top.
+    ws.Gm[k] = 0.5 * L * Mt + L * Kk;
+    const Mat3 Pn = Mat3::Identity() - e * e.transpose();
+    const Mat3 Q = 0.25 * L * L * Mt + L * L * Kk;
+    const Mat3 D = Pn * Q * Pn + element_rot_inertia(el) * Pn + e * e.transpose();
+    ws.Phi[k] = Pn * D.inverse() * Pn;
+    ws.r0[k] = 0.5 * L * (ws.F[k] - 0.5 * L * Mt * c) - L * (L * Kk * c + bk) - e.cross(ws.Mom[k]);
+    // Force through the top joint, affine in its acceleration.
+    ws.K[k] = Mt + Kk - ws.Gm[k] * ws.Phi[k] * ws.Gm[k];
+    ws.b[k] = ws.Gm[k] * ws.Phi[k] * ws.r0[k] + 0.5 * L * Mt * c + L * Kk * c + bk - ws.F[k];
+  }
+}
+
+/// Forward pass: tow-point acceleration or tow force, then each element's
+/// angular acceleration and joint force, then the body's.
+void forward_pass(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
+  const auto& els = model.cable.elements;
+  Accelerations& acc = ws.acc;
+  if (model.tow.mode == Tow::Mode::Motion) {
+    acc.a0 = tow_kinematics(model.tow, t).acc;
+    acc.tow_force = ws.K[0] * acc.a0 + ws.b[0];
+  } else {
+    acc.tow_force = tow_force(model.tow, t);
+    acc.a0 = ws.K[0].ldlt().solve(acc.tow_force - ws.b[0]);
+  }
+  acc.joint_force[0] = acc.tow_force;
+  Vec3 a = acc.a0;
+  for (std::size_t k = 0; k < els.size(); ++k) {
+    const Vec3 beta = ws.Phi[k] * (ws.r0[k] - ws.Gm[k] * a);  // alpha x e
+    acc.alpha[k] = s.e[k].cross(beta);
+    a += els[k].length * (beta + ws.c[k]);
+    acc.joint_force[k + 1] = ws.K[k + 1] * a + ws.b[k + 1];
+  }
+  acc.link_force = acc.joint_force[els.size()];
+  if (model.has_body) acc.alpha_b = ws.PhiB * (ws.rhsB - ws.CB * (a + ws.wcent));
+}
+
+}  // namespace
+
+void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
+  const auto& els = model.cable.elements;
+  for (std::size_t k = 0; k < els.size(); ++k) {
+    element_loads(model, els[k], s.e[k], ws.edot[k], ws.vG[k], ws.G[k].z(), ws.F[k], ws.Mom[k]);
+    ws.Mt[k] = element_mass(els[k], s.e[k]);
+  }
+  if (model.has_body) {
+    body_inertia(model, s, ws);
+    body_loads(model, s, t, ws);
+  }
+}
+
+void forward_dynamics(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
+  compute_kinematics(model, s, ws);
+  compute_loads(model, s, t, ws);
+  const std::size_t n = model.cable.elements.size();
+  if (model.has_body) {
+    body_articulated(model, ws);
+  } else {
+    ws.K[n].setZero();
+    ws.b[n].setZero();
+  }
+  backward_pass(model, s, ws);
+  forward_pass(model, s, t, ws);
+}
+
+}  // namespace towsim

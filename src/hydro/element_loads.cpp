@@ -1,0 +1,49 @@
+// Loads on a cable element (MODEL.md 3; paper 2.3-2.43).
+#include <cmath>
+
+#include "towsim/hydro/loads.hpp"
+
+namespace towsim {
+
+double smooth_sign(double x, double v_s) { return x / std::sqrt(x * x + v_s * v_s); }
+
+Mat3 element_mass(const Element& el, const Vec3& e) {
+  return el.mass * Mat3::Identity() + el.added_mass * (Mat3::Identity() - e * e.transpose());
+}
+
+void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot,
+                   const Vec3& vG, double zG, Vec3& F, Vec3& M) {
+  const Fluid& fluid = model.fluid;
+  // Weight and buoyancy (apparent weight), along -z.
+  F = Vec3(0, 0, -el.weight);
+  M.setZero();
+  if (fluid.rho == 0) return;
+
+  // Velocity relative to the water, split along and across the element.
+  const Vec3 u = vG - fluid.current(zG);
+  const double ue = u.dot(e);
+  const Vec3 un = u - ue * e;
+
+  // Normal pressure drag (paper 2.41).
+  F -= el.drag_factor * un.norm() * un;
+
+  // Tangential friction: Pode/Landweber (paper 2.43) or skin friction.
+  if (model.cable.tangential_law == TangentialLaw::Pode)
+    F -= el.friction_factor * u.squaredNorm() * smooth_sign(ue, model.cable.sign_smoothing_speed) * e;
+  else
+    F -= el.friction_factor * std::abs(ue) * ue * e;
+
+  // Added mass: the relative velocity also changes as G moves through a
+  // sheared current, du/dt = a_G - U'(z) zdot; the U' term is known here.
+  if (fluid.current_velocity.size() > 1) {
+    const Vec3 dU = fluid.current_gradient(zG) * vG.z();
+    F += el.added_mass * (dU - dU.dot(e) * e);
+  }
+  // Ideal fluid: -dP/dt velocity terms and the Munk moment (paper 2.42).
+  if (model.cable.added_mass_model == AddedMassModel::IdealFluid) {
+    F += el.added_mass * (edot * ue + e * edot.dot(u));
+    M += el.added_mass * ue * u.cross(e);
+  }
+}
+
+}  // namespace towsim

@@ -1,0 +1,220 @@
+// The default and paper formulations as flat-state systems for the integrators.
+#include "towsim/integrators/system.hpp"
+
+#include "towsim/dynamics/dynamics.hpp"
+#include "towsim/dynamics/paper.hpp"
+
+namespace towsim {
+
+namespace {
+
+using Map3 = Eigen::Map<Vec3>;
+using CMap3 = Eigen::Map<const Vec3>;
+
+/// Write a 3-vector into a flat state at offset i.
+void set3(StateVector& y, std::size_t i, const Vec3& v) { y[i] = v.x(), y[i + 1] = v.y(), y[i + 2] = v.z(); }
+
+/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, quaternion (w,x,y,z), w_body].
+class DefaultSystem final : public System {
+ public:
+  explicit DefaultSystem(const Model& m) : model_(m), ws_(m), s_(PhysicalState::hanging(m.cable.n())) {
+    n_ = m.cable.n();
+    size_ = 6 + 6 * n_ + (m.has_body ? 7 : 0);
+  }
+
+  StateVector initial(const PhysicalState& s, double) override {
+    StateVector y(size_);
+    set3(y, 0, s.r0);
+    set3(y, 3, s.v0);
+    for (int k = 0; k < n_; ++k) {
+      set3(y, 6 + 3 * k, s.e[k]);
+      set3(y, 6 + 3 * n_ + 3 * k, s.w[k]);
+    }
+    if (model_.has_body) {
+      const std::size_t o = 6 + 6 * n_;
+      y[o] = s.q.w(), y[o + 1] = s.q.x(), y[o + 2] = s.q.y(), y[o + 3] = s.q.z();
+      set3(y, o + 4, s.wb);
+    }
+    return y;
+  }
+
+  PhysicalState physical(const StateVector& y) const override {
+    PhysicalState s = s_;
+    unpack(y, s);
+    return s;
+  }
+
+  void derivative(const StateVector& y, StateVector& dy, double t) override {
+    ++rhs_evaluations;
+    unpack(y, s_);
+    if (model_.tow.mode == Tow::Mode::Motion) {
+      const TowKinematics k = tow_kinematics(model_.tow, t);
+      s_.r0 = k.pos;
+      s_.v0 = k.vel;
+    }
+    forward_dynamics(model_, s_, t, ws_);
+    dy.resize(size_);
+    // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
+    set3(dy, 0, s_.v0);
+    set3(dy, 3, ws_.acc.a0);
+    for (int k = 0; k < n_; ++k) {
+      set3(dy, 6 + 3 * k, s_.w[k].cross(s_.e[k]));
+      set3(dy, 6 + 3 * n_ + 3 * k, ws_.acc.alpha[k]);
+    }
+    if (model_.has_body) {
+      const std::size_t o = 6 + 6 * n_;
+      const Quat dq = Quat(0, s_.wb.x(), s_.wb.y(), s_.wb.z()) * s_.q;
+      dy[o] = 0.5 * dq.w(), dy[o + 1] = 0.5 * dq.x(), dy[o + 2] = 0.5 * dq.y(), dy[o + 3] = 0.5 * dq.z();
+      set3(dy, o + 4, ws_.acc.alpha_b);
+    }
+  }
+
+  void project(StateVector& y, double t) override {
+    if (model_.tow.mode == Tow::Mode::Motion) {
+      const TowKinematics k = tow_kinematics(model_.tow, t);
+      set3(y, 0, k.pos);
+      set3(y, 3, k.vel);
+    }
+    for (int k = 0; k < n_; ++k) {
+      Map3 e(&y[6 + 3 * k]), w(&y[6 + 3 * n_ + 3 * k]);
+      e.normalize();
+      w -= w.dot(e) * e;
+    }
+    if (model_.has_body) {
+      const std::size_t o = 6 + 6 * n_;
+      Eigen::Map<Eigen::Vector4d> q(&y[o]);
+      q.normalize();
+    }
+  }
+
+  const Workspace& evaluate(const StateVector& y, double t) override {
+    StateVector dy;
+    derivative(y, dy, t);
+    --rhs_evaluations;
+    return ws_;
+  }
+
+  std::string describe(std::size_t i) const override {
+    if (i < 6) return "tow point";
+    if (i < static_cast<std::size_t>(6 + 6 * n_)) return "element " + std::to_string((i - 6) % (3 * n_) / 3 + 1);
+    return "body";
+  }
+
+ private:
+  void unpack(const StateVector& y, PhysicalState& s) const {
+    s.r0 = CMap3(&y[0]);
+    s.v0 = CMap3(&y[3]);
+    for (int k = 0; k < n_; ++k) {
+      s.e[k] = CMap3(&y[6 + 3 * k]);
+      s.w[k] = CMap3(&y[6 + 3 * n_ + 3 * k]);
+    }
+    if (model_.has_body) {
+      const std::size_t o = 6 + 6 * n_;
+      s.q = Quat(y[o], y[o + 1], y[o + 2], y[o + 3]).normalized();
+      s.wb = CMap3(&y[o + 4]);
+    }
+  }
+
+  const Model& model_;
+  Workspace ws_;
+  PhysicalState s_;
+  int n_ = 0;
+  std::size_t size_ = 0;
+};
+
+/// Paper formulation: y = [r0, v0, q, q'] with q the angles in their charts.
+class PaperSystem final : public System {
+ public:
+  explicit PaperSystem(const Model& m) : model_(m), pw_(m), eval_ws_(m) { na_ = paper_angle_count(m); }
+
+  StateVector initial(const PhysicalState& s, double) override {
+    p_ = to_paper(model_, s);
+    StateVector y(6 + 2 * na_);
+    pack(p_, y);
+    return y;
+  }
+
+  PhysicalState physical(const StateVector& y) const override {
+    PaperState p = p_;
+    unpack(y, p);
+    return from_paper(model_, p);
+  }
+
+  void derivative(const StateVector& y, StateVector& dy, double t) override {
+    ++rhs_evaluations;
+    unpack(y, p_);
+    if (model_.tow.mode == Tow::Mode::Motion) {
+      const TowKinematics k = tow_kinematics(model_.tow, t);
+      p_.r0 = k.pos;
+      p_.v0 = k.vel;
+    }
+    paper_dynamics(model_, p_, t, pw_);
+    dy.resize(y.size());
+    set3(dy, 0, p_.v0);
+    set3(dy, 3, pw_.acc.a0);
+    Eigen::Map<Eigen::VectorXd>(&dy[6], na_) = p_.qd;
+    Eigen::Map<Eigen::VectorXd>(&dy[6 + na_], na_) = pw_.qdd;
+  }
+
+  void project(StateVector& y, double t) override {
+    unpack(y, p_);
+    if (model_.tow.mode == Tow::Mode::Motion) {
+      const TowKinematics k = tow_kinematics(model_.tow, t);
+      p_.r0 = k.pos;
+      p_.v0 = k.vel;
+    }
+    rechart(model_, p_);
+    pack(p_, y);
+  }
+
+  const Workspace& evaluate(const StateVector& y, double t) override {
+    // Forces from the paper's own solve; joint tensions from the recursion
+    // on the same physical state (they agree to round-off: tests).
+    StateVector dy;
+    derivative(y, dy, t);
+    --rhs_evaluations;
+    PhysicalState s = from_paper(model_, p_);
+    forward_dynamics(model_, s, t, eval_ws_);
+    eval_ws_.acc.tow_force = pw_.acc.tow_force;
+    eval_ws_.acc.link_force = pw_.acc.link_force;
+    eval_ws_.acc.joint_force.front() = pw_.acc.tow_force;
+    if (model_.has_body) eval_ws_.acc.joint_force.back() = pw_.acc.link_force;
+    return eval_ws_;
+  }
+
+  std::string describe(std::size_t i) const override {
+    if (i < 6) return "tow point";
+    const std::size_t j = (i - 6) % na_;
+    if (j < static_cast<std::size_t>(2 * model_.cable.n())) return "element " + std::to_string(j / 2 + 1);
+    return "body";
+  }
+
+ private:
+  void pack(const PaperState& p, StateVector& y) const {
+    set3(y, 0, p.r0);
+    set3(y, 3, p.v0);
+    Eigen::Map<Eigen::VectorXd>(&y[6], na_) = p.q;
+    Eigen::Map<Eigen::VectorXd>(&y[6 + na_], na_) = p.qd;
+  }
+  void unpack(const StateVector& y, PaperState& p) const {
+    p.r0 = CMap3(&y[0]);
+    p.v0 = CMap3(&y[3]);
+    p.q = Eigen::Map<const Eigen::VectorXd>(&y[6], na_);
+    p.qd = Eigen::Map<const Eigen::VectorXd>(&y[6 + na_], na_);
+  }
+
+  const Model& model_;
+  PaperWorkspace pw_;
+  Workspace eval_ws_;
+  PaperState p_;
+  int na_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<System> make_system(const Model& model) {
+  if (model.sim.formulation == Formulation::Paper) return std::make_unique<PaperSystem>(model);
+  return std::make_unique<DefaultSystem>(model);
+}
+
+}  // namespace towsim

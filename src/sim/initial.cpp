@@ -1,0 +1,22 @@
+// The initial state of a run (INTERFACE.md `initial`).
+#include "towsim/integrators/system.hpp"
+#include "towsim/sim/statics.hpp"
+
+namespace towsim {
+
+PhysicalState initial_state(const Model& model) {
+  if (model.initial.kind == Initial::Kind::Steady) return steady_state(model).state;
+  PhysicalState s = PhysicalState::hanging(model.cable.n());
+  if (model.initial.kind == Initial::Kind::Direction) s.e.assign(model.cable.n(), model.initial.direction.normalized());
+  if (model.tow.mode == Tow::Mode::Motion) {
+    const TowKinematics k = tow_kinematics(model.tow, 0.0);
+    s.r0 = k.pos;
+    s.v0 = k.vel;
+  } else {
+    s.r0 = model.tow.start;
+  }
+  if (model.has_body) s.q = model.body.initial_attitude;
+  return s;
+}
+
+}  // namespace towsim

@@ -1,0 +1,157 @@
+// The run loop: integrate, land on output times, check the state, write samples.
+#include "towsim/sim/simulate.hpp"
+
+#include <boost/numeric/odeint.hpp>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "towsim/integrators/system.hpp"
+
+namespace towsim {
+
+namespace odeint = boost::numeric::odeint;
+
+namespace {
+
+constexpr double kRad2Deg = 180.0 / M_PI;
+constexpr double kMaxRate = 1e4;  // an angular velocity beyond this [rad/s] means divergence
+
+/// Build the output sample of state y at time t.
+Sample make_sample(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats) {
+  const Workspace& ws = sys.evaluate(y, t);
+  const PhysicalState s = sys.physical(y);
+  Sample out;
+  out.t = t;
+  out.tow_pos = ws.P.front();
+  out.tow_vel = ws.vP.front();
+  out.tow_force = ws.acc.tow_force;
+  out.node_pos = ws.P;
+  out.node_vel = ws.vP;
+  out.tension.resize(ws.acc.joint_force.size());
+  for (std::size_t k = 0; k < out.tension.size(); ++k) out.tension[k] = ws.acc.joint_force[k].norm();
+  for (std::size_t k = 1; k < ws.P.size(); ++k) {
+    const double L = model.cable.elements[k - 1].length;
+    stats.max_element_drift = std::max(stats.max_element_drift, std::abs((ws.P[k] - ws.P[k - 1]).norm() / L - 1));
+  }
+  out.has_body = model.has_body;
+  if (model.has_body) {
+    out.body_pos = ws.O;
+    out.body_vel = ws.vO;
+    out.body_rpy_deg = roll_pitch_yaw(s.q) * kRad2Deg;
+    out.body_omega = s.wb;
+    out.link_force = ws.acc.link_force;
+  }
+  return out;
+}
+
+/// Empty if y is sound; else what went wrong and where.
+std::string check_state(const Model& model, const System& sys, const StateVector& y) {
+  for (std::size_t i = 0; i < y.size(); ++i)
+    if (!std::isfinite(y[i])) return sys.describe(i) + ": state is not finite (NaN or infinity)";
+  const PhysicalState s = sys.physical(y);
+  for (int k = 0; k < model.cable.n(); ++k)
+    if (s.w[k].norm() > kMaxRate)
+      return "element " + std::to_string(k + 1) + ": angular velocity diverged (" + std::to_string(s.w[k].norm()) +
+             " rad/s); reduce simulation.time_step or use an adaptive integrator";
+  if (model.has_body && s.wb.norm() > kMaxRate)
+    return "body: angular velocity diverged; reduce simulation.time_step or use an adaptive integrator";
+  return {};
+}
+
+/// Advance y from t to `target` (an output time), by fixed RK4 steps or
+/// adaptive steps that land on `target`. Returns an error text or empty.
+template <class Stepper>
+std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVector& y, double& t, double target,
+                          RunStats& stats) {
+  while (t < target - 1e-12 * std::max(1.0, target)) {
+    const double h = std::min(model.sim.time_step, target - t);
+    rk.do_step(std::ref(sys), y, t, h);
+    t = (target - (t + h) < 1e-12 * std::max(1.0, target)) ? target : t + h;
+    sys.project(y, t);
+    ++stats.steps;
+    if (auto err = check_state(model, sys, y); !err.empty()) return err;
+  }
+  return {};
+}
+
+template <class Controlled>
+std::string advance_adaptive(const Model& model, System& sys, Controlled& ctrl, StateVector& y, double& t,
+                             double target, double& h, RunStats& stats) {
+  const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
+  while (t < target - 1e-12 * std::max(1.0, target)) {
+    const double h_try = std::min({h, model.sim.max_step, target - t});
+    double dt = h_try;
+    const auto res = ctrl.try_step(std::ref(sys), y, t, dt);  // t, dt updated
+    if (res == odeint::fail) {
+      ++stats.rejected_steps;
+      h = dt;
+      if (h < h_min) {
+        std::ostringstream os;
+        os << "step size collapsed below " << h_min << " s (tolerance " << model.sim.tolerance
+           << " cannot be met)";
+        return os.str();
+      }
+      continue;
+    }
+    // Keep the controller's proposal unless this step was shortened to land.
+    if (h_try >= h || dt > h) h = dt;
+    if (std::abs(target - t) < 1e-12 * std::max(1.0, target)) t = target;
+    sys.project(y, t);
+    if constexpr (requires { ctrl.reset(); }) ctrl.reset();  // projection changed y: no stale FSAL derivative
+    ++stats.steps;
+    if (auto err = check_state(model, sys, y); !err.empty()) return err;
+  }
+  return {};
+}
+
+}  // namespace
+
+RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progress, const volatile int* stop_flag) {
+  RunStats stats;
+  const auto wall0 = std::chrono::steady_clock::now();
+  auto sys = make_system(model);
+  StateVector y = sys->initial(initial_state(model), 0.0);
+  sys->project(y, 0.0);
+  double t = 0;
+  sink.write(make_sample(model, *sys, y, t, stats));
+
+  odeint::runge_kutta4<StateVector> rk4;
+  auto dopri = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
+                                       odeint::runge_kutta_dopri5<StateVector>());
+  auto cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
+                                          odeint::runge_kutta_cash_karp54<StateVector>());
+  double h = model.sim.time_step;
+  const double T = model.sim.duration, dT = model.sim.output_interval;
+  const long n_out = static_cast<long>(std::ceil(T / dT - 1e-9));
+  for (long k = 1; k <= n_out; ++k) {
+    if (stop_flag && *stop_flag) {
+      stats.status = "interrupted";
+      stats.message = "interrupted by signal at t = " + std::to_string(t) + " s";
+      break;
+    }
+    const double target = std::min(T, k * dT);
+    std::string err;
+    switch (model.sim.integrator) {
+      case Integrator::RK4: err = advance_fixed(model, *sys, rk4, y, t, target, stats); break;
+      case Integrator::DOPRI5: err = advance_adaptive(model, *sys, dopri, y, t, target, h, stats); break;
+      case Integrator::CashKarp54: err = advance_adaptive(model, *sys, cashkarp, y, t, target, h, stats); break;
+    }
+    if (!err.empty()) {
+      std::ostringstream os;
+      os << "numerical failure at t = " << t << " s: " << err;
+      stats.status = "failed";
+      stats.message = os.str();
+      break;
+    }
+    sink.write(make_sample(model, *sys, y, t, stats));
+    if (progress) progress(t / T);
+  }
+  stats.end_time = t;
+  stats.rhs_evaluations = sys->rhs_evaluations;
+  stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  sink.flush();
+  return stats;
+}
+
+}  // namespace towsim

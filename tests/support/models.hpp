@@ -1,0 +1,91 @@
+// Models built in code for the tests (no YAML), with the paper's numbers.
+#pragma once
+
+#include <numbers>
+#include <random>
+
+#include "towsim/dynamics/state.hpp"
+#include "towsim/model/model.hpp"
+
+namespace towsim::testing {
+
+/// Cable parameters of a test model.
+struct CableSpec {
+  int n = 5;                  // elements
+  double length = 100;        // total [m]
+  double mass_per_length = 1.5;  // [kg/m]
+  double diameter = 0.019;    // [m]
+  double cd = 1.8;            // normal drag [-]
+  double tangential = 0.0;    // f (pode) or ct (skin) [-]
+  TangentialLaw law = TangentialLaw::Pode;
+  double ca = 1.0;            // normal added mass [-]
+  AddedMassModel am = AddedMassModel::IdealFluid;
+};
+
+/// A model of a cable only, towed by `tow`, in a fluid of density rho.
+inline Model cable_model(const CableSpec& c, double rho = 1025, double g = 9.81) {
+  Model m;
+  m.fluid.rho = rho;
+  m.fluid.g = g;
+  m.cable.tangential_law = c.law;
+  m.cable.added_mass_model = c.am;
+  for (int i = 0; i < c.n; ++i)
+    m.cable.elements.push_back(
+        make_element(c.length / c.n, c.mass_per_length, c.diameter, c.cd, c.tangential, c.law, c.ca, m.fluid));
+  m.tow.mode = Tow::Mode::Motion;
+  return m;
+}
+
+/// The paper 5.2 sphere (3 kg, r = 0.05 m, link on its surface) attached to m.
+inline void add_sphere_body(Model& m, double mass = 3.0, double radius = 0.05, double cd = 0.5, double ca = 0.5) {
+  m.has_body = true;
+  Body& b = m.body;
+  b.mass = mass;
+  b.inertia_cg = 0.4 * mass * radius * radius * Mat3::Identity();
+  b.cg = Vec3::Zero();
+  b.link_point = Vec3(0, 0, radius);
+  b.spheres.push_back({Vec3::Zero(), radius, cd, ca});
+  finalize_body(b, m.fluid);
+}
+
+/// A body with every load model and off-diagonal terms, for agreement tests.
+inline void add_rich_body(Model& m) {
+  m.has_body = true;
+  Body& b = m.body;
+  b.mass = 40;
+  b.inertia_cg << 2.0, 0.1, -0.05, 0.1, 5.0, 0.2, -0.05, 0.2, 5.5;
+  b.cg = Vec3(-0.1, 0.02, -0.05);
+  b.link_point = Vec3(0.4, 0.0, 0.15);
+  b.volume = 0.02;
+  b.cb = Vec3(-0.05, 0, 0.03);
+  b.added_mass.diagonal() << 3, 20, 22, 0.5, 2, 2.1;
+  b.added_mass(1, 5) = b.added_mass(5, 1) = 0.7;
+  b.linear_damping.diagonal() << 5, 10, 10, 1, 2, 2;
+  b.quadratic_damping.diagonal() << 10, 60, 60, 1, 5, 5;
+  b.spheres.push_back({Vec3(0.3, 0, 0), 0.1, 0.5, 0.5});
+  b.cylinders.push_back({Vec3(-0.2, 0, 0), Vec3::UnitX(), 1.2, 0.15, 1.2, 0.01, 1.0});
+  LiftingSurface fin{Vec3(-0.7, 0, 0.1), Vec3::UnitX(), Vec3::UnitZ(), 0.1, 2 * std::numbers::pi, 0.26, 0.01, 0.05,
+                     {0.0, 10.0}, {0.0, 0.1}};
+  b.surfaces.push_back(fin);
+  finalize_body(b, m.fluid);
+}
+
+/// A random physical state: unit vectors anywhere (poles included), angular
+/// velocities normal to them, random body attitude and rates.
+inline PhysicalState random_state(const Model& m, std::mt19937& rng, double rate = 0.5) {
+  std::normal_distribution<double> N(0.0, 1.0);
+  auto rnd = [&] { return Vec3(N(rng), N(rng), N(rng)); };
+  PhysicalState s = PhysicalState::hanging(m.cable.n());
+  s.r0 = rnd();
+  s.v0 = rnd();
+  for (int k = 0; k < m.cable.n(); ++k) {
+    s.e[k] = rnd().normalized();
+    const Vec3 w = rate * rnd();
+    s.w[k] = w - w.dot(s.e[k]) * s.e[k];
+  }
+  s.q = Quat(N(rng), N(rng), N(rng), N(rng)).normalized();
+  s.wb = rate * rnd();
+  return s;
+}
+
+}  // namespace towsim::testing
