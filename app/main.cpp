@@ -1,0 +1,94 @@
+// towsim: the command-line front end (INTERFACE.md). Argument parsing only;
+// each subcommand is registered by its own add_*_command function and runs a
+// function of towsim/io/commands.hpp. Exit statuses: see ExitStatus.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <iostream>
+#include <memory>
+#include <type_traits>
+
+#include "towsim/io/commands.hpp"
+
+namespace {
+
+using namespace towsim::io;
+
+static_assert(std::is_same_v<std::sig_atomic_t, int>, "stop flag is passed to simulate() as volatile int");
+
+/// Set by SIGINT/SIGTERM; simulate() polls it and stops cleanly.
+volatile std::sig_atomic_t g_stop = 0;
+
+extern "C" void on_stop_signal(int sig) {
+  g_stop = 1;
+  std::signal(sig, SIG_DFL);  // a second signal ends the program at once
+}
+
+/// Add the scenario inputs shared by run and check: SCENARIO, --example, --set.
+void add_input_options(CLI::App* cmd, InputOptions& in) {
+  cmd->add_option("scenario", in.scenario, "Scenario file (YAML)");
+  cmd->add_option("--example", in.example, "Use a built-in example instead (see `towsim examples`)");
+  cmd->add_option("--set", in.sets, "Override a scenario value: KEY=VALUE, KEY a dotted path (repeatable)")
+      ->allow_extra_args(false)
+      ->type_name("KEY=VALUE");
+}
+
+/// Require exactly one of SCENARIO and --example.
+void require_one_input(const InputOptions& in) {
+  if (in.scenario.empty() == in.example.empty())
+    throw CLI::ValidationError("give exactly one of SCENARIO or --example NAME");
+}
+
+/// `towsim run SCENARIO.yaml --out DIR [--set K=V]... [--quiet]`.
+void add_run_command(CLI::App& app, int& status) {
+  auto opts = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand("run", "Simulate a scenario and write the output files into DIR");
+  add_input_options(cmd, opts->input);
+  cmd->add_option("--out,-o", opts->out_dir, "Output directory (created if missing)")->required();
+  cmd->add_flag("--quiet,-q", opts->quiet, "Print nothing but errors");
+  cmd->callback([opts, &status] {
+    require_one_input(opts->input);
+    opts->progress = !opts->quiet && ::isatty(STDERR_FILENO) == 1;
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    status = run_command(*opts, std::cout, std::cerr, &g_stop);
+  });
+}
+
+/// `towsim check SCENARIO.yaml [--set K=V]...`.
+void add_check_command(CLI::App& app, int& status) {
+  auto in = std::make_shared<InputOptions>();
+  CLI::App* cmd = app.add_subcommand("check", "Validate a scenario and print derived quantities (no simulation)");
+  add_input_options(cmd, *in);
+  cmd->callback([in, &status] {
+    require_one_input(*in);
+    status = check_command(*in, std::cout, std::cerr);
+  });
+}
+
+/// `towsim examples [NAME]`.
+void add_examples_command(CLI::App& app, int& status) {
+  auto name = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("examples", "List the built-in examples, or print one as YAML");
+  cmd->add_option("name", *name, "Example to print");
+  cmd->callback([name, &status] { status = examples_command(*name, std::cout, std::cerr); });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"towsim: simulator of underwater towed cables and towed bodies"};
+  app.require_subcommand(1);
+  int status = kExitOk;
+  add_run_command(app, status);
+  add_check_command(app, status);
+  add_examples_command(app, status);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? kExitOk : kExitInvalid;
+  }
+  return status;
+}

@@ -1,0 +1,177 @@
+// The scenario as read from YAML, before validation: plain structs whose
+// every value remembers where it was written (file, line, column, key path).
+// `parse_scenario()` fills them; `compile()` checks them and builds a Model.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "towsim/io/diagnostics.hpp"
+#include "towsim/model/model.hpp"
+
+namespace towsim::io {
+
+/// Where a value came from: its source location and dotted key path.
+struct Where {
+  SourceLoc loc;
+  std::string path;
+};
+
+/// A scenario value with its origin. `given` is false when the key is absent
+/// (then `value` is the default) or could not be read (an error was reported).
+template <class T>
+struct Field {
+  T value{};
+  Where where;
+  bool given = false;
+
+  Field() = default;
+  Field(T v) : value(std::move(v)) {}  // NOLINT: implicit, for defaults
+};
+
+/// One row of a table: values (e.g. t, Fx, Fy, Fz) and where the row is.
+struct RowSpec {
+  std::vector<double> values;
+  Where where;
+};
+
+/// environment: water, gravity, current.
+struct EnvironmentSpec {
+  Field<double> water_density{1025.0};  // [kg/m^3], 0 = no fluid
+  Field<double> gravity{9.81};          // [m/s^2]
+  bool current_given = false;
+  Where current_where;
+  std::vector<RowSpec> current;  // rows {depth [m], ux, uy, uz [m/s]}; uniform = one row at depth 0
+};
+
+/// cable: a chain of equal elements.
+struct CableSpec {
+  Where where;
+  Field<double> length;             // total [m]
+  Field<long long> elements;        // number of elements [-]
+  Field<double> mass_per_length;    // in air [kg/m]
+  Field<double> diameter;           // [m]
+  Field<double> normal_drag{1.8};   // Cd [-]
+  Field<std::string> tangential_law{"pode"};  // pode | skin
+  Field<double> tangential_coef{0.0};         // f (pode, default 0) or ct (skin, default 0.008) [-]
+  Field<double> added_mass{1.0};              // Ca [-]
+  Field<std::string> added_mass_model{"ideal_fluid"};  // ideal_fluid | morison
+  Field<double> sign_smoothing_speed{1e-3};   // [m/s]
+};
+
+/// body.spheres item.
+struct SphereSpec {
+  Where where;
+  Field<Vec3> center;             // body axes [m]
+  Field<double> radius;           // [m]
+  Field<double> drag{0.5};        // Cd [-]
+  Field<double> added_mass{0.5};  // Ca [-]
+};
+
+/// body.cylinders item.
+struct CylinderSpec {
+  Where where;
+  Field<Vec3> center;              // body axes [m]
+  Field<Vec3> axis;                // body axes, normalised by compile [-]
+  Field<double> length;            // [m]
+  Field<double> diameter;          // [m]
+  Field<double> normal_drag{1.2};  // Cd [-]
+  Field<double> axial_drag{0.0};   // Ct [-]
+  Field<double> added_mass{1.0};   // Ca [-]
+};
+
+/// body.surfaces item.
+struct SurfaceSpec {
+  Where where;
+  Field<Vec3> center;                    // centre of pressure, body axes [m]
+  Field<Vec3> chord;                     // body axes [-]
+  Field<Vec3> normal;                    // body axes [-]
+  Field<double> area;                    // [m^2]
+  Field<double> lift_slope{6.283185307179586};  // dCL/dalpha [1/rad]
+  Field<double> stall_angle_deg{15.0};   // [deg]
+  Field<double> drag0{0.01};             // CD0 [-]
+  Field<double> induced_drag{0.05};      // k [-]
+  Where deflection_where;
+  std::vector<RowSpec> deflection;       // rows {t [s], delta [deg]}; empty = 0
+};
+
+/// body: the towed rigid body (optional).
+struct BodySpec {
+  bool present = false;
+  Where where;
+  Field<double> mass;                       // [kg]
+  Field<Mat3> inertia;                      // about the CG, body axes [kg m^2]
+  Field<Vec3> center_of_gravity{Vec3::Zero()};  // [m]
+  Field<Vec3> link_point;                   // [m]
+  Field<double> volume{0.0};                // [m^3]
+  Field<Vec3> center_of_buoyancy;           // [m], default = center_of_gravity
+  Field<Mat6> added_mass{Mat6::Zero()};     // about O_t, body axes [SI]
+  Field<Mat6> linear_damping{Mat6::Zero()};     // [SI]
+  Field<Mat6> quadratic_damping{Mat6::Zero()};  // [SI]
+  Field<Vec3> initial_attitude_deg{Vec3::Zero()};  // roll, pitch, yaw [deg]
+  std::vector<SphereSpec> spheres;
+  std::vector<CylinderSpec> cylinders;
+  std::vector<SurfaceSpec> surfaces;
+};
+
+/// tow.motion item: ramp, heave, turn or track.
+struct PieceSpec {
+  Where where;
+  Field<std::string> type;        // ramp | heave | turn | track
+  Field<Vec3> direction;          // ramp [-]
+  Field<double> speed;            // ramp [m/s]
+  Field<double> ramp_time;        // ramp [s]
+  Field<double> amplitude;        // heave [m]
+  Field<double> period;           // heave [s]
+  Field<double> start_time{0.0};  // heave, turn [s]
+  Field<double> radius;           // turn [m]
+  Field<std::string> side{"port"};  // turn: port | starboard
+  Where track_where;              // track: the `file` or `points` key
+  std::vector<RowSpec> track;     // track rows {t [s], x, y, z [m]}
+};
+
+/// tow: the tow point's imposed motion or force.
+struct TowSpec {
+  Where where;
+  Field<std::string> mode{"motion"};  // motion | force
+  Field<Vec3> start{Vec3::Zero()};    // [m]
+  std::vector<PieceSpec> motion;
+  bool force_given = false;
+  Where force_where;
+  std::vector<RowSpec> force;         // rows {t [s], Fx, Fy, Fz [N]}
+};
+
+/// initial: hanging | steady | {direction: [x, y, z]}.
+struct InitialSpec {
+  Field<std::string> kind{"hanging"};
+  Field<Vec3> direction;
+};
+
+/// simulation: time integration and output settings.
+struct SimulationSpec {
+  Where where;
+  Field<double> duration;              // [s] (required)
+  Field<double> time_step{0.01};       // [s]
+  Field<std::string> integrator{"rk4"};  // rk4 | dopri5 | cash_karp54
+  Field<double> tolerance{1e-6};       // [-]
+  Field<double> max_step{1.0};         // [s]
+  Field<std::string> formulation{"default"};  // default | paper
+  Field<double> output_interval{0.1};  // [s]
+  Field<bool> write_nodes{true};
+};
+
+/// A whole scenario as written.
+struct ScenarioSpec {
+  std::string name;         // `name:` key, else the file stem or example name
+  std::string description;  // `description:` key (one line), may be empty
+  std::string base_dir;     // directory for relative files (track CSV)
+  Where root;
+  EnvironmentSpec environment;
+  CableSpec cable;
+  BodySpec body;
+  TowSpec tow;
+  InitialSpec initial;
+  SimulationSpec simulation;
+};
+
+}  // namespace towsim::io

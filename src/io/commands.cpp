@@ -1,0 +1,161 @@
+#include "towsim/io/commands.hpp"
+
+#include <algorithm>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+#include <system_error>
+
+#include "towsim/io/examples.hpp"
+#include "towsim/io/output.hpp"
+#include "towsim/sim/simulate.hpp"
+
+namespace towsim::io {
+namespace {
+
+/// "unknown example (did you mean 'y'?); ..." for an example name not built in.
+std::string unknown_example(const std::string& name) {
+  std::vector<std::string> names;
+  for (const auto& e : examples()) names.push_back(e.name);
+  const std::string hint = closest_match(name, names);
+  std::string msg = "unknown example";
+  if (!hint.empty()) msg += " (did you mean '" + hint + "'?)";
+  return msg + "; `towsim examples` lists them";
+}
+
+/// A progress bar on `err`, redrawn when the percentage changes.
+class ProgressBar {
+ public:
+  explicit ProgressBar(std::ostream& err) : err_(err) {}
+  void operator()(double fraction) {
+    const int pct = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100.0);
+    if (pct == last_) return;
+    last_ = pct;
+    const int filled = pct * kWidth / 100;
+    err_ << "\r[" << std::string(static_cast<std::size_t>(filled), '#')
+         << std::string(static_cast<std::size_t>(kWidth - filled), ' ') << "] " << pct << "%" << std::flush;
+  }
+  void done() {
+    if (last_ >= 0) err_ << "\n" << std::flush;
+  }
+
+ private:
+  static constexpr int kWidth = 40;
+  std::ostream& err_;
+  int last_ = -1;
+};
+
+/// Run the simulation into `writer`; exceptions become a failed run.
+RunStats simulate_safely(const Model& model, RunWriter& writer, const RunOptions& opts, std::ostream& err,
+                         const volatile int* stop_flag) {
+  ProgressBar bar(err);
+  ProgressFn progress;
+  if (opts.progress && !opts.quiet) progress = [&bar](double f) { bar(f); };
+  RunStats stats;
+  try {
+    stats = simulate(model, writer, progress, stop_flag);
+  } catch (const std::exception& e) {
+    stats.status = "failed";
+    stats.message = std::string("internal error: ") + e.what();
+  }
+  bar.done();
+  writer.flush();
+  return stats;
+}
+
+/// Print the outcome and map RunStats.status to an exit status.
+int report_run(const RunStats& stats, const Model& model, const RunOptions& opts, long samples,
+               std::ostream& out, std::ostream& err) {
+  if (stats.status == "failed") {
+    err << "towsim: simulation failed at t = " << fmt_num(stats.end_time) << " s: " << stats.message
+        << " (results up to then are in " << opts.out_dir << ")\n";
+    return kExitFailed;
+  }
+  if (stats.status == "interrupted") {
+    err << "towsim: interrupted at t = " << fmt_num(stats.end_time) << " s (results up to then are in "
+        << opts.out_dir << ")\n";
+    return kExitInterrupted;
+  }
+  if (!opts.quiet)
+    out << model.name << ": " << samples << " samples to " << opts.out_dir << " (t = " << fmt_num(stats.end_time)
+        << " s, " << stats.steps << " steps, " << stats.rhs_evaluations << " RHS evaluations, "
+        << fmt_num(stats.wall_seconds) << " s wall)\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+LoadedScenario load_input(const InputOptions& in) {
+  if (in.scenario.empty() == in.example.empty()) {
+    LoadedScenario s;
+    s.diags.error(SourceLoc{"(command line)", 1, 1}, "SCENARIO",
+                  "give exactly one of a SCENARIO file or --example NAME");
+    return s;
+  }
+  if (!in.scenario.empty()) return load_scenario_file(in.scenario, in.sets);
+  const Example* ex = find_example(in.example);
+  if (ex == nullptr) {
+    LoadedScenario s;
+    s.diags.error(SourceLoc{"--example", 1, 1}, in.example, unknown_example(in.example));
+    return s;
+  }
+  return load_scenario_text(ex->yaml, ex->name + ".yaml", ex->name, "", in.sets);
+}
+
+int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, const volatile int* stop_flag) {
+  const LoadedScenario sc = load_input(opts.input);
+  if (!sc.ok()) {
+    err << sc.diags.str();
+    return kExitInvalid;
+  }
+  const Model& model = *sc.model;
+  std::error_code ec;
+  std::filesystem::create_directories(opts.out_dir, ec);
+  if (ec || !std::filesystem::is_directory(opts.out_dir)) {
+    err << "towsim: cannot create the output directory '" << opts.out_dir << "'"
+        << (ec ? ": " + ec.message() : std::string()) << "\n";
+    return kExitError;
+  }
+  try {
+    RunWriter writer(opts.out_dir, model.has_body, model.sim.write_nodes);
+    const RunStats stats = simulate_safely(model, writer, opts, err, stop_flag);
+    const auto summary = make_summary(to_json(sc.tree), model.name, stats, writer.extremes(), writer.samples(),
+                                      model.has_body, model.sim.write_nodes);
+    if (!write_summary(opts.out_dir, summary)) throw std::runtime_error("cannot write summary.json");
+    return report_run(stats, model, opts, writer.samples(), out, err);
+  } catch (const std::exception& e) {
+    err << "towsim: " << e.what() << "\n";
+    return kExitError;
+  }
+}
+
+int check_command(const InputOptions& in, std::ostream& out, std::ostream& err) {
+  const LoadedScenario sc = load_input(in);
+  if (!sc.ok()) {
+    err << sc.diags.str();
+    return kExitInvalid;
+  }
+  describe_model(*sc.model, out);
+  return kExitOk;
+}
+
+int examples_command(const std::string& name, std::ostream& out, std::ostream& err) {
+  if (name.empty()) {
+    std::size_t width = 0;
+    for (const auto& e : examples()) width = std::max(width, e.name.size());
+    for (const auto& e : examples())
+      out << e.name << std::string(width + 2 - e.name.size(), ' ') << e.description
+          << (e.name == kDefaultExample ? " (default)" : "") << "\n";
+    return kExitOk;
+  }
+  const Example* ex = find_example(name);
+  if (ex == nullptr) {
+    err << "towsim: examples: " << name << ": " << unknown_example(name) << "\n";
+    return kExitInvalid;
+  }
+  out << ex->yaml;
+  return kExitOk;
+}
+
+}  // namespace towsim::io

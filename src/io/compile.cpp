@@ -1,0 +1,109 @@
+#include "towsim/io/compile.hpp"
+
+#include "checks.hpp"
+
+namespace towsim::io {
+namespace {
+
+void check_environment(const EnvironmentSpec& e, Diagnostics& d) {
+  check_non_negative(e.water_density, d);
+  check_non_negative(e.gravity, d);
+  for (const auto& row : e.current)
+    if (row.values[0] < 0)
+      d.error(row.where.loc, row.where.path, "depth must be >= 0 (got " + fmt_num(row.values[0]) + ")");
+  check_increasing(e.current, "depths", d);
+}
+
+void check_cable(const CableSpec& c, Diagnostics& d) {
+  check_positive(c.length, d);
+  check_at_least(c.elements, 1, d);
+  check_positive(c.mass_per_length, d);
+  check_positive(c.diameter, d);
+  check_non_negative(c.normal_drag, d);
+  check_non_negative(c.tangential_coef, d);
+  check_non_negative(c.added_mass, d);
+  check_positive(c.sign_smoothing_speed, d);
+}
+
+void check_simulation(const SimulationSpec& s, Diagnostics& d) {
+  check_positive(s.duration, d);
+  check_positive(s.time_step, d);
+  check_positive(s.tolerance, d);
+  check_positive(s.max_step, d);
+  check_positive(s.output_interval, d);
+}
+
+Fluid build_fluid(const EnvironmentSpec& e) {
+  Fluid f;
+  f.rho = e.water_density.value;
+  f.g = e.gravity.value;
+  for (const auto& row : e.current) {
+    f.current_depth.push_back(row.values[0]);
+    f.current_velocity.emplace_back(row.values[1], row.values[2], row.values[3]);
+  }
+  return f;
+}
+
+Cable build_cable(const CableSpec& c, const Fluid& fluid) {
+  Cable cable;
+  cable.tangential_law = c.tangential_law.value == "skin" ? TangentialLaw::Skin : TangentialLaw::Pode;
+  cable.added_mass_model =
+      c.added_mass_model.value == "morison" ? AddedMassModel::Morison : AddedMassModel::IdealFluid;
+  cable.sign_smoothing_speed = c.sign_smoothing_speed.value;
+  const long long n = c.elements.value;
+  const double le = c.length.value / static_cast<double>(n);
+  for (long long i = 0; i < n; ++i)
+    cable.elements.push_back(make_element(le, c.mass_per_length.value, c.diameter.value,
+                                          c.normal_drag.value, c.tangential_coef.value,
+                                          cable.tangential_law, c.added_mass.value, fluid));
+  return cable;
+}
+
+Initial build_initial(const InitialSpec& s) {
+  Initial init;
+  if (s.kind.value == "steady") init.kind = Initial::Kind::Steady;
+  if (s.kind.value == "direction") {
+    init.kind = Initial::Kind::Direction;
+    init.direction = s.direction.value.normalized();
+  }
+  return init;
+}
+
+Simulation build_simulation(const SimulationSpec& s) {
+  Simulation sim;
+  sim.duration = s.duration.value;
+  sim.time_step = s.time_step.value;
+  sim.output_interval = s.output_interval.value;
+  sim.integrator = s.integrator.value == "dopri5"        ? Integrator::DOPRI5
+                   : s.integrator.value == "cash_karp54" ? Integrator::CashKarp54
+                                                         : Integrator::RK4;
+  sim.tolerance = s.tolerance.value;
+  sim.max_step = s.max_step.value;
+  sim.formulation = s.formulation.value == "paper" ? Formulation::Paper : Formulation::Default;
+  sim.write_nodes = s.write_nodes.value;
+  return sim;
+}
+
+}  // namespace
+
+std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
+  check_environment(spec.environment, diags);
+  check_cable(spec.cable, diags);
+  if (spec.body.present) check_body(spec.body, diags);
+  check_tow(spec.tow, diags);
+  check_nonzero(spec.initial.direction, diags);
+  check_simulation(spec.simulation, diags);
+  if (!diags.ok()) return std::nullopt;
+  Model m;
+  m.name = spec.name;
+  m.fluid = build_fluid(spec.environment);
+  m.cable = build_cable(spec.cable, m.fluid);
+  m.has_body = spec.body.present;
+  if (m.has_body) m.body = build_body(spec.body, m.fluid);
+  m.tow = build_tow(spec.tow);
+  m.initial = build_initial(spec.initial);
+  m.sim = build_simulation(spec.simulation);
+  return m;
+}
+
+}  // namespace towsim::io

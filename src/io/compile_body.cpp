@@ -1,0 +1,109 @@
+#include <cmath>
+#include <numbers>
+
+#include "checks.hpp"
+
+namespace towsim::io {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+void check_sphere(const SphereSpec& s, Diagnostics& d) {
+  check_positive(s.radius, d);
+  check_non_negative(s.drag, d);
+  check_non_negative(s.added_mass, d);
+}
+
+void check_cylinder(const CylinderSpec& c, Diagnostics& d) {
+  check_nonzero(c.axis, d);
+  check_positive(c.length, d);
+  check_positive(c.diameter, d);
+  check_non_negative(c.normal_drag, d);
+  check_non_negative(c.axial_drag, d);
+  check_non_negative(c.added_mass, d);
+}
+
+void check_surface(const SurfaceSpec& s, Diagnostics& d) {
+  check_nonzero(s.chord, d);
+  check_nonzero(s.normal, d);
+  const double cn = s.chord.value.norm() * s.normal.value.norm();
+  if (s.chord.given && s.normal.given && cn > 0) {
+    const double cosang = s.chord.value.dot(s.normal.value) / cn;
+    if (std::abs(cosang) > 1e-6)
+      d.error(s.normal.where.loc, s.normal.where.path,
+              "must be orthogonal to chord (the angle between them is " +
+                  fmt_num(std::acos(std::clamp(cosang, -1.0, 1.0)) / kDeg) + " deg)");
+  }
+  check_positive(s.area, d);
+  check_non_negative(s.lift_slope, d);
+  check_positive(s.stall_angle_deg, d);
+  if (s.stall_angle_deg.given && s.stall_angle_deg.value > 90)
+    d.error(s.stall_angle_deg.where.loc, s.stall_angle_deg.where.path,
+            "must be <= 90 (got " + fmt_num(s.stall_angle_deg.value) + ")");
+  check_non_negative(s.drag0, d);
+  check_non_negative(s.induced_drag, d);
+  check_increasing(s.deflection, "times", d);
+}
+
+/// ZYX attitude: R = Rz(yaw) Ry(pitch) Rx(roll), angles in degrees.
+Quat attitude(const Vec3& rpy_deg) {
+  return Quat(Eigen::AngleAxisd(rpy_deg[2] * kDeg, Vec3::UnitZ()) *
+              Eigen::AngleAxisd(rpy_deg[1] * kDeg, Vec3::UnitY()) *
+              Eigen::AngleAxisd(rpy_deg[0] * kDeg, Vec3::UnitX()));
+}
+
+LiftingSurface build_surface(const SurfaceSpec& s) {
+  LiftingSurface f;
+  f.center = s.center.value;
+  f.chord = s.chord.value.normalized();
+  f.normal = s.normal.value.normalized();
+  f.area = s.area.value;
+  f.lift_slope = s.lift_slope.value;
+  f.stall_angle = s.stall_angle_deg.value * kDeg;
+  f.drag0 = s.drag0.value;
+  f.induced_drag = s.induced_drag.value;
+  for (const auto& row : s.deflection) {
+    f.deflection_time.push_back(row.values[0]);
+    f.deflection_angle.push_back(row.values[1] * kDeg);
+  }
+  return f;
+}
+
+}  // namespace
+
+void check_body(const BodySpec& b, Diagnostics& d) {
+  check_positive(b.mass, d);
+  check_inertia(b.inertia, d);
+  check_non_negative(b.volume, d);
+  check_psd6(b.added_mass, d);
+  check_diagonal_non_negative(b.linear_damping, d);
+  check_diagonal_non_negative(b.quadratic_damping, d);
+  for (const auto& s : b.spheres) check_sphere(s, d);
+  for (const auto& c : b.cylinders) check_cylinder(c, d);
+  for (const auto& s : b.surfaces) check_surface(s, d);
+}
+
+Body build_body(const BodySpec& b, const Fluid& fluid) {
+  Body body;
+  body.mass = b.mass.value;
+  body.inertia_cg = b.inertia.value;
+  body.cg = b.center_of_gravity.value;
+  body.link_point = b.link_point.value;
+  body.volume = b.volume.value;
+  body.cb = b.center_of_buoyancy.given ? b.center_of_buoyancy.value : body.cg;
+  body.added_mass = b.added_mass.value;
+  body.linear_damping = b.linear_damping.value;
+  body.quadratic_damping = b.quadratic_damping.value;
+  for (const auto& s : b.spheres)
+    body.spheres.push_back(SphereLoad{s.center.value, s.radius.value, s.drag.value, s.added_mass.value});
+  for (const auto& c : b.cylinders)
+    body.cylinders.push_back(CylinderLoad{c.center.value, c.axis.value.normalized(), c.length.value,
+                                          c.diameter.value, c.normal_drag.value, c.axial_drag.value,
+                                          c.added_mass.value});
+  for (const auto& s : b.surfaces) body.surfaces.push_back(build_surface(s));
+  body.initial_attitude = attitude(b.initial_attitude_deg.value);
+  finalize_body(body, fluid);
+  return body;
+}
+
+}  // namespace towsim::io

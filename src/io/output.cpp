@@ -1,0 +1,187 @@
+#include "towsim/io/output.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace towsim::io {
+namespace {
+
+void put(std::string& out, double v) {
+  char b[40];
+  const int n = std::snprintf(b, sizeof b, "%.12g", v);
+  out.append(b, static_cast<std::size_t>(n));
+}
+
+void put3(std::string& out, const Vec3& v) {
+  for (int i = 0; i < 3; ++i) {
+    out += ',';
+    put(out, v[i]);
+  }
+}
+
+std::FILE* open_file(const std::string& dir, const std::string& name) {
+  const std::string path = (std::filesystem::path(dir) / name).string();
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) throw std::runtime_error("cannot create " + path);
+  return f;
+}
+
+void write_all(std::FILE* f, const std::string& s) {
+  std::fwrite(s.data(), 1, s.size(), f);
+  std::fflush(f);
+}
+
+/// JSON for an extreme: {value, time}, null values when never set.
+nlohmann::ordered_json json_of(const Extreme& e) {
+  nlohmann::ordered_json j;
+  j["value"] = std::isnan(e.value) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(e.value);
+  j["time"] = std::isnan(e.time) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(e.time);
+  return j;
+}
+
+/// A finite number as JSON, anything else as null.
+nlohmann::ordered_json num(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace
+
+void Extreme::max(double v, double t) {
+  if (std::isnan(value) || v > value) {
+    value = v;
+    time = t;
+  }
+}
+
+void Extreme::min(double v, double t) {
+  if (std::isnan(value) || v < value) {
+    value = v;
+    time = t;
+  }
+}
+
+void Extremes::add(const Sample& s) {
+  max_tow_tension.max(s.tow_force.norm(), s.t);
+  for (double T : s.tension) max_cable_tension.max(T, s.t);
+  if (!s.node_pos.empty()) max_end_depth.max(-s.node_pos.back().z(), s.t);
+  if (!s.has_body) return;
+  max_link_force.max(s.link_force.norm(), s.t);
+  max_body_depth.max(-s.body_pos.z(), s.t);
+  for (int i = 0; i < 3; ++i) {
+    min_body_deg[i].min(s.body_rpy_deg[i], s.t);
+    max_body_deg[i].max(s.body_rpy_deg[i], s.t);
+  }
+}
+
+std::string timeseries_header(bool has_body) {
+  std::string h = "time,tow_x,tow_y,tow_z,tow_force_x,tow_force_y,tow_force_z,end_x,end_y,end_z";
+  if (has_body)
+    h += ",body_x,body_y,body_z,body_roll_deg,body_pitch_deg,body_yaw_deg,"
+         "link_force_x,link_force_y,link_force_z";
+  h += ",tow_tension,end_depth,tow_vx,tow_vy,tow_vz";
+  if (has_body) h += ",body_depth,link_tension";
+  return h;
+}
+
+RunWriter::RunWriter(const std::string& dir, bool has_body, bool write_nodes) : has_body_(has_body) {
+  series_ = open_file(dir, "timeseries.csv");
+  write_all(series_, timeseries_header(has_body) + "\n");
+  if (write_nodes) {
+    nodes_ = open_file(dir, "nodes.csv");
+    write_all(nodes_, "time,node,x,y,z,vx,vy,vz,tension\n");
+  }
+}
+
+RunWriter::~RunWriter() {
+  if (series_ != nullptr) std::fclose(series_);
+  if (nodes_ != nullptr) std::fclose(nodes_);
+}
+
+void RunWriter::write(const Sample& s) {
+  extremes_.add(s);
+  ++samples_;
+  const Vec3 end = s.node_pos.empty() ? Vec3::Constant(std::nan("")) : s.node_pos.back();
+  buf_.clear();
+  put(buf_, s.t);
+  put3(buf_, s.tow_pos);
+  put3(buf_, s.tow_force);
+  put3(buf_, end);
+  if (has_body_) {
+    put3(buf_, s.body_pos);
+    put3(buf_, s.body_rpy_deg);
+    put3(buf_, s.link_force);
+  }
+  buf_ += ',';
+  put(buf_, s.tow_force.norm());
+  buf_ += ',';
+  put(buf_, -end.z());
+  put3(buf_, s.tow_vel);
+  if (has_body_) {
+    buf_ += ',';
+    put(buf_, -s.body_pos.z());
+    buf_ += ',';
+    put(buf_, s.link_force.norm());
+  }
+  buf_ += '\n';
+  write_all(series_, buf_);
+  if (nodes_ == nullptr) return;
+  buf_.clear();
+  for (std::size_t k = 0; k < s.node_pos.size(); ++k) {
+    put(buf_, s.t);
+    buf_ += ',' + std::to_string(k);
+    put3(buf_, s.node_pos[k]);
+    put3(buf_, k < s.node_vel.size() ? s.node_vel[k] : Vec3::Constant(std::nan("")));
+    buf_ += ',';
+    put(buf_, k < s.tension.size() ? s.tension[k] : std::nan(""));
+    buf_ += '\n';
+  }
+  write_all(nodes_, buf_);
+}
+
+void RunWriter::flush() {
+  if (series_ != nullptr) std::fflush(series_);
+  if (nodes_ != nullptr) std::fflush(nodes_);
+}
+
+nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,
+                                    const RunStats& stats, const Extremes& ex, long samples,
+                                    bool has_body, bool write_nodes) {
+  nlohmann::ordered_json j;
+  j["model"] = model_name;
+  j["status"] = stats.status;
+  j["message"] = stats.message;
+  j["end_time"] = num(stats.end_time);
+  j["wall_seconds"] = num(stats.wall_seconds);
+  j["steps"] = stats.steps;
+  j["rejected_steps"] = stats.rejected_steps;
+  j["rhs_evaluations"] = stats.rhs_evaluations;
+  j["max_element_drift"] = num(stats.max_element_drift);
+  j["samples"] = samples;
+  j["files"] = {{"timeseries", "timeseries.csv"},
+                {"nodes", write_nodes ? nlohmann::ordered_json("nodes.csv") : nlohmann::ordered_json(nullptr)}};
+  nlohmann::ordered_json e;
+  e["max_tow_tension"] = json_of(ex.max_tow_tension);
+  e["max_cable_tension"] = json_of(ex.max_cable_tension);
+  e["max_end_depth"] = json_of(ex.max_end_depth);
+  if (has_body) {
+    e["max_link_force"] = json_of(ex.max_link_force);
+    e["max_body_depth"] = json_of(ex.max_body_depth);
+    const char* names[3] = {"body_roll_deg", "body_pitch_deg", "body_yaw_deg"};
+    for (int i = 0; i < 3; ++i)
+      e[names[i]] = {{"min", json_of(ex.min_body_deg[i])}, {"max", json_of(ex.max_body_deg[i])}};
+  }
+  j["extremes"] = e;
+  j["scenario"] = scenario;
+  return j;
+}
+
+bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary) {
+  std::ofstream out(std::filesystem::path(dir) / "summary.json");
+  out << summary.dump(2) << "\n";
+  out.flush();
+  return static_cast<bool>(out);
+}
+
+}  // namespace towsim::io

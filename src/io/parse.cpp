@@ -1,0 +1,136 @@
+#include "towsim/io/parse.hpp"
+
+#include "parse_sections.hpp"
+
+namespace towsim::io {
+namespace {
+
+/// initial: hanging | steady | {direction: [x, y, z]}.
+void parse_initial(const YNode* n, InitialSpec& init, Diagnostics& d) {
+  if (n == nullptr) return;
+  const Where w{n->loc, "initial"};
+  if (n->is_scalar()) {
+    Field<std::string> f;
+    f.value = n->scalar;
+    f.where = w;
+    if (check_choice(n->scalar, {"hanging", "steady"}, w, d)) {
+      f.given = true;
+      init.kind = f;
+    }
+    return;
+  }
+  if (n->is_map()) {
+    MapReader r(n, "initial", d);
+    r.read("direction", init.direction, true);
+    r.finish();
+    init.kind.value = "direction";
+    init.kind.where = w;
+    init.kind.given = init.direction.given;
+    return;
+  }
+  d.error(n->loc, "initial",
+          "expected hanging, steady or {direction: [x, y, z]} (got " + n->describe() + ")");
+}
+
+}  // namespace
+
+void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
+  r.read("water_density", env.water_density);
+  r.read("gravity", env.gravity);
+  const YNode* c = r.get("current");
+  if (c == nullptr) return;
+  env.current_given = true;
+  env.current_where = r.where(*c, "current");
+  const std::string path = env.current_where.path;
+  if (c->is_seq() && !c->items.empty() && c->items[0].is_map()) {
+    for (std::size_t i = 0; i < c->items.size(); ++i) {
+      MapReader row(&c->items[i], join_path(path, std::to_string(i)), d);
+      Field<double> depth;
+      Field<Vec3> vel;
+      row.read("depth", depth, row.present());
+      row.read("velocity", vel, row.present());
+      row.finish();
+      if (depth.given && vel.given)
+        env.current.push_back(RowSpec{{depth.value, vel.value.x(), vel.value.y(), vel.value.z()},
+                                      depth.where});
+    }
+    return;
+  }
+  Vec3 u;
+  if (convert(*c, path, d, u)) env.current.push_back(RowSpec{{0.0, u.x(), u.y(), u.z()}, env.current_where});
+}
+
+void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {
+  cable.where = r.where();
+  r.read("length", cable.length, true);
+  r.read("elements", cable.elements, true);
+  r.read("mass_per_length", cable.mass_per_length, true);
+  r.read("diameter", cable.diameter, true);
+  r.read("normal_drag", cable.normal_drag);
+  if (const YNode* t = r.get("tangential_drag")) {
+    MapReader tr(t, r.sub("tangential_drag"), d);
+    tr.choice("law", cable.tangential_law, {"pode", "skin"});
+    if (cable.tangential_law.value == "skin") {
+      cable.tangential_coef.value = 0.008;
+      tr.read("ct", cable.tangential_coef);
+    } else {
+      tr.read("f", cable.tangential_coef);
+    }
+    tr.finish();
+  }
+  r.read("added_mass", cable.added_mass);
+  r.choice("added_mass_model", cable.added_mass_model, {"ideal_fluid", "morison"});
+  r.read("sign_smoothing_speed", cable.sign_smoothing_speed);
+}
+
+void parse_simulation(MapReader& r, SimulationSpec& sim) {
+  sim.where = r.where();
+  r.read("duration", sim.duration, true);
+  r.read("time_step", sim.time_step);
+  r.choice("integrator", sim.integrator, {"rk4", "dopri5", "cash_karp54"});
+  r.read("tolerance", sim.tolerance);
+  r.read("max_step", sim.max_step);
+  r.choice("formulation", sim.formulation, {"default", "paper"});
+  r.read("output_interval", sim.output_interval);
+  r.read("write_nodes", sim.write_nodes);
+}
+
+ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diagnostics& d) {
+  ScenarioSpec s;
+  s.base_dir = base_dir;
+  s.root = Where{root.loc, "(root)"};
+  if (root.is_null()) {
+    d.error(root.loc, "(root)", "the scenario is empty (expected cable:, simulation:, ...)");
+    return s;
+  }
+  MapReader r(&root, "", d);
+  if (!r.present()) return s;
+  Field<std::string> text;
+  r.read("name", text);
+  if (text.given) s.name = text.value;
+  text = Field<std::string>{};
+  r.read("description", text);
+  if (text.given) s.description = text.value;
+  MapReader env(r.get("environment"), "environment", d);
+  parse_environment(env, s.environment, d);
+  env.finish();
+  MapReader cable(r.get("cable", true), "cable", d);
+  parse_cable(cable, s.cable, d);
+  cable.finish();
+  const YNode* body_node = r.get("body");
+  MapReader body(body_node, "body", d);
+  s.body.present = body.present();
+  if (s.body.present) parse_body(body, s.body, d);
+  body.finish();
+  MapReader tow(r.get("tow"), "tow", d);
+  parse_tow(tow, s.tow, base_dir, d);
+  tow.finish();
+  parse_initial(r.get("initial"), s.initial, d);
+  MapReader sim(r.get("simulation", true), "simulation", d);
+  parse_simulation(sim, s.simulation);
+  sim.finish();
+  r.finish();
+  return s;
+}
+
+}  // namespace towsim::io

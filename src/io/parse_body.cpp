@@ -1,0 +1,80 @@
+#include "parse_sections.hpp"
+
+namespace towsim::io {
+namespace {
+
+void parse_sphere(MapReader& r, SphereSpec& s) {
+  s.where = r.where();
+  r.read("center", s.center, true);
+  r.read("radius", s.radius, true);
+  r.read("drag", s.drag);
+  r.read("added_mass", s.added_mass);
+}
+
+void parse_cylinder(MapReader& r, CylinderSpec& c) {
+  c.where = r.where();
+  r.read("center", c.center, true);
+  r.read("axis", c.axis, true);
+  r.read("length", c.length, true);
+  r.read("diameter", c.diameter, true);
+  r.read("normal_drag", c.normal_drag);
+  r.read("axial_drag", c.axial_drag);
+  r.read("added_mass", c.added_mass);
+}
+
+/// deflection_deg: a number (constant) or a table [[t, deg], ...].
+void parse_deflection(MapReader& r, SurfaceSpec& s, Diagnostics& d) {
+  const YNode* n = r.get("deflection_deg");
+  if (n == nullptr) return;
+  s.deflection_where = r.where(*n, "deflection_deg");
+  if (n->is_scalar()) {
+    double deg = 0;
+    if (convert(*n, s.deflection_where.path, d, deg))
+      s.deflection.push_back(RowSpec{{0.0, deg}, s.deflection_where});
+    return;
+  }
+  read_table(*n, s.deflection_where.path, 2, d, s.deflection);
+}
+
+void parse_surface(MapReader& r, SurfaceSpec& s, Diagnostics& d) {
+  s.where = r.where();
+  r.read("center", s.center, true);
+  r.read("chord", s.chord, true);
+  r.read("normal", s.normal, true);
+  r.read("area", s.area, true);
+  r.read("lift_slope", s.lift_slope);
+  r.read("stall_angle_deg", s.stall_angle_deg);
+  r.read("drag0", s.drag0);
+  r.read("induced_drag", s.induced_drag);
+  parse_deflection(r, s, d);
+}
+
+}  // namespace
+
+void parse_body(MapReader& r, BodySpec& b, Diagnostics& d) {
+  b.where = r.where();
+  r.read("mass", b.mass, true);
+  r.read("inertia", b.inertia, true);
+  r.read("center_of_gravity", b.center_of_gravity);
+  r.read("link_point", b.link_point, true);
+  r.read("volume", b.volume);
+  r.read("center_of_buoyancy", b.center_of_buoyancy);
+  r.read("added_mass", b.added_mass);
+  r.read("linear_damping", b.linear_damping);
+  r.read("quadratic_damping", b.quadratic_damping);
+  r.read("initial_attitude_deg", b.initial_attitude_deg);
+  r.list("spheres", [&](MapReader& item, std::size_t) {
+    b.spheres.emplace_back();
+    parse_sphere(item, b.spheres.back());
+  });
+  r.list("cylinders", [&](MapReader& item, std::size_t) {
+    b.cylinders.emplace_back();
+    parse_cylinder(item, b.cylinders.back());
+  });
+  r.list("surfaces", [&](MapReader& item, std::size_t) {
+    b.surfaces.emplace_back();
+    parse_surface(item, b.surfaces.back(), d);
+  });
+}
+
+}  // namespace towsim::io

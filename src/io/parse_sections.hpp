@@ -1,0 +1,19 @@
+// Internal: one parsing function per scenario section.
+#pragma once
+
+#include "reader.hpp"
+
+namespace towsim::io {
+
+/// environment: water_density, gravity, current.
+void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d);
+/// cable: geometry, masses and fluid-load coefficients.
+void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d);
+/// body: mass properties, load models, attitude.
+void parse_body(MapReader& r, BodySpec& body, Diagnostics& d);
+/// tow: mode, start, motion pieces, force.
+void parse_tow(MapReader& r, TowSpec& tow, const std::string& base_dir, Diagnostics& d);
+/// simulation: integration and output settings.
+void parse_simulation(MapReader& r, SimulationSpec& sim);
+
+}  // namespace towsim::io

@@ -1,0 +1,138 @@
+#include <filesystem>
+#include <fstream>
+
+#include "parse_sections.hpp"
+#include "scalar.hpp"
+#include "towsim/io/parse.hpp"
+
+namespace towsim::io {
+namespace {
+
+/// Split one CSV line at commas, remembering each field's 1-based column.
+std::vector<std::pair<std::string, int>> split_csv(const std::string& line) {
+  std::vector<std::pair<std::string, int>> fields;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    std::string f = line.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::size_t b = f.find_first_not_of(" \t\r");
+    const std::size_t e = f.find_last_not_of(" \t\r");
+    const int col = static_cast<int>(start + (b == std::string::npos ? 0 : b)) + 1;
+    fields.emplace_back(b == std::string::npos ? "" : f.substr(b, e - b + 1), col);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return fields;
+}
+
+/// Parse one data line of a track file into a row; false after reporting.
+bool parse_track_line(const std::string& line, const SourceLoc& at, const std::string& path,
+                      Diagnostics& d, RowSpec& row) {
+  const auto fields = split_csv(line);
+  if (fields.size() != 4) {
+    d.error(at, path, "expected 4 values time,x,y,z (got " + std::to_string(fields.size()) + ")");
+    return false;
+  }
+  row.values.clear();
+  for (const auto& [text, col] : fields) {
+    const auto v = scalar_to_double(text);
+    if (!v) {
+      d.error(SourceLoc{at.file, at.line, col}, path, "expected a number (got '" + text + "')");
+      return false;
+    }
+    row.values.push_back(*v);
+  }
+  row.where = Where{at, path};
+  return true;
+}
+
+void parse_piece(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagnostics& d) {
+  p.where = r.where();
+  r.choice("type", p.type, {"ramp", "heave", "turn", "track"}, true);
+  const std::string& t = p.type.value;
+  if (t == "ramp") {
+    r.read("direction", p.direction, true);
+    r.read("speed", p.speed, true);
+    r.read("ramp_time", p.ramp_time, true);
+  } else if (t == "heave") {
+    r.read("amplitude", p.amplitude, true);
+    r.read("period", p.period, true);
+    r.read("start_time", p.start_time);
+  } else if (t == "turn") {
+    r.read("radius", p.radius, true);
+    r.read("start_time", p.start_time);
+    r.choice("side", p.side, {"port", "starboard"});
+  } else if (t == "track") {
+    const YNode* file = r.get("file");
+    const YNode* points = r.get("points");
+    if ((file == nullptr) == (points == nullptr)) {
+      d.error(p.where.loc, p.where.path, "a track needs exactly one of 'file' or 'points'");
+    } else if (file != nullptr) {
+      p.track_where = r.where(*file, "file");
+      std::string name;
+      if (convert(*file, p.track_where.path, d, name)) {
+        const std::filesystem::path fp(name);
+        const std::string full =
+            (fp.is_absolute() || base_dir.empty()) ? name : (std::filesystem::path(base_dir) / fp).string();
+        p.track = read_track_csv(full, p.track_where, d);
+      }
+    } else {
+      p.track_where = r.where(*points, "points");
+      read_table(*points, p.track_where.path, 4, d, p.track);
+    }
+  }
+}
+
+/// force: [Fx, Fy, Fz] (constant) or a table [[t, Fx, Fy, Fz], ...].
+void parse_force(MapReader& r, TowSpec& tow, Diagnostics& d) {
+  const YNode* n = r.get("force");
+  if (n == nullptr) return;
+  tow.force_given = true;
+  tow.force_where = r.where(*n, "force");
+  if (n->is_seq() && !n->items.empty() && n->items[0].is_seq()) {
+    read_table(*n, tow.force_where.path, 4, d, tow.force);
+    return;
+  }
+  Vec3 f;
+  if (convert(*n, tow.force_where.path, d, f))
+    tow.force.push_back(RowSpec{{0.0, f.x(), f.y(), f.z()}, tow.force_where});
+}
+
+}  // namespace
+
+std::vector<RowSpec> read_track_csv(const std::string& file, const Where& where, Diagnostics& d) {
+  std::vector<RowSpec> rows;
+  std::ifstream in(file);
+  if (!in) {
+    d.error(where.loc, where.path, "cannot open the track file '" + file + "'");
+    return rows;
+  }
+  std::string line;
+  int lineno = 0;
+  bool first = true;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const auto b = line.find_first_not_of(" \t\r");
+    if (b == std::string::npos || line[b] == '#') continue;
+    const bool header = first && !scalar_to_double(split_csv(line)[0].first);
+    first = false;
+    if (header) continue;
+    RowSpec row;
+    if (parse_track_line(line, SourceLoc{file, lineno, 1}, where.path, d, row)) rows.push_back(row);
+  }
+  if (rows.empty()) d.error(SourceLoc{file, std::max(lineno, 1), 1}, where.path, "the track file has no data rows");
+  return rows;
+}
+
+void parse_tow(MapReader& r, TowSpec& tow, const std::string& base_dir, Diagnostics& d) {
+  tow.where = r.where();
+  r.choice("mode", tow.mode, {"motion", "force"});
+  r.read("start", tow.start);
+  r.list("motion", [&](MapReader& item, std::size_t) {
+    tow.motion.emplace_back();
+    parse_piece(item, tow.motion.back(), base_dir, d);
+  });
+  parse_force(r, tow, d);
+}
+
+}  // namespace towsim::io
