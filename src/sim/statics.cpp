@@ -1,8 +1,184 @@
-// TEMPORARY: statics solver not yet written.
+// Steady-tow statics (issue 5): zero accelerations of the dynamics' own equations.
 #include "towsim/sim/statics.hpp"
 
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 
+#include "towsim/dynamics/dynamics.hpp"
+#include "towsim/hydro/loads.hpp"
+
 namespace towsim {
-StaticsResult steady_state(const Model&) { throw std::runtime_error("initial: steady is not implemented yet"); }
+
+namespace {
+
+constexpr double kTolerance = 1e-10;  // converged when every |alpha| < this [rad/s^2]
+constexpr int kMaxIterations = 60;
+
+/// Two unit vectors completing e to an orthonormal frame.
+void tangent_basis(const Vec3& e, Vec3& t1, Vec3& t2) {
+  Eigen::Index i;
+  e.cwiseAbs().minCoeff(&i);
+  t1 = e.cross(Vec3::Unit(i)).normalized();
+  t2 = e.cross(t1);
+}
+
+/// The steady problem: a copy of the model whose tow point moves at V with no acceleration.
+struct SteadyProblem {
+  Model model;
+  Vec3 V;
+  Workspace ws;
+  PhysicalState base;         // current iterate
+  std::vector<Vec3> t1, t2;   // tangent bases of the iterate's elements
+  int n;
+  int size() const { return 2 * n + (model.has_body ? 3 : 0); }
+
+  SteadyProblem(const Model& m, const Vec3& v) : model(m), V(v), ws(m), n(m.cable.n()) {
+    model.tow.mode = Tow::Mode::Motion;
+    model.tow.pieces.clear();  // a0 = 0; the velocity is set in the state
+    t1.resize(n);
+    t2.resize(n);
+  }
+
+  /// The state displaced by x from the iterate (tangent perturbations).
+  PhysicalState displaced(const Eigen::VectorXd& x) const {
+    PhysicalState s = base;
+    for (int k = 0; k < n; ++k) s.e[k] = (base.e[k] + x[2 * k] * t1[k] + x[2 * k + 1] * t2[k]).normalized();
+    if (model.has_body) {
+      const Vec3 r = x.tail<3>();
+      if (r.norm() > 0) s.q = (Quat(Eigen::AngleAxisd(r.norm(), r.normalized())) * base.q).normalized();
+    }
+    return s;
+  }
+
+  /// Residual: angular accelerations of elements (in their tangent bases) and body.
+  Eigen::VectorXd residual(const Eigen::VectorXd& x) {
+    const PhysicalState s = displaced(x);
+    forward_dynamics(model, s, 0.0, ws);
+    Eigen::VectorXd r(size());
+    for (int k = 0; k < n; ++k) {
+      r[2 * k] = ws.acc.alpha[k].dot(t1[k]);
+      r[2 * k + 1] = ws.acc.alpha[k].dot(t2[k]);
+    }
+    if (model.has_body) r.tail<3>() = ws.acc.alpha_b;
+    return r;
+  }
+
+  /// Move the iterate by x and rebuild the tangent bases.
+  void accept(const Eigen::VectorXd& x) {
+    base = displaced(x);
+    for (int k = 0; k < n; ++k) tangent_basis(base.e[k], t1[k], t2[k]);
+  }
+};
+
+/// Starting point: from the body up, each element aligned with the force it
+/// carries (moment balance about its top joint, its own load at mid-length).
+void sweep_from_body(SteadyProblem& p) {
+  const Model& m = p.model;
+  PhysicalState& s = p.base;
+  s = PhysicalState::hanging(p.n);
+  s.r0 = m.tow.start;
+  s.v0 = p.V;
+  if (m.has_body) s.q = m.body.initial_attitude;
+  compute_kinematics(m, s, p.ws);  // depths of the hanging guess (for a current profile)
+  Vec3 f = Vec3::Zero();           // force through the joint below the element
+  if (m.has_body) {
+    p.ws.vO = p.V;
+    p.ws.wB.setZero();
+    body_loads(m, s, 0.0, p.ws);
+    f = -p.ws.Fb;  // link force balancing the body's loads
+  }
+  for (int k = p.n - 1; k >= 0; --k) {
+    const Element& el = m.cable.elements[k];
+    Vec3 e = s.e[k], F, M;
+    for (int it = 0; it < 30; ++it) {
+      element_loads(m, el, e, Vec3::Zero(), p.V, p.ws.G[k].z(), F, M);
+      const Vec3 d = 0.5 * F - f;
+      if (d.norm() < 1e-300) break;
+      e = d.normalized();
+    }
+    s.e[k] = e;
+    f -= F;
+  }
+  s.w.assign(p.n, Vec3::Zero());
+  s.wb.setZero();
+  p.accept(Eigen::VectorXd::Zero(p.size()));
+}
+
+}  // namespace
+
+Vec3 final_tow_velocity(const Tow& tow) {
+  Vec3 v = Vec3::Zero();
+  for (const auto& piece : tow.pieces) {
+    if (piece.type == TowPiece::Type::Ramp) v += piece.speed * piece.direction.normalized();
+    if (piece.type == TowPiece::Type::Track && piece.track_time.size() > 1)
+      v += tow_kinematics(Tow{Tow::Mode::Motion, Vec3::Zero(), {piece}, {}, {}}, piece.track_time.back()).vel;
+  }
+  return v;
+}
+
+StaticsResult solve_statics(const Model& model, const Vec3& V) {
+  SteadyProblem p(model, V);
+  sweep_from_body(p);
+  const int N = p.size();
+  StaticsResult out;
+  Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
+  Eigen::VectorXd r = p.residual(zero);
+  Eigen::MatrixXd J(N, N);
+  for (out.iterations = 0; out.iterations < kMaxIterations; ++out.iterations) {
+    if (r.cwiseAbs().maxCoeff() < kTolerance) break;
+    // Jacobian by central differences (each column one O(n) evaluation pair).
+    constexpr double h = 1e-7;
+    for (int j = 0; j < N; ++j) {
+      Eigen::VectorXd x = zero;
+      x[j] = h;
+      const Eigen::VectorXd rp = p.residual(x);
+      x[j] = -h;
+      J.col(j) = (rp - p.residual(x)) / (2 * h);
+    }
+    // Minimum-norm Newton step (a body may have a neutral rotation), then a
+    // backtracking line search on |r|.
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
+    cod.setThreshold(1e-12);
+    Eigen::VectorXd dx = cod.solve(-r);
+    const double max_step = 0.5;  // at most ~30 degrees per element per iteration
+    if (dx.cwiseAbs().maxCoeff() > max_step) dx *= max_step / dx.cwiseAbs().maxCoeff();
+    double lambda = 1.0;
+    Eigen::VectorXd rn;
+    for (int ls = 0; ls < 30; ++ls, lambda *= 0.5) {
+      rn = p.residual(lambda * dx);
+      if (rn.norm() < r.norm()) break;
+    }
+    p.accept(lambda * dx);
+    r = p.residual(zero);
+  }
+  out.residual = r.size() ? r.cwiseAbs().maxCoeff() : 0.0;
+  out.converged = out.residual < kTolerance;
+  if (!out.converged) {
+    std::ostringstream os;
+    os << "statics did not converge: largest angular acceleration left " << out.residual << " rad/s^2 after "
+       << out.iterations << " Newton iterations";
+    out.message = os.str();
+  }
+  // Forces at the equilibrium.
+  out.state = p.base;
+  out.tow_velocity = V;
+  forward_dynamics(p.model, p.base, 0.0, p.ws);
+  out.tow_force = p.ws.acc.tow_force;
+  out.link_force = p.ws.acc.link_force;
+  out.joint_force = p.ws.acc.joint_force;
+  return out;
+}
+
+StaticsResult steady_state(const Model& model) {
+  if (model.tow.mode != Tow::Mode::Motion)
+    throw std::runtime_error("initial: steady needs tow.mode: motion (the steady velocity comes from the tow law)");
+  const TowKinematics k = tow_kinematics(model.tow, 0.0);
+  StaticsResult res = solve_statics(model, k.vel);
+  if (!res.converged) throw std::runtime_error(res.message);
+  res.state.r0 = k.pos;
+  res.state.v0 = k.vel;
+  return res;
+}
+
 }  // namespace towsim

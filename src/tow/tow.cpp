@@ -14,7 +14,10 @@ TowKinematics ramp(const TowPiece& p, double t) {
   const Vec3 d = p.direction.normalized();
   const double T = p.ramp_time;
   TowKinematics k{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-  if (t <= 0) return k;
+  if (t <= 0) {
+    if (T <= 0) k.vel = p.speed * d;  // no ramp: at speed from the start
+    return k;
+  }
   if (T > 0 && t < T) {
     k.acc = p.speed / T * d;
     k.vel = p.speed * t / T * d;

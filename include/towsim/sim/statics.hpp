@@ -1,4 +1,5 @@
-// Steady-tow statics: the equilibrium of cable and body for a steady tow.
+// Steady-tow statics: the equilibrium of cable and body for a steady tow
+// (issue 5; docs/theory.md "Statics").
 #pragma once
 
 #include <string>
@@ -9,18 +10,29 @@ namespace towsim {
 
 /// Result of a statics solve.
 struct StaticsResult {
-  PhysicalState state;      // configuration, moving with the tow velocity
+  PhysicalState state;      // configuration; every point moves at tow_velocity
   Vec3 tow_velocity;        // steady velocity of the tow point [m/s, R_g]
   Vec3 tow_force;           // F_R [N, R_g]
-  Vec3 link_force;          // F_L [N, R_g]
-  double residual = 0;      // largest |acceleration| left [rad/s^2]
-  int iterations = 0;
+  Vec3 link_force;          // F_L [N, R_g] (zero without body)
+  std::vector<Vec3> joint_force;  // f_k through joint k, k = 0..n [N, R_g]
+  double residual = 0;      // largest angular acceleration left [rad/s^2]
+  int iterations = 0;       // Newton iterations
   bool converged = false;
-  std::string message;
+  std::string message;      // why it did not converge
 };
 
-/// Equilibrium for the tow's velocity at t = 0 (Motion mode: the tow law's
-/// final steady velocity if it starts at rest) in the model's current.
+/// The tow velocity a steady tow settles to: the sum of the ramps' final
+/// velocities and a track's final velocity (heave and turn left out) [m/s].
+Vec3 final_tow_velocity(const Tow& tow);
+
+/// Equilibrium of the model's cable and body when the tow point moves at the
+/// constant velocity V (in the model's current): zero accelerations in the
+/// same equations the dynamics use. A sweep from the body up gives the
+/// starting point; Newton on all angles (minimum-norm steps where the body
+/// has a neutral rotation) then converges. The tow point sits at tow.start.
+StaticsResult solve_statics(const Model& model, const Vec3& V);
+
+/// Equilibrium at the tow's velocity at t = 0 (what `initial: steady` starts from).
 StaticsResult steady_state(const Model& model);
 
 }  // namespace towsim
