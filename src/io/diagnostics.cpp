@@ -17,8 +17,11 @@ void Diagnostics::error(const SourceLoc& loc, const std::string& path, const std
 }
 
 std::string Diagnostics::str() const {
+  // Files in order of first appearance, the --set options last.
   std::map<std::string, std::size_t> rank;
-  for (const auto& d : list_) rank.emplace(d.loc.file, rank.size());
+  rank.emplace(primary_, 0);
+  for (const auto& d : list_)
+    rank.emplace(d.loc.file, d.loc.file == "--set" ? list_.size() + 1 : rank.size());
   std::vector<const Diagnostic*> sorted;
   for (const auto& d : list_) sorted.push_back(&d);
   std::stable_sort(sorted.begin(), sorted.end(), [&](const Diagnostic* a, const Diagnostic* b) {

@@ -10,7 +10,7 @@ namespace {
 
 void put(std::string& out, double v) {
   char b[40];
-  const int n = std::snprintf(b, sizeof b, "%.12g", v);
+  const int n = std::snprintf(b, sizeof b, "%.12g", v == 0 ? 0.0 : v);  // no "-0"
   out.append(b, static_cast<std::size_t>(n));
 }
 

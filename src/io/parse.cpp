@@ -43,6 +43,7 @@ void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
   env.current_where = r.where(*c, "current");
   const std::string path = env.current_where.path;
   if (c->is_seq() && !c->items.empty() && c->items[0].is_map()) {
+    const std::size_t errors_before = d.size();
     for (std::size_t i = 0; i < c->items.size(); ++i) {
       MapReader row(&c->items[i], join_path(path, std::to_string(i)), d);
       Field<double> depth;
@@ -54,6 +55,7 @@ void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
         env.current.push_back(RowSpec{{depth.value, vel.value.x(), vel.value.y(), vel.value.z()},
                                       depth.where});
     }
+    if (d.size() != errors_before) env.current.clear();  // no order checks on a partial table
     return;
   }
   Vec3 u;

@@ -33,7 +33,7 @@ void parse_deflection(MapReader& r, SurfaceSpec& s, Diagnostics& d) {
       s.deflection.push_back(RowSpec{{0.0, deg}, s.deflection_where});
     return;
   }
-  read_table(*n, s.deflection_where.path, 2, d, s.deflection);
+  if (!read_table(*n, s.deflection_where.path, 2, d, s.deflection)) s.deflection.clear();
 }
 
 void parse_surface(MapReader& r, SurfaceSpec& s, Diagnostics& d) {

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -78,7 +79,7 @@ void parse_piece(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagno
       }
     } else {
       p.track_where = r.where(*points, "points");
-      read_table(*points, p.track_where.path, 4, d, p.track);
+      if (!read_table(*points, p.track_where.path, 4, d, p.track)) p.track.clear();
     }
   }
 }
@@ -90,7 +91,7 @@ void parse_force(MapReader& r, TowSpec& tow, Diagnostics& d) {
   tow.force_given = true;
   tow.force_where = r.where(*n, "force");
   if (n->is_seq() && !n->items.empty() && n->items[0].is_seq()) {
-    read_table(*n, tow.force_where.path, 4, d, tow.force);
+    if (!read_table(*n, tow.force_where.path, 4, d, tow.force)) tow.force.clear();
     return;
   }
   Vec3 f;
@@ -107,6 +108,7 @@ std::vector<RowSpec> read_track_csv(const std::string& file, const Where& where,
     d.error(where.loc, where.path, "cannot open the track file '" + file + "'");
     return rows;
   }
+  const std::size_t errors_before = d.size();
   std::string line;
   int lineno = 0;
   bool first = true;
@@ -120,6 +122,7 @@ std::vector<RowSpec> read_track_csv(const std::string& file, const Where& where,
     RowSpec row;
     if (parse_track_line(line, SourceLoc{file, lineno, 1}, where.path, d, row)) rows.push_back(row);
   }
+  if (d.size() != errors_before) return {};  // reported: no further checks on a partial track
   if (rows.empty()) d.error(SourceLoc{file, std::max(lineno, 1), 1}, where.path, "the track file has no data rows");
   return rows;
 }

@@ -170,7 +170,7 @@ const YNode* MapReader::get(const std::string& key, bool required) {
     if (v != nullptr)
       d_.error(v->key_loc, sub(key), "missing value");
     else
-      d_.error(node_->loc, sub(key), "missing required key");
+      d_.error(node_->key_loc.file.empty() ? node_->loc : node_->key_loc, sub(key), "missing required key");
   }
   return nullptr;
 }

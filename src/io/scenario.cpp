@@ -24,6 +24,7 @@ void finish_loading(LoadedScenario& s, const std::string& name, const std::strin
 
 LoadedScenario load_scenario_file(const std::string& path, const std::vector<std::string>& sets) {
   LoadedScenario s;
+  s.diags.set_primary(path);
   s.tree = load_yaml_file(path, s.diags);
   const std::filesystem::path p(path);
   finish_loading(s, p.stem().string(), p.parent_path().string(), sets);
@@ -34,6 +35,7 @@ LoadedScenario load_scenario_text(const std::string& text, const std::string& fi
                                   const std::string& name, const std::string& base_dir,
                                   const std::vector<std::string>& sets) {
   LoadedScenario s;
+  s.diags.set_primary(file);
   s.tree = parse_yaml(text, file, s.diags);
   finish_loading(s, name, base_dir, sets);
   return s;

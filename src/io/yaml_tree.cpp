@@ -115,7 +115,7 @@ YNode* step(YNode* cur, const std::string& part, const std::string& path, const 
     if (i < 0 || i > static_cast<long>(cur->items.size())) {
       diags.error(at, path,
                   "no list item " + part + " (the list has " + std::to_string(cur->items.size()) +
-                      " items; an index equal to that adds one)");
+                      (cur->items.size() == 1 ? " item" : " items") + "; an index equal to that adds one)");
       return nullptr;
     }
     if (i == static_cast<long>(cur->items.size())) {

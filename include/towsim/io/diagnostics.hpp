@@ -39,12 +39,16 @@ class Diagnostics {
   std::size_t size() const { return list_.size(); }
   /// The errors in the order they were found.
   const std::vector<Diagnostic>& list() const { return list_; }
-  /// All errors, one per line (each ending in '\n'), ordered by file (in order
-  /// of first appearance), then line, then column.
+  /// All errors, one per line (each ending in '\n'), ordered by file (the
+  /// primary file first, then others in order of first appearance, --set
+  /// options last), then line, then column.
   std::string str() const;
+  /// Name the main input file, listed first by str().
+  void set_primary(const std::string& file) { primary_ = file; }
 
  private:
   std::vector<Diagnostic> list_;
+  std::string primary_;
 };
 
 /// Levenshtein edit distance between two strings (insert, delete, substitute).

@@ -1,0 +1,306 @@
+// Scenario parsing and validation: exact error texts (FILE:LINE:COL: PATH: problem).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "towsim/io/scenario.hpp"
+
+namespace fs = std::filesystem;
+using towsim::io::LoadedScenario;
+using towsim::io::load_scenario_file;
+
+namespace {
+
+/// A fresh directory per test, removed at the end.
+class ScenarioFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("towsim_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  /// Write `text` into DIR/name and return its path.
+  std::string write(const std::string& text, const std::string& name = "scen.yaml") {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  /// Load `text` as a scenario file with --set overrides.
+  LoadedScenario load(const std::string& text, const std::vector<std::string>& sets = {}) {
+    path_ = write(text);
+    return load_scenario_file(path_, sets);
+  }
+  /// The expected error line for the scenario file.
+  std::string at(const std::string& rest) const { return path_ + ":" + rest + "\n"; }
+
+  fs::path dir_;
+  std::string path_;
+};
+
+const std::string kCable =
+    "cable:\n"
+    "  length: 100\n"
+    "  elements: 5\n"
+    "  mass_per_length: 1.5\n"
+    "  diameter: 0.019\n";
+const std::string kSim =
+    "simulation:\n"
+    "  duration: 10\n";
+
+}  // namespace
+
+TEST_F(ScenarioFile, MinimalScenarioCompiles) {
+  const auto s = load(kCable + kSim);
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_EQ(s.model->cable.n(), 5);
+  EXPECT_DOUBLE_EQ(s.model->cable.elements[0].length, 20.0);
+  EXPECT_DOUBLE_EQ(s.model->fluid.rho, 1025.0);
+  EXPECT_FALSE(s.model->has_body);
+  EXPECT_EQ(s.model->name, "scen");
+  EXPECT_DOUBLE_EQ(s.model->sim.duration, 10.0);
+  EXPECT_DOUBLE_EQ(s.model->sim.time_step, 0.01);
+}
+
+TEST_F(ScenarioFile, UnknownKeyHasHint) {
+  const auto s = load(
+      "cable:\n  length: 100\n  elements: 5\n  mass_per_length: 1.5\n  diameter: 0.019\n  normal_darg: 1.8\n" +
+      kSim);
+  EXPECT_FALSE(s.ok());
+  EXPECT_EQ(s.diags.str(), at("6:3: cable.normal_darg: unknown key (did you mean 'normal_drag'?)"));
+}
+
+TEST_F(ScenarioFile, UnknownKeyWithoutCloseMatchListsKeys) {
+  const auto s = load(kCable + kSim + "initial: hanging\nzzz: 1\n");
+  EXPECT_EQ(s.diags.str(),
+            at("9:1: zzz: unknown key (expected one of: name, description, environment, cable, body, tow, "
+               "initial, simulation)"));
+}
+
+TEST_F(ScenarioFile, WrongType) {
+  const auto s = load("cable:\n  length: 100\n  elements: five\n  mass_per_length: 1.5\n  diameter: 0.019\n" + kSim);
+  EXPECT_EQ(s.diags.str(), at("3:13: cable.elements: expected an integer (got 'five')"));
+}
+
+TEST_F(ScenarioFile, WrongTypeListForNumber) {
+  const auto s = load("cable:\n  length: [1, 2]\n  elements: 5\n  mass_per_length: 1.5\n  diameter: 0.019\n" + kSim);
+  EXPECT_EQ(s.diags.str(), at("2:11: cable.length: expected a number (got a list of 2)"));
+}
+
+TEST_F(ScenarioFile, MissingRequiredKey) {
+  const auto s = load("cable:\n  length: 100\n  elements: 5\n  mass_per_length: 1.5\n" + kSim);
+  EXPECT_EQ(s.diags.str(), at("1:1: cable.diameter: missing required key"));
+}
+
+TEST_F(ScenarioFile, MissingSection) {
+  const auto s = load(kCable);
+  EXPECT_EQ(s.diags.str(), at("1:1: simulation: missing required key"));
+}
+
+TEST_F(ScenarioFile, NegativeDiameter) {
+  const auto s = load("cable:\n  length: 100\n  elements: 5\n  mass_per_length: 1.5\n  diameter: -0.01\n" + kSim);
+  EXPECT_EQ(s.diags.str(), at("5:13: cable.diameter: must be > 0 (got -0.01)"));
+}
+
+TEST_F(ScenarioFile, ZeroElements) {
+  const auto s = load("cable:\n  length: 100\n  elements: 0\n  mass_per_length: 1.5\n  diameter: 0.019\n" + kSim);
+  EXPECT_EQ(s.diags.str(), at("3:13: cable.elements: must be >= 1 (got 0)"));
+}
+
+TEST_F(ScenarioFile, BadInertiaTriangleInequality) {
+  const auto s = load(kCable + kSim + "body:\n  mass: 3\n  inertia: [1, 1, 5]\n  link_point: [0, 0, 0]\n");
+  EXPECT_EQ(s.diags.str(),
+            at("10:12: body.inertia: principal moments must satisfy the triangle inequality (got 1, 1, 5: 5 > 1 + 1)"));
+}
+
+TEST_F(ScenarioFile, BadInertiaNotPositiveDefinite) {
+  const auto s = load(kCable + kSim + "body:\n  mass: 3\n  inertia: [1, -1, 1]\n  link_point: [0, 0, 0]\n");
+  EXPECT_EQ(s.diags.str(), at("10:12: body.inertia: must be positive definite (principal moments -1, 1, 1)"));
+}
+
+TEST_F(ScenarioFile, BadInertiaNotSymmetric) {
+  const auto s = load(kCable + kSim +
+                      "body:\n  mass: 3\n  inertia: [[1, 0.1, 0], [0, 1, 0], [0, 0, 1]]\n  link_point: [0, 0, 0]\n");
+  EXPECT_EQ(s.diags.str(),
+            at("10:12: body.inertia: must be symmetric (got 0.1 at row 0, column 1 but 0 at row 1, column 0)"));
+}
+
+TEST_F(ScenarioFile, NonIncreasingTrackTimesInline) {
+  const auto s = load(kCable + kSim +
+                      "tow:\n  motion:\n    - type: track\n      points: [[0, 0, 0, 0], [2, 1, 0, 0], [2, 2, 0, 0]]\n");
+  EXPECT_EQ(s.diags.str(), at("11:44: tow.motion.0.points.2: times must be strictly increasing (got 2 after 2)"));
+}
+
+TEST_F(ScenarioFile, NonIncreasingTrackTimesInCsvRelativeToScenario) {
+  write("time,x,y,z\n0,0,0,0\n1,1,0,0\n0.5,2,0,0\n", "track.csv");
+  const auto s = load(kCable + kSim + "tow:\n  motion:\n    - {type: track, file: track.csv}\n");
+  const std::string csv = (dir_ / "track.csv").string();
+  EXPECT_EQ(s.diags.str(), csv + ":4:1: tow.motion.0.file: times must be strictly increasing (got 0.5 after 1)\n");
+}
+
+TEST_F(ScenarioFile, TrackCsvBadNumberAndMissingFile) {
+  write("0,0,0,0\n1,1,x,0\n", "track.csv");
+  const auto s = load(kCable + kSim +
+                      "tow:\n  motion:\n    - {type: track, file: track.csv}\n    - {type: track, file: none.csv}\n");
+  const std::string csv = (dir_ / "track.csv").string();
+  EXPECT_EQ(s.diags.str(),
+            at("11:27: tow.motion.1.file: cannot open the track file '" + (dir_ / "none.csv").string() + "'") + csv +
+                ":2:5: tow.motion.0.file: expected a number (got 'x')\n");
+}
+
+TEST_F(ScenarioFile, SetOverridesValue) {
+  const auto s = load(kCable + kSim, {"cable.elements=40", "simulation.time_step=0.005"});
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_EQ(s.model->cable.n(), 40);
+  EXPECT_DOUBLE_EQ(s.model->cable.elements[0].length, 2.5);
+  EXPECT_DOUBLE_EQ(s.model->sim.time_step, 0.005);
+}
+
+TEST_F(ScenarioFile, SetCreatesSectionsAndIndexesLists) {
+  const auto s = load(kCable + kSim +
+                          "body:\n  mass: 3\n  inertia: [1, 1, 1]\n  link_point: [0, 0, 0]\n"
+                          "  spheres:\n    - {center: [0, 0, 0], radius: 0.05}\n",
+                      {"body.spheres.0.radius=0.1", "tow.mode=force", "tow.force=[0,0,10]",
+                       "environment.current=[0.5, 0, 0]"});
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_DOUBLE_EQ(s.model->body.spheres.at(0).radius, 0.1);
+  EXPECT_EQ(s.model->tow.mode, towsim::Tow::Mode::Force);
+  ASSERT_EQ(s.model->tow.force_value.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.model->tow.force_value[0].z(), 10.0);
+  ASSERT_EQ(s.model->fluid.current_velocity.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.model->fluid.current_velocity[0].x(), 0.5);
+}
+
+TEST_F(ScenarioFile, SetBadValueNamesSet) {
+  const auto s = load(kCable + kSim, {"cable.elements=40", "cable.diameter=-1"});
+  EXPECT_EQ(s.diags.str(), "--set:2:16: cable.diameter: must be > 0 (got -1)\n");
+}
+
+TEST_F(ScenarioFile, SetUnknownKeyAndSyntax) {
+  const auto s = load(kCable + kSim, {"cable.diamter=1", "cable.length", "cable.length.x=1"});
+  EXPECT_EQ(s.diags.str(),
+            "--set:1:1: cable.diamter: unknown key (did you mean 'diameter'?)\n"
+            "--set:2:1: cable.length: expected KEY=VALUE (e.g. cable.elements=40)\n"
+            "--set:3:1: cable.length.x: cannot go into '100': it is a single value\n");
+}
+
+TEST_F(ScenarioFile, SeveralErrorsAtOnce) {
+  const auto s = load(
+      "cable:\n  length: -100\n  elements: 0\n  mass_per_length: abc\n  diameter: -0.01\n  colour: red\n"
+      "simulation:\n  duration: 0\n  integrator: rk5\n",
+      {"simulation.time_step=0"});
+  EXPECT_EQ(s.diags.str(),
+            at("2:11: cable.length: must be > 0 (got -100)") + at("3:13: cable.elements: must be >= 1 (got 0)") +
+                at("4:20: cable.mass_per_length: expected a number (got 'abc')") +
+                at("5:13: cable.diameter: must be > 0 (got -0.01)") +
+                at("6:3: cable.colour: unknown key (expected one of: length, elements, mass_per_length, diameter, "
+                   "normal_drag, tangential_drag, added_mass, added_mass_model, sign_smoothing_speed)") +
+                at("8:13: simulation.duration: must be > 0 (got 0)") +
+                at("9:15: simulation.integrator: expected one of rk4, dopri5, cash_karp54 (got 'rk5'; did you mean "
+                   "'rk4'?)") +
+                "--set:1:22: simulation.time_step: must be > 0 (got 0)\n");
+}
+
+TEST_F(ScenarioFile, DuplicateKey) {
+  const auto s = load(kCable + "  elements: 6\n" + kSim);
+  EXPECT_EQ(s.diags.str(), at("6:3: cable.elements: duplicate key (first given at line 3)"));
+}
+
+TEST_F(ScenarioFile, YamlSyntaxError) {
+  const auto s = load("cable: [1, 2\nsimulation: 3\n");
+  EXPECT_EQ(s.diags.str(), at("2:11: (yaml): YAML syntax error: end of sequence flow not found"));
+}
+
+TEST_F(ScenarioFile, MissingFile) {
+  const auto s = load_scenario_file((dir_ / "nope.yaml").string());
+  EXPECT_FALSE(s.ok());
+  EXPECT_EQ(s.diags.str(),
+            (dir_ / "nope.yaml").string() + ":0:0: (file): cannot open the file (No such file or directory)\n");
+}
+
+TEST_F(ScenarioFile, TurnNeedsHorizontalSpeed) {
+  const auto s = load(kCable + kSim +
+                      "tow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: 2, ramp_time: 10}\n"
+                      "    - {type: turn, radius: 5, start_time: 0}\n"
+                      "    - {type: turn, radius: 5, start_time: 3}\n");
+  EXPECT_EQ(s.diags.str(), at("12:7: tow.motion.2: at most one turn piece is allowed (the first is tow.motion.1)"));
+  const auto t = load(kCable + kSim +
+                      "tow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: 2, ramp_time: 10}\n"
+                      "    - {type: turn, radius: 5, start_time: 0}\n");
+  EXPECT_EQ(t.diags.str(), at("11:7: tow.motion.1: a turn needs a non-zero horizontal tow speed at its start time "
+                              "(got 0 m/s at t = 0 s)"));
+}
+
+TEST_F(ScenarioFile, PieceKeysDependOnType) {
+  const auto s = load(kCable + kSim + "tow:\n  motion:\n    - {type: heave, amplitude: 1, period: 0, speed: 2}\n");
+  EXPECT_EQ(s.diags.str(), at("10:43: tow.motion.0.period: must be > 0 (got 0)") +
+                               at("10:46: tow.motion.0.speed: unknown key (expected one of: type, amplitude, period, "
+                                  "start_time)"));
+}
+
+TEST_F(ScenarioFile, ForceModeNeedsForce) {
+  const auto s = load(kCable + kSim + "tow:\n  mode: force\n");
+  EXPECT_EQ(s.diags.str(), at("9:3: tow.force: missing required key (with mode: force)"));
+}
+
+TEST_F(ScenarioFile, SurfacesAndCurrentTable) {
+  const auto s = load(kCable + kSim +
+                      "environment:\n  current:\n    - {depth: 0, velocity: [1, 0, 0]}\n"
+                      "    - {depth: 200, velocity: [0.3, 0, 0]}\n"
+                      "body:\n  mass: 3\n  inertia: [1, 1, 1]\n  link_point: [0, 0, 0]\n"
+                      "  initial_attitude_deg: [0, 0, 90]\n"
+                      "  surfaces:\n    - {center: [0, 0, 0], chord: [2, 0, 0], normal: [0, 0, 3], area: 0.5,"
+                      " deflection_deg: [[0, 0], [10, 5]]}\n");
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  const auto& f = s.model->fluid;
+  ASSERT_EQ(f.current_depth.size(), 2u);
+  EXPECT_DOUBLE_EQ(f.current_depth[1], 200.0);
+  EXPECT_DOUBLE_EQ(f.current_velocity[1].x(), 0.3);
+  const auto& surf = s.model->body.surfaces.at(0);
+  EXPECT_DOUBLE_EQ(surf.chord.x(), 1.0);
+  EXPECT_DOUBLE_EQ(surf.normal.z(), 1.0);
+  EXPECT_NEAR(surf.deflection_angle[1], 5.0 * M_PI / 180.0, 1e-15);
+  EXPECT_NEAR(surf.stall_angle, 15.0 * M_PI / 180.0, 1e-15);
+  const towsim::Vec3 x = s.model->body.initial_attitude * towsim::Vec3::UnitX();
+  EXPECT_NEAR(x.y(), 1.0, 1e-12);  // yaw 90 deg: body x along global y
+}
+
+TEST_F(ScenarioFile, SurfaceChordNormalOrthogonal) {
+  const auto s = load(kCable + kSim +
+                      "body:\n  mass: 3\n  inertia: [1, 1, 1]\n  link_point: [0, 0, 0]\n"
+                      "  surfaces:\n    - {center: [0, 0, 0], chord: [1, 0, 0], normal: [1, 0, 1], area: 0.5}\n");
+  EXPECT_EQ(s.diags.str(), at("13:53: body.surfaces.0.normal: must be orthogonal to chord (the angle between them "
+                              "is 45 deg)"));
+}
+
+TEST_F(ScenarioFile, DefaultsAndChoices) {
+  const auto s = load(kCable + "  tangential_drag: {law: skin}\n  added_mass_model: morison\n" + kSim +
+                      "  integrator: dopri5\n  formulation: paper\n  write_nodes: false\n"
+                      "initial: {direction: [1, 0, -1]}\n");
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  const auto& m = *s.model;
+  EXPECT_EQ(m.cable.tangential_law, towsim::TangentialLaw::Skin);
+  EXPECT_EQ(m.cable.added_mass_model, towsim::AddedMassModel::Morison);
+  EXPECT_EQ(m.sim.integrator, towsim::Integrator::DOPRI5);
+  EXPECT_EQ(m.sim.formulation, towsim::Formulation::Paper);
+  EXPECT_FALSE(m.sim.write_nodes);
+  EXPECT_EQ(m.initial.kind, towsim::Initial::Kind::Direction);
+  EXPECT_NEAR(m.initial.direction.norm(), 1.0, 1e-15);
+  EXPECT_DOUBLE_EQ(m.sim.tolerance, 1e-6);
+  EXPECT_DOUBLE_EQ(m.sim.max_step, 1.0);
+}
+
+TEST_F(ScenarioFile, EchoIsJsonAfterSet) {
+  const auto s = load(kCable + kSim + "name: \"007\"\n", {"cable.elements=7"});
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  const auto j = towsim::io::to_json(s.tree);
+  EXPECT_EQ(j["cable"]["elements"], 7);
+  EXPECT_EQ(j["cable"]["diameter"], 0.019);
+  EXPECT_EQ(j["name"], "007");
+  EXPECT_EQ(s.model->name, "007");
+}
