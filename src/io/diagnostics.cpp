@@ -51,6 +51,12 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 std::string closest_match(const std::string& word, const std::vector<std::string>& candidates) {
+  std::string shortest_extension;  // a candidate that starts with the word ("paper-3d" -> "paper-3d-turn")
+  for (const auto& c : candidates)
+    if (word.size() >= 3 && c.size() > word.size() && c.compare(0, word.size(), word) == 0 &&
+        (shortest_extension.empty() || c.size() < shortest_extension.size()))
+      shortest_extension = c;
+  if (!shortest_extension.empty()) return shortest_extension;
   std::string best;
   std::size_t best_d = static_cast<std::size_t>(-1);
   for (const auto& c : candidates) {

@@ -55,7 +55,8 @@ class Diagnostics {
 std::size_t edit_distance(const std::string& a, const std::string& b);
 
 /// The candidate closest to `word` when it is close enough to be a likely
-/// typo (distance <= 2, or <= a third of the word's length); "" otherwise.
+/// typo (distance <= 2, or <= a third of the word's length), or the shortest
+/// candidate that extends it (a word of 3+ characters); "" otherwise.
 std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
 
 /// A number as written in messages and outputs ("%.10g").
