@@ -68,7 +68,7 @@ RunStats simulate_safely(const Model& model, RunWriter& writer, const RunOptions
 int report_run(const RunStats& stats, const Model& model, const RunOptions& opts, long samples,
                std::ostream& out, std::ostream& err) {
   if (stats.status == "failed") {
-    err << "towsim: simulation failed at t = " << fmt_num(stats.end_time) << " s: " << stats.message
+    err << "towsim: simulation failed (t = " << fmt_num(stats.end_time) << " s reached): " << stats.message
         << " (results up to then are in " << opts.out_dir << ")\n";
     return kExitFailed;
   }
