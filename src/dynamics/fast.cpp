@@ -33,29 +33,41 @@ void body_articulated(const Model& model, Workspace& ws) {
 }
 
 /// Backward pass: articulated inertia K_{k-1} and bias b_{k-1} seen at the top
-/// joint of element k, from those at its bottom joint.
+/// joint of element k, from those at its bottom joint. The rotation equation
+/// lives in the plane normal to e_k: it is solved in a tangent basis T, where
+/// the element's own inertia is isotropic (T^T Mt T = (m + ma) I, Mt e = m e).
 void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
   const auto& els = model.cable.elements;
   for (std::size_t k = els.size(); k-- > 0;) {
     const Element& el = els[k];
-    const double L = el.length;
+    const double L = el.length, m = el.mass, mn = el.mass + el.added_mass;
     const Vec3& e = s.e[k];
-    const Mat3& Mt = ws.Mt[k];
     const Mat3& Kk = ws.K[k + 1];
     const Vec3& bk = ws.b[k + 1];
-    ws.c[k] = -s.w[k].squaredNorm() * e;  // centripetal part of d2e/dt2
+    // Tangent basis normal to e.
+    Eigen::Index i;
+    e.cwiseAbs().minCoeff(&i);
+    const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
+    auto& T = ws.T[k];
+    T << t1, e.cross(t1);
+    ws.c[k] = -s.w[k].squaredNorm() * e;  // Mt c = m c
     const Vec3& c = ws.c[k];
-    // Rotation about the top joint, projected on the plane normal to e:
-    // [P (L^2/4 Mt + L^2 K) P + Ir P] beta = r0 - Gm a_top.
-    ws.Gm[k] = 0.5 * L * Mt + L * Kk;
-    const Mat3 Pn = Mat3::Identity() - e * e.transpose();
-    const Mat3 Q = 0.25 * L * L * Mt + L * L * Kk;
-    const Mat3 D = Pn * Q * Pn + element_rot_inertia(el) * Pn + e * e.transpose();
-    ws.Phi[k] = Pn * D.inverse() * Pn;
-    ws.r0[k] = 0.5 * L * (ws.F[k] - 0.5 * L * Mt * c) - L * (L * Kk * c + bk) - e.cross(ws.Mom[k]);
+    // [T^T (L^2/4 Mt + L^2 K) T + Ir] z = T^T r0 - (G T)^T a_top, beta = T z.
+    const Eigen::Matrix<double, 3, 2> KT = Kk * T;
+    ws.GT[k] = 0.5 * L * mn * T + L * KT;
+    Eigen::Matrix2d D = L * L * (T.transpose() * KT);
+    D.diagonal().array() += 0.25 * L * L * mn + element_rot_inertia(el);
+    ws.Dinv[k] = D.inverse();
+    const Vec3 Kc = Kk * c;
+    const Vec3 r0 = 0.5 * L * (ws.F[k] - 0.5 * L * m * c) - L * (L * Kc + bk) - e.cross(ws.Mom[k]);
+    ws.y0[k] = T.transpose() * r0;
     // Force through the top joint, affine in its acceleration.
-    ws.K[k] = Mt + Kk - ws.Gm[k] * ws.Phi[k] * ws.Gm[k];
-    ws.b[k] = ws.Gm[k] * ws.Phi[k] * ws.r0[k] + 0.5 * L * Mt * c + L * Kk * c + bk - ws.F[k];
+    const Eigen::Matrix<double, 3, 2> H = ws.GT[k] * ws.Dinv[k];
+    ws.K[k] = Kk - H * ws.GT[k].transpose();
+    ws.K[k] = 0.5 * (ws.K[k] + ws.K[k].transpose()).eval();  // symmetric in exact arithmetic
+    ws.K[k].diagonal().array() += mn;
+    ws.K[k] -= el.added_mass * e * e.transpose();
+    ws.b[k] = H * ws.y0[k] + 0.5 * L * m * c + L * Kc + bk - ws.F[k];
   }
 }
 
@@ -74,7 +86,7 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   acc.joint_force[0] = acc.tow_force;
   Vec3 a = acc.a0;
   for (std::size_t k = 0; k < els.size(); ++k) {
-    const Vec3 beta = ws.Phi[k] * (ws.r0[k] - ws.Gm[k] * a);  // alpha x e
+    const Vec3 beta = ws.T[k] * (ws.Dinv[k] * (ws.y0[k] - ws.GT[k].transpose() * a));  // alpha x e
     acc.alpha[k] = s.e[k].cross(beta);
     a += els[k].length * (beta + ws.c[k]);
     acc.joint_force[k + 1] = ws.K[k + 1] * a + ws.b[k + 1];

@@ -30,9 +30,10 @@ Workspace::Workspace(const Model& model) {
   Mt.resize(n);
   K.resize(n + 1);
   b.resize(n + 1);
-  Phi.resize(n);
-  Gm.resize(n);
-  r0.resize(n);
+  T.resize(n);
+  GT.resize(n);
+  Dinv.resize(n);
+  y0.resize(n);
   c.resize(n);
   acc.alpha.resize(n);
   acc.joint_force.resize(n + 1);

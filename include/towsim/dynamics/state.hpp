@@ -53,8 +53,12 @@ struct Workspace {
   // Articulated quantities of the recursion (index k = 0..n)
   std::vector<Mat3> K;          // f_k = K_k a_{P_k} + b_k [kg]
   std::vector<Vec3> b;          // [N]
-  std::vector<Mat3> Phi, Gm;    // per element (index k-1)
-  std::vector<Vec3> r0, c;      // per element
+  // Per element (index k-1), in the tangent basis T = [t1 t2] normal to e_k:
+  std::vector<Eigen::Matrix<double, 3, 2>> T;   // tangent basis [-]
+  std::vector<Eigen::Matrix<double, 3, 2>> GT;  // G T, G = (L/2) Mt + L K_k [kg m]
+  std::vector<Eigen::Matrix2d> Dinv;            // (T^T (L^2/4 Mt + L^2 K_k) T + Ir)^-1 [1/(kg m^2)]
+  std::vector<Eigen::Vector2d> y0;              // T^T r_0 (moment of the known loads) [N m]
+  std::vector<Vec3> c;                          // centripetal part of d2e/dt2: -|w|^2 e [1/s^2]
   Mat3 PhiB = Mat3::Zero(), CB = Mat3::Zero();
   Vec3 rhsB = Vec3::Zero(), wcent = Vec3::Zero();
   Accelerations acc;            // result of the last evaluation
