@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Build the libFuzzer targets with clang in build-fuzz/ and run each for a
+# bounded time. Exit status non-zero when any target crashes, hangs (> 5 s on
+# one input), exceeds 2 GB of memory or reports a sanitizer error.
+#
+#   scripts/fuzz.sh [SECONDS]   fuzz each target for SECONDS (default 60)
+#   scripts/fuzz.sh 0           only replay the committed corpus (fuzz/corpus/)
+#
+# Environment: JOBS (build parallelism, default 2), FUZZ_BUILD (build dir,
+# default build-fuzz). New interesting inputs go to $FUZZ_BUILD/corpus/, never
+# into the committed seed corpus; crash reproducers to $FUZZ_BUILD/artifacts/.
+# Needs clang and libFuzzer (Debian: apt-get install -y clang libclang-rt-14-dev).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SECONDS_EACH="${1:-60}"
+JOBS="${JOBS:-2}"
+BUILD="${FUZZ_BUILD:-build-fuzz}"
+CXX_BIN="${FUZZ_CXX:-clang++}"
+
+if ! command -v "$CXX_BIN" >/dev/null; then
+  echo "fuzz.sh: $CXX_BIN not found (apt-get install -y clang libclang-rt-14-dev)" >&2
+  exit 2
+fi
+
+mkdir -p "$BUILD"
+cmake -S . -B "$BUILD" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DTOWSIM_FUZZ=ON -DTOWSIM_BUILD_TESTS=OFF -DTOWSIM_BUILD_BENCH=OFF >"$BUILD/configure.log" 2>&1 ||
+  { cat "$BUILD/configure.log" >&2; exit 1; }
+cmake --build "$BUILD" --target fuzz_scenario fuzz_track_csv -j "$JOBS" >"$BUILD/build.log" 2>&1 ||
+  { tail -50 "$BUILD/build.log" >&2; exit 1; }
+
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+mkdir -p "$BUILD/artifacts"
+failed=0
+for target in scenario track_csv; do
+  exe="$BUILD/fuzz/fuzz_$target"
+  seeds="fuzz/corpus/$target"
+  work="$BUILD/corpus/$target"
+  log="$BUILD/fuzz_$target.log"
+  mkdir -p "$work"
+  args=(-timeout=5 -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1
+        "-artifact_prefix=$BUILD/artifacts/${target}-")
+  [[ -f fuzz/$target.dict ]] && args+=("-dict=fuzz/$target.dict")
+  if [[ "$SECONDS_EACH" == 0 ]]; then
+    echo "== fuzz_$target: replaying $seeds"
+    "$exe" "${args[@]}" -runs=0 "$seeds" >"$log" 2>&1 && rc=0 || rc=$?
+  else
+    echo "== fuzz_$target: ${SECONDS_EACH} s"
+    "$exe" "${args[@]}" -max_total_time="$SECONDS_EACH" "$work" "$seeds" >"$log" 2>&1 && rc=0 || rc=$?
+  fi
+  grep -E '^(Done|stat::number_of_executed_units|stat::peak_rss_mb|#[0-9]+ +DONE)' "$log" || true
+  if [[ $rc -ne 0 ]]; then
+    echo "fuzz_$target FAILED (exit $rc); log: $log" >&2
+    grep -E 'ERROR|SUMMARY|runtime error|Test unit written' "$log" >&2 || tail -30 "$log" >&2
+    failed=1
+  fi
+done
+if [[ $failed -ne 0 ]]; then
+  echo "fuzz.sh: FAILED (reproducers in $BUILD/artifacts/)" >&2
+  exit 1
+fi
+echo "fuzz.sh: no crash"
