@@ -46,6 +46,46 @@ nlohmann::ordered_json num(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
 }
 
+/// One timeseries.csv row (with its newline), columns as timeseries_header().
+void timeseries_row(const Sample& s, bool has_body, std::string& out) {
+  const Vec3 end = s.node_pos.empty() ? Vec3::Constant(std::nan("")) : s.node_pos.back();
+  put(out, s.t);
+  put3(out, s.tow_pos);
+  put3(out, s.tow_force);
+  put3(out, end);
+  if (has_body) {
+    put3(out, s.body_pos);
+    put3(out, s.body_rpy_deg);
+    put3(out, s.link_force);
+  }
+  out += ',';
+  put(out, s.tow_force.norm());
+  out += ',';
+  put(out, -end.z());
+  put3(out, s.tow_vel);
+  if (has_body) {
+    out += ',';
+    put(out, -s.body_pos.z());
+    out += ',';
+    put(out, s.link_force.norm());
+  }
+  out += '\n';
+}
+
+/// The nodes.csv rows of one sample: joints 0..n.
+void node_rows(const Sample& s, std::string& out) {
+  const Vec3 nan3 = Vec3::Constant(std::nan(""));
+  for (std::size_t k = 0; k < s.node_pos.size(); ++k) {
+    put(out, s.t);
+    out += ',' + std::to_string(k);
+    put3(out, s.node_pos[k]);
+    put3(out, k < s.node_vel.size() ? s.node_vel[k] : nan3);
+    out += ',';
+    put(out, k < s.tension.size() ? s.tension[k] : std::nan(""));
+    out += '\n';
+  }
+}
+
 }  // namespace
 
 void Extreme::max(double v, double t) {
@@ -102,41 +142,12 @@ RunWriter::~RunWriter() {
 void RunWriter::write(const Sample& s) {
   extremes_.add(s);
   ++samples_;
-  const Vec3 end = s.node_pos.empty() ? Vec3::Constant(std::nan("")) : s.node_pos.back();
   buf_.clear();
-  put(buf_, s.t);
-  put3(buf_, s.tow_pos);
-  put3(buf_, s.tow_force);
-  put3(buf_, end);
-  if (has_body_) {
-    put3(buf_, s.body_pos);
-    put3(buf_, s.body_rpy_deg);
-    put3(buf_, s.link_force);
-  }
-  buf_ += ',';
-  put(buf_, s.tow_force.norm());
-  buf_ += ',';
-  put(buf_, -end.z());
-  put3(buf_, s.tow_vel);
-  if (has_body_) {
-    buf_ += ',';
-    put(buf_, -s.body_pos.z());
-    buf_ += ',';
-    put(buf_, s.link_force.norm());
-  }
-  buf_ += '\n';
+  timeseries_row(s, has_body_, buf_);
   write_all(series_, buf_);
   if (nodes_ == nullptr) return;
   buf_.clear();
-  for (std::size_t k = 0; k < s.node_pos.size(); ++k) {
-    put(buf_, s.t);
-    buf_ += ',' + std::to_string(k);
-    put3(buf_, s.node_pos[k]);
-    put3(buf_, k < s.node_vel.size() ? s.node_vel[k] : Vec3::Constant(std::nan("")));
-    buf_ += ',';
-    put(buf_, k < s.tension.size() ? s.tension[k] : std::nan(""));
-    buf_ += '\n';
-  }
+  node_rows(s, buf_);
   write_all(nodes_, buf_);
 }
 
@@ -179,7 +190,9 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
 
 bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary) {
   std::ofstream out(std::filesystem::path(dir) / "summary.json");
-  out << summary.dump(2) << "\n";
+  // Invalid UTF-8 in the scenario echo (e.g. a `name:` in another encoding)
+  // becomes U+FFFD instead of throwing after the whole run.
+  out << summary.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
   out.flush();
   return static_cast<bool>(out);
 }

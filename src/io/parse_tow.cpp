@@ -47,6 +47,27 @@ bool parse_track_line(const std::string& line, const SourceLoc& at, const std::s
   return true;
 }
 
+/// track: exactly one of `file` (CSV, relative to base_dir) or `points`.
+void parse_track(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagnostics& d) {
+  const YNode* file = r.get("file");
+  const YNode* points = r.get("points");
+  if ((file == nullptr) == (points == nullptr)) {
+    d.error(p.where.loc, p.where.path, "a track needs exactly one of 'file' or 'points'");
+    return;
+  }
+  if (points != nullptr) {
+    p.track_where = r.where(*points, "points");
+    if (!read_table(*points, p.track_where.path, 4, d, p.track)) p.track.clear();
+    return;
+  }
+  p.track_where = r.where(*file, "file");
+  std::string name;
+  if (!convert(*file, p.track_where.path, d, name)) return;
+  const std::filesystem::path fp(name);
+  const bool as_is = fp.is_absolute() || base_dir.empty();
+  p.track = read_track_csv(as_is ? name : (std::filesystem::path(base_dir) / fp).string(), p.track_where, d);
+}
+
 void parse_piece(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagnostics& d) {
   p.where = r.where();
   r.choice("type", p.type, {"ramp", "heave", "turn", "track"}, true);
@@ -64,23 +85,7 @@ void parse_piece(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagno
     r.read("start_time", p.start_time);
     r.choice("side", p.side, {"port", "starboard"});
   } else if (t == "track") {
-    const YNode* file = r.get("file");
-    const YNode* points = r.get("points");
-    if ((file == nullptr) == (points == nullptr)) {
-      d.error(p.where.loc, p.where.path, "a track needs exactly one of 'file' or 'points'");
-    } else if (file != nullptr) {
-      p.track_where = r.where(*file, "file");
-      std::string name;
-      if (convert(*file, p.track_where.path, d, name)) {
-        const std::filesystem::path fp(name);
-        const std::string full =
-            (fp.is_absolute() || base_dir.empty()) ? name : (std::filesystem::path(base_dir) / fp).string();
-        p.track = read_track_csv(full, p.track_where, d);
-      }
-    } else {
-      p.track_where = r.where(*points, "points");
-      if (!read_table(*points, p.track_where.path, 4, d, p.track)) p.track.clear();
-    }
+    parse_track(r, p, base_dir, d);
   }
 }
 
@@ -103,6 +108,13 @@ void parse_force(MapReader& r, TowSpec& tow, Diagnostics& d) {
 
 std::vector<RowSpec> read_track_csv(const std::string& file, const Where& where, Diagnostics& d) {
   std::vector<RowSpec> rows;
+  // Only regular files: a device or a FIFO (e.g. /dev/zero) could be endless.
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    d.error(where.loc, where.path, "the track file '" + file + "' is not a regular file");
+    return rows;
+  }
   std::ifstream in(file);
   if (!in) {
     d.error(where.loc, where.path, "cannot open the track file '" + file + "'");
