@@ -43,8 +43,18 @@ void check_at_least(const Field<long long>& f, long long minimum, Diagnostics& d
     report(f.where, d, "must be >= " + std::to_string(minimum) + " (got " + std::to_string(f.value) + ")");
 }
 
+void check_at_most(const Field<long long>& f, long long maximum, Diagnostics& d) {
+  if (f.given && f.value > maximum)
+    report(f.where, d, "must be <= " + std::to_string(maximum) + " (got " + std::to_string(f.value) + ")");
+}
+
 void check_nonzero(const Field<Vec3>& f, Diagnostics& d) {
-  if (f.given && !(f.value.norm() > 0)) report(f.where, d, "must be a non-zero vector (got [0, 0, 0])");
+  if (!f.given) return;
+  const double n = f.value.norm();
+  if (!(n > 0))
+    report(f.where, d, "must be a non-zero vector (got [" + list3(f.value) + "])");
+  else if (!std::isfinite(n))
+    report(f.where, d, "is too large to normalise (got [" + list3(f.value) + "])");
 }
 
 void check_increasing(const std::vector<RowSpec>& rows, const std::string& what, Diagnostics& d) {

@@ -11,7 +11,10 @@ void check_positive(const Field<double>& f, Diagnostics& d);
 void check_non_negative(const Field<double>& f, Diagnostics& d);
 /// Report unless value >= minimum.
 void check_at_least(const Field<long long>& f, long long minimum, Diagnostics& d);
-/// Report a zero vector ("must be a non-zero vector").
+/// Report unless value <= maximum.
+void check_at_most(const Field<long long>& f, long long maximum, Diagnostics& d);
+/// Report a zero vector ("must be a non-zero vector"), or one too large to
+/// normalise (its length overflows).
 void check_nonzero(const Field<Vec3>& f, Diagnostics& d);
 /// Report a first column (time, depth, ...) that does not strictly increase.
 /// `what` names the column in messages ("times", "depths").

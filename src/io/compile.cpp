@@ -1,9 +1,15 @@
 #include "towsim/io/compile.hpp"
 
+#include <cstdio>
+
 #include "checks.hpp"
 
 namespace towsim::io {
 namespace {
+
+constexpr long long kMaxElements = 100000;  // cable.elements
+constexpr double kMaxSteps = 1e12;          // duration / time_step
+constexpr double kMaxSamples = 1e9;         // duration / output_interval
 
 void check_environment(const EnvironmentSpec& e, Diagnostics& d) {
   check_non_negative(e.water_density, d);
@@ -17,6 +23,7 @@ void check_environment(const EnvironmentSpec& e, Diagnostics& d) {
 void check_cable(const CableSpec& c, Diagnostics& d) {
   check_positive(c.length, d);
   check_at_least(c.elements, 1, d);
+  check_at_most(c.elements, kMaxElements, d);
   check_positive(c.mass_per_length, d);
   check_positive(c.diameter, d);
   check_non_negative(c.normal_drag, d);
@@ -25,12 +32,30 @@ void check_cable(const CableSpec& c, Diagnostics& d) {
   check_positive(c.sign_smoothing_speed, d);
 }
 
+/// Report `step` when duration / step exceeds `most` (counts that would
+/// overflow, or a step that vanishes next to the simulated time).
+/// A step left to its default is reported at the duration, under its own key.
+void check_count(const Field<double>& duration, const Field<double>& step, const std::string& key, double most,
+                 Diagnostics& d) {
+  if (!(duration.value > 0 && step.value > 0)) return;  // reported by check_positive
+  if (!(duration.value / step.value > most)) return;
+  char limit[32];
+  std::snprintf(limit, sizeof limit, "%g", most);
+  const std::string problem = "too small for the duration (duration / " + key + " is above " + limit;
+  if (step.given)
+    d.error(step.where.loc, step.where.path, problem + ")");
+  else
+    d.error(duration.where.loc, "simulation." + key, problem + "; default " + fmt_num(step.value) + ")");
+}
+
 void check_simulation(const SimulationSpec& s, Diagnostics& d) {
   check_positive(s.duration, d);
   check_positive(s.time_step, d);
   check_positive(s.tolerance, d);
   check_positive(s.max_step, d);
   check_positive(s.output_interval, d);
+  check_count(s.duration, s.time_step, "time_step", kMaxSteps, d);
+  check_count(s.duration, s.output_interval, "output_interval", kMaxSamples, d);
 }
 
 Fluid build_fluid(const EnvironmentSpec& e) {

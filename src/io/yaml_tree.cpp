@@ -28,7 +28,20 @@ struct Origin {
   int col_offset = 0;     // --set: where VALUE starts in KEY=VALUE
 };
 
-YNode convert(const YAML::Node& n, const Origin& o, const SourceLoc& fallback) {
+/// Most values a document of `bytes` characters may expand to. Aliases are
+/// copied into the tree, so a few lines of nested aliases ("billion laughs")
+/// could otherwise take all the memory and time there is. Without aliases a
+/// document has fewer values than characters, so only alias blow-ups hit it.
+std::size_t max_values(std::size_t bytes) { return 100000 + 10 * bytes; }
+
+/// Thrown by convert() past max_values(); `mark` is where it happened.
+struct TooManyValues {
+  YAML::Mark mark;
+};
+
+YNode convert(const YAML::Node& n, const Origin& o, const SourceLoc& fallback, std::size_t& budget) {
+  if (budget == 0) throw TooManyValues{n.Mark()};
+  --budget;
   YNode out;
   out.loc = n.Mark().line < 0 ? fallback : loc_of(n.Mark(), o.file, o.line_override, o.col_offset);
   switch (n.Type()) {
@@ -39,14 +52,14 @@ YNode convert(const YAML::Node& n, const Origin& o, const SourceLoc& fallback) {
       break;
     case YAML::NodeType::Sequence:
       out.kind = YNode::Kind::Sequence;
-      for (const auto& item : n) out.items.push_back(convert(item, o, out.loc));
+      for (const auto& item : n) out.items.push_back(convert(item, o, out.loc, budget));
       break;
     case YAML::NodeType::Map:
       out.kind = YNode::Kind::Map;
       for (const auto& kv : n) {
         const SourceLoc kl = loc_of(kv.first.Mark(), o.file, o.line_override, o.col_offset);
         // A null value has no useful mark of its own: use its key's.
-        YNode v = kv.second.IsNull() ? YNode{} : convert(kv.second, o, kl);
+        YNode v = kv.second.IsNull() ? YNode{} : convert(kv.second, o, kl, budget);
         if (v.is_null()) v.loc = kl;
         v.key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("<complex key>");
         v.key_loc = kl;
@@ -65,7 +78,13 @@ YNode parse_with_origin(const std::string& text, const Origin& o, Diagnostics& d
   try {
     const YAML::Node n = YAML::Load(text);
     const SourceLoc start{o.file, o.line_override > 0 ? o.line_override : 1, 1 + o.col_offset};
-    return convert(n, o, start);
+    std::size_t budget = max_values(text.size());
+    return convert(n, o, start, budget);
+  } catch (const TooManyValues& e) {
+    diags.error(loc_of(e.mark, o.file, o.line_override, o.col_offset), err_path,
+                "the document has more than " + std::to_string(max_values(text.size())) +
+                    " values (counting each use of an alias)");
+    return YNode{};
   } catch (const YAML::Exception& e) {
     diags.error(loc_of(e.mark, o.file, o.line_override, o.col_offset), err_path,
                 "YAML syntax error: " + e.msg);
