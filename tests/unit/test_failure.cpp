@@ -1,0 +1,205 @@
+// Failure behaviour of the built program (TOWSIM_BINARY), INTERFACE.md:
+// a numerical failure exits 3, names the simulated time and the element or
+// body, and keeps what was computed up to then (complete rows, a summary with
+// status "failed"); SIGTERM during a run keeps complete rows and a summary
+// with status "interrupted".
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <iterator>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Exit {
+  int status = -1;  // exit code, or -signal when killed by a signal
+  std::string err;  // what it wrote to stderr
+  std::string out;  // what it wrote to stdout
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// A child running TOWSIM_BINARY with `args`, stdout and stderr sent to files.
+class Child {
+ public:
+  Child(const std::vector<std::string>& args, const fs::path& dir) : out_(dir / "stdout"), err_(dir / "stderr") {
+    std::vector<std::string> argv{TOWSIM_BINARY};
+    argv.insert(argv.end(), args.begin(), args.end());
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      const int o = ::open(out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int e = ::open(err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      ::dup2(o, STDOUT_FILENO);
+      ::dup2(e, STDERR_FILENO);
+      std::vector<char*> cargv;
+      for (auto& a : argv) cargv.push_back(a.data());
+      cargv.push_back(nullptr);
+      ::execv(cargv[0], cargv.data());
+      ::_exit(127);
+    }
+  }
+  ~Child() {
+    if (pid_ > 0 && !waited_) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+  pid_t pid() const { return pid_; }
+  /// True while the child has not exited.
+  bool running() {
+    if (waited_) return false;
+    int st = 0;
+    if (::waitpid(pid_, &st, WNOHANG) == pid_) {
+      waited_ = true;
+      status_ = st;
+    }
+    return !waited_;
+  }
+  Exit wait() {
+    if (!waited_) {
+      ::waitpid(pid_, &status_, 0);
+      waited_ = true;
+    }
+    Exit r;
+    r.status = WIFEXITED(status_) ? WEXITSTATUS(status_) : WIFSIGNALED(status_) ? -WTERMSIG(status_) : -1000;
+    r.out = slurp(out_);
+    r.err = slurp(err_);
+    return r;
+  }
+
+ private:
+  fs::path out_, err_;
+  pid_t pid_ = -1;
+  bool waited_ = false;
+  int status_ = 0;
+};
+
+/// timeseries.csv checked line by line: every line ends in '\n' and has the
+/// header's number of columns; returns the data rows (header excluded).
+std::vector<std::string> complete_rows(const fs::path& csv) {
+  const std::string text = slurp(csv);
+  EXPECT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n') << "last line of " << csv << " is incomplete";
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  if (lines.empty()) return {};
+  const auto columns = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
+  const auto ncol = columns(lines[0]);
+  for (std::size_t i = 1; i < lines.size(); ++i) EXPECT_EQ(columns(lines[i]), ncol) << "line " << i + 1;
+  return {lines.begin() + 1, lines.end()};
+}
+
+double first_number(const std::string& row) { return std::stod(row.substr(0, row.find(','))); }
+
+class Failure : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("towsim_fail_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+// A short, stiff cable (1 m in 10 elements of 0.1 m, fast tow) integrated by
+// fixed-step RK4 with a step far beyond its stability limit: the element
+// rotations blow up within a few steps.
+const char* kUnstable =
+    "name: unstable\n"
+    "cable: {length: 1, elements: 10, mass_per_length: 0.1, diameter: 0.01}\n"
+    "body:\n"
+    "  mass: 2\n"
+    "  inertia: [0.01, 0.02, 0.02]\n"
+    "  link_point: [0, 0, 0]\n"
+    "  spheres: [{center: [0, 0, 0], radius: 0.05}]\n"
+    "tow:\n"
+    "  motion: [{type: ramp, direction: [1, 0, 0], speed: 3, ramp_time: 0.5}]\n"
+    "simulation: {duration: 20, time_step: 0.05, integrator: rk4, output_interval: 0.1}\n";
+
+}  // namespace
+
+TEST_F(Failure, NumericalBlowUpExits3AndKeepsRowsUpToThen) {
+  const fs::path scen = dir_ / "unstable.yaml";
+  std::ofstream(scen) << kUnstable;
+  const fs::path out = dir_ / "out";
+  Child c({"run", scen.string(), "--out", out.string(), "--quiet"}, dir_);
+  const Exit r = c.wait();
+  ASSERT_EQ(r.status, 3) << r.err;
+  // One line naming the simulated time and the element or body (or the tow point).
+  EXPECT_EQ(r.err.rfind("towsim: simulation failed", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  const std::regex where("numerical failure at t = ([0-9.e+-]+) s: (element [0-9]+|body|tow point)[: ]");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.err, m, where)) << r.err;
+  EXPECT_NE(r.err.find(out.string()), std::string::npos) << "the message does not say where the results are";
+  const double t_fail = std::stod(m[1]);
+  EXPECT_GT(t_fail, 0);
+  EXPECT_LT(t_fail, 20);
+
+  // Complete rows up to the failure, none after it.
+  const auto rows = complete_rows(out / "timeseries.csv");
+  ASSERT_GE(rows.size(), 1u);
+  EXPECT_EQ(first_number(rows.front()), 0.0);
+  EXPECT_LE(first_number(rows.back()), t_fail);
+  EXPECT_GT(first_number(rows.back()), t_fail - 0.1 - 1e-9);  // the last output time before the failure
+  complete_rows(out / "nodes.csv");
+
+  // summary.json: status "failed" and the reason.
+  const auto j = nlohmann::json::parse(slurp(out / "summary.json"));
+  EXPECT_EQ(j["status"], "failed");
+  const std::string reason = j["message"];
+  EXPECT_EQ(reason.rfind("numerical failure at t = ", 0), 0u) << reason;
+  EXPECT_NE(r.err.find(reason), std::string::npos) << "stderr does not carry the reason:\n" << r.err;
+  EXPECT_EQ(j["samples"], static_cast<long>(rows.size()));
+  EXPECT_DOUBLE_EQ(j["end_time"].get<double>(), t_fail);
+}
+
+TEST_F(Failure, SigtermKeepsCompleteRowsAndSummaryInterrupted) {
+  const fs::path out = dir_ / "out";
+  // Long enough never to finish within the test.
+  Child c({"run", "--example", "paper-3d-turn", "--set", "simulation.duration=100000", "--out", out.string(),
+           "--quiet"},
+          dir_);
+  // Wait until a few samples are on disk (the run has started integrating).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline && c.running()) {
+    std::ifstream in(out / "timeseries.csv");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (std::count(text.begin(), text.end(), '\n') >= 4) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_TRUE(c.running()) << "the run ended before it could be interrupted";
+  ASSERT_EQ(::kill(c.pid(), SIGTERM), 0);
+  const Exit r = c.wait();
+  EXPECT_EQ(r.status, 130) << r.err;
+  EXPECT_EQ(r.err.rfind("towsim: interrupted at t = ", 0), 0u) << r.err;
+  const auto rows = complete_rows(out / "timeseries.csv");
+  EXPECT_GE(rows.size(), 3u);
+  complete_rows(out / "nodes.csv");
+  const auto j = nlohmann::json::parse(slurp(out / "summary.json"));
+  EXPECT_EQ(j["status"], "interrupted");
+  EXPECT_EQ(j["samples"], static_cast<long>(rows.size()));
+  EXPECT_NEAR(j["end_time"].get<double>(), first_number(rows.back()), 1e-9);
+}
