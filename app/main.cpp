@@ -10,6 +10,10 @@
 #include <type_traits>
 
 #include "towsim/io/commands.hpp"
+#if __has_include("towsim/io/plot.hpp")
+#include "towsim/io/plot.hpp"
+#define TOWSIM_HAS_PLOT 1
+#endif
 
 namespace {
 
@@ -75,6 +79,16 @@ void add_examples_command(CLI::App& app, int& status) {
   cmd->callback([name, &status] { status = examples_command(*name, std::cout, std::cerr); });
 }
 
+#ifdef TOWSIM_HAS_PLOT
+/// `towsim plot DIR`: figures of a run's outputs (src/io/plot.cpp).
+void add_plot_command(CLI::App& app, int& status) {
+  auto dir = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("plot", "Render figures of a run's outputs into DIR/plots (gnuplot)");
+  cmd->add_option("dir", *dir, "Output directory of `towsim run`")->required();
+  cmd->callback([dir, &status] { status = plot_run(*dir, std::cerr); });
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -84,6 +98,9 @@ int main(int argc, char** argv) {
   add_run_command(app, status);
   add_check_command(app, status);
   add_examples_command(app, status);
+#ifdef TOWSIM_HAS_PLOT
+  add_plot_command(app, status);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
