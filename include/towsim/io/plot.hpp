@@ -1,0 +1,49 @@
+// `towsim plot DIR`: figures of a run's outputs, rendered by gnuplot.
+//
+// Reads DIR/timeseries.csv, DIR/nodes.csv and DIR/summary.json (the output
+// of `towsim run --out DIR`), writes one gnuplot script per figure into
+// DIR/plots/NAME.gp (data read straight from the CSV files, by column name;
+// re-run one by hand with `cd DIR/plots && gnuplot NAME.gp`) and runs the
+// `gnuplot` program (>= 5.4, with the pngcairo and svg terminals) on each, which
+// writes DIR/plots/NAME.png and DIR/plots/NAME.svg. The figures:
+//   trajectories_xz  tow point, cable lower end, body origin (when it is not
+//                    the lower end) and, for a body of two or more spheres,
+//                    the second sphere's centre, in the x-z plane
+//   tow_force        tow force components and magnitude vs time
+//   paths_xy         horizontal paths of both cable ends (3D runs only)
+//   end_depth        depth of the cable's lower end vs time
+//   body_angles      body roll, pitch, yaw vs time (with a body)
+//   cable_shapes_xz  cable shape at 8 evenly spaced times, side view
+//   cable_shapes_xy  the same in plan view (3D runs only)
+//   link_force       link force components and magnitude vs time (with a body)
+// A run is "3D" when some y coordinate is non-zero. The program is `gnuplot`
+// from PATH, or the one named by the environment variable TOWSIM_GNUPLOT.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace towsim::io {
+
+/// Rendering options of plot_run.
+struct PlotOptions {
+  int width = 1000;     // PNG and SVG size, pixels
+  int height = 700;
+  int snapshots = 8;    // cable shapes drawn in cable_shapes_*
+};
+
+/// Render DIR's figures into DIR/plots/. Progress and errors go to `log`.
+/// Returns 0 on success; 2 (nothing rendered) when DIR or one of its three
+/// files is missing or unreadable (the message names the missing files), or
+/// when gnuplot (or its pngcairo/svg terminal) is missing (the message says
+/// to install gnuplot-nox); 1 when gnuplot fails on a script (its messages are
+/// copied to `log` and kept in DIR/plots/gnuplot.log).
+int plot_run(const std::string& dir, std::ostream& log);
+int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& options);
+
+/// The figure names (without extension) plot_run renders for a run with or
+/// without a body, planar or 3D.
+std::vector<std::string> plot_names(bool has_body, bool three_d);
+
+}  // namespace towsim::io
