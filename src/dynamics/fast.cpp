@@ -73,11 +73,12 @@ void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
 
 /// Forward pass: tow-point acceleration or tow force, then each element's
 /// angular acceleration and joint force, then the body's.
-void forward_pass(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
+void forward_pass(const Model& model, const PhysicalState& s, double t, Workspace& ws,
+                  const Vec3* imposed_a0 = nullptr) {
   const auto& els = model.cable.elements;
   Accelerations& acc = ws.acc;
-  if (model.tow.mode == Tow::Mode::Motion) {
-    acc.a0 = tow_kinematics(model.tow, t).acc;
+  if (imposed_a0 || model.tow.mode == Tow::Mode::Motion) {
+    acc.a0 = imposed_a0 ? *imposed_a0 : tow_kinematics(model.tow, t).acc;
     acc.tow_force = ws.K[0] * acc.a0 + ws.b[0];
   } else {
     acc.tow_force = tow_force(model.tow, t);
@@ -107,6 +108,28 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
     body_inertia(model, s, ws);
     body_loads(model, s, t, ws);
   }
+}
+
+void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& dv, Workspace& ws) {
+  // Same recursion at zero velocity with zero finite loads: only inertia and
+  // the joint impulses remain; "accelerations" are then velocity jumps.
+  PhysicalState s0 = s;
+  s0.v0.setZero();
+  for (auto& w : s0.w) w.setZero();
+  s0.wb.setZero();
+  compute_kinematics(model, s0, ws);
+  compute_loads(model, s0, 0.0, ws);
+  for (std::size_t k = 0; k < ws.F.size(); ++k) ws.F[k].setZero(), ws.Mom[k].setZero();
+  const std::size_t n = model.cable.elements.size();
+  if (model.has_body) {
+    ws.Fb.setZero(), ws.Mb.setZero(), ws.hw.setZero();
+    body_articulated(model, ws);
+  } else {
+    ws.K[n].setZero();
+    ws.b[n].setZero();
+  }
+  backward_pass(model, s0, ws);
+  forward_pass(model, s0, 0.0, ws, &dv);
 }
 
 void forward_dynamics(const Model& model, const PhysicalState& s, double t, Workspace& ws) {

@@ -134,6 +134,22 @@ PaperState to_paper(const Model& model, const PhysicalState& s, const Vec3& pole
   return p;
 }
 
+PaperState to_paper_in_charts(const Model& model, const PhysicalState& s, const PaperState& charts) {
+  PaperState p = charts;
+  p.r0 = s.r0;
+  p.v0 = s.v0;
+  for (int k = 0; k < model.cable.n(); ++k)
+    element_angles(p.chart[k], s.e[k], s.w[k].cross(s.e[k]), p.q[2 * k], p.q[2 * k + 1], p.qd[2 * k],
+                   p.qd[2 * k + 1]);
+  if (model.has_body) {
+    Vec3 ang, rate;
+    body_angles(p.body_chart, s.q, s.wb, ang, rate);
+    p.q.tail<3>() = ang;
+    p.qd.tail<3>() = rate;
+  }
+  return p;
+}
+
 PhysicalState from_paper(const Model& model, const PaperState& p) {
   const int n = model.cable.n();
   PhysicalState s = PhysicalState::hanging(n);

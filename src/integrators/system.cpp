@@ -14,6 +14,24 @@ using CMap3 = Eigen::Map<const Vec3>;
 /// Write a 3-vector into a flat state at offset i.
 void set3(StateVector& y, std::size_t i, const Vec3& v) { y[i] = v.x(), y[i + 1] = v.y(), y[i + 2] = v.z(); }
 
+/// Jump of the imposed tow velocity at t: v(t+) - v(t-) [m/s] (zero in Force mode).
+Vec3 tow_jump(const Model& m, double t) {
+  if (m.tow.mode != Tow::Mode::Motion) return Vec3::Zero();
+  const double d = 1e-9 * std::max(1.0, std::abs(t));
+  return tow_kinematics(m.tow, t + d).vel - tow_kinematics(m.tow, t - d).vel;
+}
+
+/// Physical state after the impulsive response to the tow velocity jump dv at t.
+PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws) {
+  tow_velocity_jump(m, s, dv, ws);
+  for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
+  s.wb += ws.acc.alpha_b;
+  const double d = 1e-9 * std::max(1.0, std::abs(t));
+  s.r0 = tow_kinematics(m.tow, t).pos;
+  s.v0 = tow_kinematics(m.tow, t + d).vel;
+  return s;
+}
+
 /// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, quaternion (w,x,y,z), w_body].
 class DefaultSystem final : public System {
  public:
@@ -47,12 +65,13 @@ class DefaultSystem final : public System {
   void derivative(const StateVector& y, StateVector& dy, double t) override {
     ++rhs_evaluations;
     unpack(y, s_);
+    const double tl = law_time(t);
     if (model_.tow.mode == Tow::Mode::Motion) {
-      const TowKinematics k = tow_kinematics(model_.tow, t);
+      const TowKinematics k = tow_kinematics(model_.tow, tl);
       s_.r0 = k.pos;
       s_.v0 = k.vel;
     }
-    forward_dynamics(model_, s_, t, ws_);
+    forward_dynamics(model_, s_, tl, ws_);
     dy.resize(size_);
     // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
     set3(dy, 0, s_.v0);
@@ -89,9 +108,17 @@ class DefaultSystem final : public System {
 
   const Workspace& evaluate(const StateVector& y, double t) override {
     StateVector dy;
+    set_window(-1e300, 1e300);
     derivative(y, dy, t);
     --rhs_evaluations;
     return ws_;
+  }
+
+  double apply_tow_jump(StateVector& y, double t) override {
+    const Vec3 dv = tow_jump(model_, t);
+    if (dv.norm() == 0) return 0;
+    y = initial(jumped(model_, physical(y), dv, t, ws_), t);
+    return dv.norm();
   }
 
   std::string describe(std::size_t i) const override {
@@ -143,12 +170,13 @@ class PaperSystem final : public System {
   void derivative(const StateVector& y, StateVector& dy, double t) override {
     ++rhs_evaluations;
     unpack(y, p_);
+    const double tl = law_time(t);
     if (model_.tow.mode == Tow::Mode::Motion) {
-      const TowKinematics k = tow_kinematics(model_.tow, t);
+      const TowKinematics k = tow_kinematics(model_.tow, tl);
       p_.r0 = k.pos;
       p_.v0 = k.vel;
     }
-    paper_dynamics(model_, p_, t, pw_);
+    paper_dynamics(model_, p_, tl, pw_);
     dy.resize(y.size());
     set3(dy, 0, p_.v0);
     set3(dy, 3, pw_.acc.a0);
@@ -171,6 +199,7 @@ class PaperSystem final : public System {
     // Forces from the paper's own solve; joint tensions from the recursion
     // on the same physical state (they agree to round-off: tests).
     StateVector dy;
+    set_window(-1e300, 1e300);
     derivative(y, dy, t);
     --rhs_evaluations;
     PhysicalState s = from_paper(model_, p_);
@@ -180,6 +209,18 @@ class PaperSystem final : public System {
     eval_ws_.acc.joint_force.front() = pw_.acc.tow_force;
     if (model_.has_body) eval_ws_.acc.joint_force.back() = pw_.acc.link_force;
     return eval_ws_;
+  }
+
+  double apply_tow_jump(StateVector& y, double t) override {
+    const Vec3 dv = tow_jump(model_, t);
+    if (dv.norm() == 0) return 0;
+    unpack(y, p_);
+    const PaperState charts = p_;
+    const PhysicalState s = jumped(model_, from_paper(model_, p_), dv, t, eval_ws_);
+    // Same charts: only the rates change.
+    p_ = to_paper_in_charts(model_, s, charts);
+    pack(p_, y);
+    return dv.norm();
   }
 
   std::string describe(std::size_t i) const override {

@@ -9,9 +9,10 @@ PhysicalState initial_state(const Model& model) {
   PhysicalState s = PhysicalState::hanging(model.cable.n());
   if (model.initial.kind == Initial::Kind::Direction) s.e.assign(model.cable.n(), model.initial.direction.normalized());
   if (model.tow.mode == Tow::Mode::Motion) {
-    const TowKinematics k = tow_kinematics(model.tow, 0.0);
-    s.r0 = k.pos;
-    s.v0 = k.vel;
+    // At rest: a tow already moving at t = 0 is a velocity jump, which the
+    // run applies as an impulse (apply_tow_jump) before the first step.
+    s.r0 = tow_kinematics(model.tow, 0.0).pos;
+    s.v0.setZero();
   } else {
     s.r0 = model.tow.start;
   }

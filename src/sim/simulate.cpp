@@ -66,6 +66,7 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
                           RunStats& stats) {
   while (t < target - 1e-12 * std::max(1.0, target)) {
     const double h = std::min(model.sim.time_step, target - t);
+    sys.set_window(t, t + h);
     rk.do_step(std::ref(sys), y, t, h);
     t = (target - (t + h) < 1e-12 * std::max(1.0, target)) ? target : t + h;
     sys.project(y, t);
@@ -82,6 +83,7 @@ std::string advance_adaptive(const Model& model, System& sys, Controlled& ctrl, 
   while (t < target - 1e-12 * std::max(1.0, target)) {
     const double h_try = std::min({h, model.sim.max_step, target - t});
     double dt = h_try;
+    sys.set_window(t, t + h_try);
     const auto res = ctrl.try_step(std::ref(sys), y, t, dt);  // t, dt updated
     if (res == odeint::fail) {
       ++stats.rejected_steps;
@@ -112,6 +114,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   const auto wall0 = std::chrono::steady_clock::now();
   auto sys = make_system(model);
   StateVector y = sys->initial(initial_state(model), 0.0);
+  if (model.initial.kind != Initial::Kind::Steady) sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
   sys->project(y, 0.0);
   double t = 0;
   sink.write(make_sample(model, *sys, y, t, stats));
@@ -124,18 +127,33 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   double h = model.sim.time_step;
   const double T = model.sim.duration, dT = model.sim.output_interval;
   const long n_out = static_cast<long>(std::ceil(T / dT - 1e-9));
+  const std::vector<double> breaks = tow_breakpoints(model.tow);
+  auto next_break = breaks.begin();
   for (long k = 1; k <= n_out; ++k) {
     if (stop_flag && *stop_flag) {
       stats.status = "interrupted";
       stats.message = "interrupted by signal at t = " + std::to_string(t) + " s";
       break;
     }
-    const double target = std::min(T, k * dT);
+    const double out_time = std::min(T, k * dT);
     std::string err;
-    switch (model.sim.integrator) {
-      case Integrator::RK4: err = advance_fixed(model, *sys, rk4, y, t, target, stats); break;
-      case Integrator::DOPRI5: err = advance_adaptive(model, *sys, dopri, y, t, target, h, stats); break;
-      case Integrator::CashKarp54: err = advance_adaptive(model, *sys, cashkarp, y, t, target, h, stats); break;
+    // Land on every breakpoint of the tow law up to the output time; where
+    // the tow velocity jumps, give the chain its impulsive response.
+    while (err.empty()) {
+      const double eps = 1e-12 * std::max(1.0, t);
+      while (next_break != breaks.end() && *next_break < t - eps) ++next_break;
+      const bool at_break = next_break != breaks.end() && std::abs(*next_break - t) <= eps;
+      if (at_break) {
+        sys->apply_tow_jump(y, t);
+        ++next_break;
+      }
+      if (t >= out_time - 1e-12 * std::max(1.0, out_time)) break;
+      const double target = (next_break != breaks.end() && *next_break < out_time) ? *next_break : out_time;
+      switch (model.sim.integrator) {
+        case Integrator::RK4: err = advance_fixed(model, *sys, rk4, y, t, target, stats); break;
+        case Integrator::DOPRI5: err = advance_adaptive(model, *sys, dopri, y, t, target, h, stats); break;
+        case Integrator::CashKarp54: err = advance_adaptive(model, *sys, cashkarp, y, t, target, h, stats); break;
+      }
     }
     if (!err.empty()) {
       std::ostringstream os;

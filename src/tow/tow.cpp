@@ -14,11 +14,13 @@ TowKinematics ramp(const TowPiece& p, double t) {
   const Vec3 d = p.direction.normalized();
   const double T = p.ramp_time;
   TowKinematics k{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-  if (t <= 0) {
-    if (T <= 0) k.vel = p.speed * d;  // no ramp: at speed from the start
+  if (t < 0) return k;
+  if (T <= 0) {  // no ramp: at speed from the start
+    k.vel = p.speed * d;
+    k.pos = p.speed * t * d;
     return k;
   }
-  if (T > 0 && t < T) {
+  if (t < T) {
     k.acc = p.speed / T * d;
     k.vel = p.speed * t / T * d;
     k.pos = p.speed * t * t / (2 * T) * d;
@@ -127,6 +129,23 @@ TowKinematics tow_kinematics(const Tow& tow, double t) {
   k.vel = Vec3(vv.x(), vv.y(), k.vel.z());
   k.acc = Vec3(aa.x(), aa.y(), k.acc.z());
   return k;
+}
+
+std::vector<double> tow_breakpoints(const Tow& tow) {
+  std::vector<double> out;
+  for (const auto& p : tow.pieces) {
+    if (p.type == TowPiece::Type::Ramp && p.ramp_time > 0) out.push_back(p.ramp_time);
+    if (p.type == TowPiece::Type::Heave || p.type == TowPiece::Type::Turn) out.push_back(p.start_time);
+    if (p.type == TowPiece::Type::Track && !p.track_time.empty()) {
+      out.push_back(p.track_time.front());
+      out.push_back(p.track_time.back());
+    }
+  }
+  if (tow.mode == Tow::Mode::Force) out.insert(out.end(), tow.force_time.begin(), tow.force_time.end());
+  std::erase_if(out, [](double t) { return !(t > 0); });
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 Vec3 tow_force(const Tow& tow, double t) {

@@ -15,6 +15,14 @@ namespace towsim {
 /// Results in ws.acc. Also fills ws's kinematics and loads.
 void forward_dynamics(const Model& model, const PhysicalState& s, double t, Workspace& ws);
 
+/// Impulsive response to a jump dv of the tow point's velocity (a tow law
+/// that is only C0 in position, e.g. a heave starting at full speed): the
+/// jumps of every element's and the body's angular velocity that the
+/// inextensible chain must take, from the same recursion with the impulse in
+/// place of the acceleration and no finite loads (they give no impulse).
+/// Results: ws.acc.alpha (d omega_k) and ws.acc.alpha_b (d omega_B).
+void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& dv, Workspace& ws);
+
 /// Loads and inertias of every element and of the body for the current
 /// kinematics (shared by both formulations).
 void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws);

@@ -42,6 +42,9 @@ int paper_angle_count(const Model& model);
 /// pitch +-90 deg.
 PaperState to_paper(const Model& model, const PhysicalState& s, const Vec3& pole = Vec3::UnitZ());
 
+/// Coordinates of a physical state in the charts of `charts` (none re-chosen).
+PaperState to_paper_in_charts(const Model& model, const PhysicalState& s, const PaperState& charts);
+
 /// Physical state of paper coordinates.
 PhysicalState from_paper(const Model& model, const PaperState& p);
 

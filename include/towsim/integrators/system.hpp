@@ -2,6 +2,8 @@
 // derivative, and a projection after each accepted step (MODEL.md 5).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,16 +27,34 @@ class System {
   /// angular velocities normal to their element, re-choose charts, and reset
   /// the tow point to its imposed motion. Keeps the physical state.
   virtual void project(StateVector& y, double t) = 0;
+  /// At a breakpoint t of an imposed tow motion whose velocity jumps, give
+  /// the chain and body the impulsive response (tow_velocity_jump).
+  /// Returns the jump's size [m/s] (0: nothing done).
+  virtual double apply_tow_jump(StateVector& y, double t) = 0;
   /// Physical state of y.
   virtual PhysicalState physical(const StateVector& y) const = 0;
   /// Full evaluation for output at (y, t): kinematics, forces, joint forces.
   virtual const Workspace& evaluate(const StateVector& y, double t) = 0;
   /// What state component i belongs to ("element 3", "body", "tow point").
   virtual std::string describe(std::size_t i) const = 0;
+  /// The step about to be taken spans [t0, t1]: the tow law is evaluated
+  /// strictly inside it, so a step ending on a breakpoint of the law sees the
+  /// piece before it and a step starting there the piece after it.
+  void set_window(double t0, double t1) { t0_ = t0, t1_ = t1; }
   /// odeint's call signature.
   void operator()(const StateVector& y, StateVector& dy, double t) { derivative(y, dy, t); }
 
   long rhs_evaluations = 0;  // dynamics evaluations so far
+
+ protected:
+  /// Time at which to evaluate time-dependent inputs (tow law, deflections)
+  /// for a stage at t: t moved inside the step's window by a relative 1e-12.
+  double law_time(double t) const {
+    const double d = 1e-12 * std::max(1.0, std::abs(t1_));
+    if (t1_ - t0_ <= 2 * d) return t;
+    return std::clamp(t, t0_ + d, t1_ - d);
+  }
+  double t0_ = -1e300, t1_ = 1e300;  // window of the current step [s]
 };
 
 /// The system of the model's formulation (model.sim.formulation).

@@ -169,6 +169,11 @@ TowKinematics tow_kinematics(const Tow& tow, double t);
 /// Imposed tow force at time t (Force mode) [N, R_g].
 Vec3 tow_force(const Tow& tow, double t);
 
+/// Times > 0 where the tow law is not smooth (end of a ramp, start of a heave
+/// or a turn, ends of a track, rows of a force table), sorted. Integrators
+/// land on them so that no step straddles a jump in acceleration or velocity.
+std::vector<double> tow_breakpoints(const Tow& tow);
+
 /// How the run starts.
 struct Initial {
   enum class Kind { Hanging, Steady, Direction } kind = Kind::Hanging;
