@@ -12,7 +12,8 @@ namespace towsim {
 
 namespace {
 
-constexpr double kTolerance = 1e-10;  // converged when every |alpha| < this [rad/s^2]
+constexpr double kTolerance = 1e-12;  // converged when every |alpha| < this [rad/s^2]
+constexpr double kFloor = 1e-9;       // ... or below this when round-off stops further progress
 constexpr int kMaxIterations = 60;
 
 /// Two unit vectors completing e to an orthonormal frame.
@@ -38,6 +39,14 @@ struct SteadyProblem {
     model.tow.pieces.clear();  // a0 = 0; the velocity is set in the state
     t1.resize(n);
     t2.resize(n);
+    for (const Element& el : m.cable.elements)
+      scale.push_back(element_rot_inertia(el) + 0.25 * (el.mass + el.added_mass) * el.length * el.length);
+    double sb = 1.0;
+    if (m.has_body) {
+      const Mat6 M = m.body.rigid_mass + m.body.fluid_mass;
+      sb = M.bottomRightCorner<3, 3>().trace() / 3 + M(0, 0) * m.body.link_point.squaredNorm();
+    }
+    scale.push_back(sb);
   }
 
   /// The state displaced by x from the iterate (tangent perturbations).
@@ -51,18 +60,32 @@ struct SteadyProblem {
     return s;
   }
 
-  /// Residual: angular accelerations of elements (in their tangent bases) and body.
+  /// Residual: angular accelerations of elements (in their tangent bases) and
+  /// body, each times a scalar inertia about its joint, so that all rows are
+  /// moments [N m] of comparable size (a light body's rows would otherwise
+  /// dominate the line search).
   Eigen::VectorXd residual(const Eigen::VectorXd& x) {
     const PhysicalState s = displaced(x);
     forward_dynamics(model, s, 0.0, ws);
     Eigen::VectorXd r(size());
     for (int k = 0; k < n; ++k) {
-      r[2 * k] = ws.acc.alpha[k].dot(t1[k]);
-      r[2 * k + 1] = ws.acc.alpha[k].dot(t2[k]);
+      r[2 * k] = scale[k] * ws.acc.alpha[k].dot(t1[k]);
+      r[2 * k + 1] = scale[k] * ws.acc.alpha[k].dot(t2[k]);
     }
-    if (model.has_body) r.tail<3>() = ws.acc.alpha_b;
+    if (model.has_body) r.tail<3>() = scale[n] * ws.acc.alpha_b;
     return r;
   }
+
+  /// Largest unscaled angular acceleration of a residual [rad/s^2].
+  double max_alpha(const Eigen::VectorXd& r) const {
+    double m = 0;
+    for (int i = 0; i < r.size(); ++i) m = std::max(m, std::abs(r[i]) / scale[std::min(i / 2, n)]);
+    if (model.has_body)
+      for (int i = 2 * n; i < r.size(); ++i) m = std::max(m, std::abs(r[i]) / scale[n]);
+    return m;
+  }
+
+  std::vector<double> scale;  // inertia about the top joint (elements), about Q (body) [kg m^2]
 
   /// Move the iterate by x and rebuild the tangent bases.
   void accept(const Eigen::VectorXd& x) {
@@ -122,11 +145,12 @@ StaticsResult solve_statics(const Model& model, const Vec3& V) {
   sweep_from_body(p);
   const int N = p.size();
   StaticsResult out;
-  Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
   Eigen::VectorXd r = p.residual(zero);
   Eigen::MatrixXd J(N, N);
+  double mu = -1;  // Levenberg-Marquardt damping, set from J on first use
   for (out.iterations = 0; out.iterations < kMaxIterations; ++out.iterations) {
-    if (r.cwiseAbs().maxCoeff() < kTolerance) break;
+    if (p.max_alpha(r) < kTolerance) break;
     // Jacobian by central differences (each column one O(n) evaluation pair).
     constexpr double h = 1e-7;
     for (int j = 0; j < N; ++j) {
@@ -136,28 +160,37 @@ StaticsResult solve_statics(const Model& model, const Vec3& V) {
       x[j] = -h;
       J.col(j) = (rp - p.residual(x)) / (2 * h);
     }
-    // Minimum-norm Newton step (a body may have a neutral rotation), then a
-    // backtracking line search on |r|.
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J);
-    cod.setThreshold(1e-12);
-    Eigen::VectorXd dx = cod.solve(-r);
-    const double max_step = 0.5;  // at most ~30 degrees per element per iteration
-    if (dx.cwiseAbs().maxCoeff() > max_step) dx *= max_step / dx.cwiseAbs().maxCoeff();
-    double lambda = 1.0;
-    Eigen::VectorXd rn;
-    for (int ls = 0; ls < 30; ++ls, lambda *= 0.5) {
-      rn = p.residual(lambda * dx);
-      if (rn.norm() < r.norm()) break;
+    // Levenberg-Marquardt: (J^T J + mu I) dx = -J^T r. Damping handles the
+    // neutral rotations of a body (a sphere about its link line) and far
+    // starting points; it shrinks to plain Newton near the solution.
+    const Eigen::MatrixXd JtJ = J.transpose() * J;
+    const Eigen::VectorXd g = J.transpose() * r;
+    if (mu < 0) mu = 1e-6 * JtJ.diagonal().maxCoeff();
+    bool improved = false;
+    for (int tries = 0; tries < 40 && !improved; ++tries) {
+      Eigen::MatrixXd A = JtJ;
+      A.diagonal().array() += mu;
+      Eigen::VectorXd dx = A.ldlt().solve(-g);
+      const double max_step = 0.5;  // at most ~30 degrees per element per iteration
+      if (dx.cwiseAbs().maxCoeff() > max_step) dx *= max_step / dx.cwiseAbs().maxCoeff();
+      const Eigen::VectorXd rn = p.residual(dx);
+      if (rn.allFinite() && rn.norm() < r.norm()) {
+        p.accept(dx);
+        r = p.residual(zero);
+        mu = std::max(mu / 5, 1e-15 * JtJ.diagonal().maxCoeff());
+        improved = true;
+      } else {
+        mu *= 4;
+      }
     }
-    p.accept(lambda * dx);
-    r = p.residual(zero);
+    if (!improved) break;
   }
-  out.residual = r.size() ? r.cwiseAbs().maxCoeff() : 0.0;
-  out.converged = out.residual < kTolerance;
+  out.residual = p.max_alpha(r);
+  out.converged = out.residual < kFloor;
   if (!out.converged) {
     std::ostringstream os;
     os << "statics did not converge: largest angular acceleration left " << out.residual << " rad/s^2 after "
-       << out.iterations << " Newton iterations";
+       << out.iterations << " iterations";
     out.message = os.str();
   }
   // Forces at the equilibrium.
