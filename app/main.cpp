@@ -10,10 +10,7 @@
 #include <type_traits>
 
 #include "towsim/io/commands.hpp"
-#if __has_include("towsim/io/plot.hpp")
 #include "towsim/io/plot.hpp"
-#define TOWSIM_HAS_PLOT 1
-#endif
 
 namespace {
 
@@ -79,7 +76,6 @@ void add_examples_command(CLI::App& app, int& status) {
   cmd->callback([name, &status] { status = examples_command(*name, std::cout, std::cerr); });
 }
 
-#ifdef TOWSIM_HAS_PLOT
 /// `towsim plot DIR`: figures of a run's outputs (src/io/plot.cpp).
 void add_plot_command(CLI::App& app, int& status) {
   auto dir = std::make_shared<std::string>();
@@ -87,7 +83,18 @@ void add_plot_command(CLI::App& app, int& status) {
   cmd->add_option("dir", *dir, "Output directory of `towsim run`")->required();
   cmd->callback([dir, &status] { status = plot_run(*dir, std::cerr); });
 }
-#endif
+
+/// `towsim statics SCENARIO.yaml [--set K=V]... [--out DIR]`.
+void add_statics_command(CLI::App& app, int& status) {
+  auto opts = std::make_shared<StaticsOptions>();
+  CLI::App* cmd = app.add_subcommand("statics", "Steady-tow equilibrium at the tow law's final speed");
+  add_input_options(cmd, opts->input);
+  cmd->add_option("--out,-o", opts->out_dir, "Write the configuration (timeseries.csv, nodes.csv) here");
+  cmd->callback([opts, &status] {
+    require_one_input(opts->input);
+    status = statics_command(*opts, std::cout, std::cerr);
+  });
+}
 
 }  // namespace
 
@@ -98,9 +105,8 @@ int main(int argc, char** argv) {
   add_run_command(app, status);
   add_check_command(app, status);
   add_examples_command(app, status);
-#ifdef TOWSIM_HAS_PLOT
   add_plot_command(app, status);
-#endif
+  add_statics_command(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -35,6 +35,12 @@ struct RunOptions {
   bool progress = false;  // draw a progress bar on `err`
 };
 
+/// Options of `towsim statics`.
+struct StaticsOptions {
+  InputOptions input;
+  std::string out_dir;  // where to write timeseries.csv and nodes.csv of the configuration ("" = none)
+};
+
 /// Load, override, check and compile the scenario named by `in` (exactly one
 /// of a file or an example); every problem is in the result's diagnostics.
 LoadedScenario load_input(const InputOptions& in);
@@ -44,6 +50,12 @@ LoadedScenario load_input(const InputOptions& in);
 /// `stop_flag` (may be null) interrupts the run when set. Returns an ExitStatus.
 int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err,
                 const volatile int* stop_flag = nullptr);
+
+/// `towsim statics`: the steady-tow equilibrium at the tow law's final
+/// velocity; prints tow force, end and body depth, link force, element
+/// angles; writes the configuration when an output directory is given.
+/// Returns an ExitStatus (3 when the solver does not converge).
+int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err);
 
 /// `towsim check`: validate and print the derived quantities. Returns an ExitStatus.
 int check_command(const InputOptions& in, std::ostream& out, std::ostream& err);
