@@ -123,6 +123,11 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     const auto summary = make_summary(to_json(sc.tree), model.name, stats, writer.extremes(), writer.samples(),
                                       model.has_body, model.sim.write_nodes);
     if (!write_summary(opts.out_dir, summary)) throw std::runtime_error("cannot write summary.json");
+    // Rigid elements can push; a real cable would go slack there.
+    const Extreme& comp = writer.extremes().min_axial_force;
+    if (!opts.quiet && comp.value < 0)
+      err << "towsim: warning: the cable was in compression (axial force " << fmt_num(comp.value) << " N at t = "
+          << fmt_num(comp.time) << " s; see axial_force in nodes.csv): a real cable would go slack there\n";
     return report_run(stats, model, opts, writer.samples(), out, err);
   } catch (const std::exception& e) {
     err << "towsim: " << e.what() << "\n";

@@ -1,5 +1,6 @@
 #include "towsim/io/output.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -10,8 +11,9 @@ namespace {
 
 void put(std::string& out, double v) {
   char b[40];
-  const int n = std::snprintf(b, sizeof b, "%.12g", v == 0 ? 0.0 : v);  // no "-0"
-  out.append(b, static_cast<std::size_t>(n));
+  // 12 significant digits; std::to_chars is several times faster than snprintf.
+  const auto r = std::to_chars(b, b + sizeof b, v == 0 ? 0.0 : v, std::chars_format::general, 12);  // no "-0"
+  out.append(b, r.ptr);
 }
 
 void put3(std::string& out, const Vec3& v) {
@@ -82,6 +84,8 @@ void node_rows(const Sample& s, std::string& out) {
     put3(out, k < s.node_vel.size() ? s.node_vel[k] : nan3);
     out += ',';
     put(out, k < s.tension.size() ? s.tension[k] : std::nan(""));
+    out += ',';
+    put(out, k < s.axial.size() ? s.axial[k] : std::nan(""));
     out += '\n';
   }
 }
@@ -105,6 +109,7 @@ void Extreme::min(double v, double t) {
 void Extremes::add(const Sample& s) {
   max_tow_tension.max(s.tow_force.norm(), s.t);
   for (double T : s.tension) max_cable_tension.max(T, s.t);
+  for (double A : s.axial) min_axial_force.min(A, s.t);
   if (!s.node_pos.empty()) max_end_depth.max(-s.node_pos.back().z(), s.t);
   if (!s.has_body) return;
   max_link_force.max(s.link_force.norm(), s.t);
@@ -130,7 +135,7 @@ RunWriter::RunWriter(const std::string& dir, bool has_body, bool write_nodes) : 
   write_all(series_, timeseries_header(has_body) + "\n");
   if (write_nodes) {
     nodes_ = open_file(dir, "nodes.csv");
-    write_all(nodes_, "time,node,x,y,z,vx,vy,vz,tension\n");
+    write_all(nodes_, "time,node,x,y,z,vx,vy,vz,tension,axial_force\n");
   }
 }
 
@@ -176,6 +181,7 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   e["max_tow_tension"] = json_of(ex.max_tow_tension);
   e["max_cable_tension"] = json_of(ex.max_cable_tension);
   e["max_end_depth"] = json_of(ex.max_end_depth);
+  e["min_axial_force"] = json_of(ex.min_axial_force);  // < 0: compression (a real cable would go slack)
   if (has_body) {
     e["max_link_force"] = json_of(ex.max_link_force);
     e["max_body_depth"] = json_of(ex.max_body_depth);

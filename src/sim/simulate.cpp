@@ -29,7 +29,12 @@ Sample make_sample(const Model& model, System& sys, const StateVector& y, double
   out.node_pos = ws.P;
   out.node_vel = ws.vP;
   out.tension.resize(ws.acc.joint_force.size());
-  for (std::size_t k = 0; k < out.tension.size(); ++k) out.tension[k] = ws.acc.joint_force[k].norm();
+  out.axial.resize(out.tension.size());
+  for (std::size_t k = 0; k < out.tension.size(); ++k) {
+    out.tension[k] = ws.acc.joint_force[k].norm();
+    // f_k acts on the part below joint k; tension pulls it back along -e.
+    out.axial[k] = -ws.acc.joint_force[k].dot(s.e[k == 0 ? 0 : k - 1]);
+  }
   for (std::size_t k = 1; k < ws.P.size(); ++k) {
     const double L = model.cable.elements[k - 1].length;
     stats.max_element_drift = std::max(stats.max_element_drift, std::abs((ws.P[k] - ws.P[k - 1]).norm() / L - 1));

@@ -93,6 +93,7 @@ towsim::Sample sample(double t) {
   s.node_pos = {towsim::Vec3(t, 0, 0), towsim::Vec3(t, 0, -10)};
   s.node_vel = {towsim::Vec3(1, 0, 0), towsim::Vec3(1, 0, 0)};
   s.tension = {5, 2};
+  s.axial = {5, -2};
   s.has_body = true;
   s.body_pos = towsim::Vec3(t, 0, -10.5);
   s.body_rpy_deg = towsim::Vec3(0, -t, 0);
@@ -114,6 +115,7 @@ TEST(IoOutput, TimeseriesColumnsAndExtremes) {
     EXPECT_DOUBLE_EQ(w.extremes().max_body_depth.value, 10.5);
     EXPECT_DOUBLE_EQ(w.extremes().min_body_deg[1].value, -0.5);
     EXPECT_DOUBLE_EQ(w.extremes().min_body_deg[1].time, 0.5);
+    EXPECT_DOUBLE_EQ(w.extremes().min_axial_force.value, -2.0);
     towsim::RunStats st;
     st.end_time = 0.5;
     const auto j = make_summary({{"cable", {{"elements", 1}}}}, "m", st, w.extremes(), w.samples(), true, true);
@@ -129,8 +131,8 @@ TEST(IoOutput, TimeseriesColumnsAndExtremes) {
   EXPECT_EQ(ts[2].rfind("0.5,0.5,0,0,3,0,4,0.5,0,-10,0.5,0,-10.5,0,-0.5,0,0,0,2,5,10,", 0), 0u) << ts[2];
   const auto nodes = lines_of(dir / "nodes.csv");
   ASSERT_EQ(nodes.size(), 5u);
-  EXPECT_EQ(nodes[0], "time,node,x,y,z,vx,vy,vz,tension");
-  EXPECT_EQ(nodes[4], "0.5,1,0.5,0,-10,1,0,0,2");
+  EXPECT_EQ(nodes[0], "time,node,x,y,z,vx,vy,vz,tension,axial_force");
+  EXPECT_EQ(nodes[4], "0.5,1,0.5,0,-10,1,0,0,2,-2");
   std::ifstream in(dir / "summary.json");
   const auto j = nlohmann::json::parse(in);
   EXPECT_EQ(j["status"], "ok");

@@ -26,6 +26,7 @@ struct Extremes {
   Extreme max_tow_tension;    // |F_R| [N]
   Extreme max_cable_tension;  // largest joint tension anywhere [N]
   Extreme max_end_depth;      // -z of P_n [m]
+  Extreme min_axial_force;    // smallest axial force in any joint, < 0 in compression [N]
   Extreme max_link_force;     // |F_L| [N] (body)
   Extreme max_body_depth;     // -z of O_t [m] (body)
   Extreme min_body_deg[3], max_body_deg[3];  // roll, pitch, yaw [deg] (body)

@@ -17,6 +17,8 @@ struct Sample {
   std::vector<Vec3> node_pos;   // P_0..P_n [m, R_g]
   std::vector<Vec3> node_vel;   // velocities of P_0..P_n [m/s, R_g]
   std::vector<double> tension;  // |force carried through joint k|, k = 0..n [N]
+  std::vector<double> axial;    // that force along the element above joint k (below, for k = 0):
+                                // positive in tension, negative in compression [N]
   bool has_body = false;
   Vec3 body_pos;                // O_t [m, R_g]
   Vec3 body_vel;                // velocity of O_t [m/s, R_g]
