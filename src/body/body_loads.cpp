@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "towsim/hydro/loads.hpp"
+#include "towsim/model/table.hpp"
 
 namespace towsim {
 
@@ -81,14 +82,8 @@ double lift_coefficient(const LiftingSurface& ls, double alpha) {
 }
 
 double surface_deflection(const LiftingSurface& ls, double t) {
-  const auto& ts = ls.deflection_time;
-  const auto& ds = ls.deflection_angle;
-  if (ds.empty()) return 0;
-  if (ds.size() == 1 || t <= ts.front()) return ds.front();
-  if (t >= ts.back()) return ds.back();
-  const std::size_t i = std::upper_bound(ts.begin(), ts.end(), t) - ts.begin() - 1;
-  const double s = (t - ts[i]) / (ts[i + 1] - ts[i]);
-  return (1 - s) * ds[i] + s * ds[i + 1];
+  if (ls.deflection_angle.empty()) return 0;
+  return interpolate(ls.deflection_time, ls.deflection_angle, t);
 }
 
 void body_inertia(const Model& model, const PhysicalState& s, Workspace& ws) {

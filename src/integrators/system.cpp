@@ -14,6 +14,14 @@ using CMap3 = Eigen::Map<const Vec3>;
 /// Write a 3-vector into a flat state at offset i.
 void set3(StateVector& y, std::size_t i, const Vec3& v) { y[i] = v.x(), y[i + 1] = v.y(), y[i + 2] = v.z(); }
 
+/// In Motion mode, put the imposed tow position and velocity at t into (r0, v0).
+void impose_tow(const Model& m, double t, Vec3& r0, Vec3& v0) {
+  if (m.tow.mode != Tow::Mode::Motion) return;
+  const TowKinematics k = tow_kinematics(m.tow, t);
+  r0 = k.pos;
+  v0 = k.vel;
+}
+
 /// Jump of the imposed tow velocity at t: v(t+) - v(t-) [m/s] (zero in Force mode).
 Vec3 tow_jump(const Model& m, double t) {
   if (m.tow.mode != Tow::Mode::Motion) return Vec3::Zero();
@@ -66,11 +74,7 @@ class DefaultSystem final : public System {
     ++rhs_evaluations;
     unpack(y, s_);
     const double tl = law_time(t);
-    if (model_.tow.mode == Tow::Mode::Motion) {
-      const TowKinematics k = tow_kinematics(model_.tow, tl);
-      s_.r0 = k.pos;
-      s_.v0 = k.vel;
-    }
+    impose_tow(model_, tl, s_.r0, s_.v0);
     forward_dynamics(model_, s_, tl, ws_);
     dy.resize(size_);
     // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
@@ -171,11 +175,7 @@ class PaperSystem final : public System {
     ++rhs_evaluations;
     unpack(y, p_);
     const double tl = law_time(t);
-    if (model_.tow.mode == Tow::Mode::Motion) {
-      const TowKinematics k = tow_kinematics(model_.tow, tl);
-      p_.r0 = k.pos;
-      p_.v0 = k.vel;
-    }
+    impose_tow(model_, tl, p_.r0, p_.v0);
     paper_dynamics(model_, p_, tl, pw_);
     dy.resize(y.size());
     set3(dy, 0, p_.v0);
@@ -186,11 +186,7 @@ class PaperSystem final : public System {
 
   void project(StateVector& y, double t) override {
     unpack(y, p_);
-    if (model_.tow.mode == Tow::Mode::Motion) {
-      const TowKinematics k = tow_kinematics(model_.tow, t);
-      p_.r0 = k.pos;
-      p_.v0 = k.vel;
-    }
+    impose_tow(model_, t, p_.r0, p_.v0);
     rechart(model_, p_);
     pack(p_, y);
   }

@@ -1,5 +1,6 @@
 // Derived quantities of the compiled model (MODEL.md 2-4).
 #include "towsim/model/model.hpp"
+#include "towsim/model/table.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -37,13 +38,7 @@ std::size_t interval(const std::vector<double>& xs, double x) {
 
 Vec3 Fluid::current(double z) const {
   if (current_velocity.empty()) return Vec3::Zero();
-  if (current_velocity.size() == 1) return current_velocity.front();
-  const double d = -z;
-  if (d <= current_depth.front()) return current_velocity.front();
-  if (d >= current_depth.back()) return current_velocity.back();
-  const std::size_t i = interval(current_depth, d);
-  const double s = (d - current_depth[i]) / (current_depth[i + 1] - current_depth[i]);
-  return (1 - s) * current_velocity[i] + s * current_velocity[i + 1];
+  return interpolate(current_depth, current_velocity, -z);
 }
 
 Vec3 Fluid::current_gradient(double z) const {

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "towsim/model/model.hpp"
+#include "towsim/model/table.hpp"
 
 namespace towsim {
 
@@ -149,14 +150,8 @@ std::vector<double> tow_breakpoints(const Tow& tow) {
 }
 
 Vec3 tow_force(const Tow& tow, double t) {
-  const auto& ts = tow.force_time;
-  const auto& fs = tow.force_value;
-  if (fs.empty()) return Vec3::Zero();
-  if (fs.size() == 1 || t <= ts.front()) return fs.front();
-  if (t >= ts.back()) return fs.back();
-  const std::size_t i = std::upper_bound(ts.begin(), ts.end(), t) - ts.begin() - 1;
-  const double s = (t - ts[i]) / (ts[i + 1] - ts[i]);
-  return (1 - s) * fs[i] + s * fs[i + 1];
+  if (tow.force_value.empty()) return Vec3::Zero();
+  return interpolate(tow.force_time, tow.force_value, t);
 }
 
 }  // namespace towsim
