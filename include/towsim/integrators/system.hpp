@@ -50,7 +50,7 @@ class System {
   /// Time at which to evaluate time-dependent inputs (tow law, deflections)
   /// for a stage at t: t moved inside the step's window by a relative 1e-12.
   double law_time(double t) const {
-    const double d = 1e-12 * std::max(1.0, std::abs(t1_));
+    const double d = 1e-12 * std::max(1.0, std::abs(t));
     if (t1_ - t0_ <= 2 * d) return t;
     return std::clamp(t, t0_ + d, t1_ - d);
   }
