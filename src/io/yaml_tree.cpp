@@ -32,7 +32,7 @@ struct Origin {
 /// copied into the tree, so a few lines of nested aliases ("billion laughs")
 /// could otherwise take all the memory and time there is. Without aliases a
 /// document has fewer values than characters, so only alias blow-ups hit it.
-std::size_t max_values(std::size_t bytes) { return 100000 + 10 * bytes; }
+std::size_t max_values(std::size_t bytes) { return 1000 + 10 * bytes; }
 
 /// Thrown by convert() past max_values(); `mark` is where it happened.
 struct TooManyValues {
