@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Build everything with AddressSanitizer + UndefinedBehaviorSanitizer
+# (-DTOWSIM_SANITIZE=ON) in build-asan/ and run the test suite under them.
+# Any sanitizer report fails the test that triggered it (UBSan does not
+# recover; ASan aborts), so a green run means no report.
+#
+#   scripts/sanitize.sh [extra ctest arguments]
+#
+# Environment: JOBS (build and test parallelism, default 2), ASAN_BUILD (build
+# dir, default build-asan), SANITIZE_EXCLUDE (ctest -E regex of tests left out,
+# default: none; see docs/reliability.md).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+JOBS="${JOBS:-2}"
+BUILD="${ASAN_BUILD:-build-asan}"
+EXCLUDE="${SANITIZE_EXCLUDE:-}"
+
+mkdir -p "$BUILD"
+cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTOWSIM_SANITIZE=ON -DTOWSIM_BUILD_BENCH=OFF \
+  >"$BUILD/configure.log" 2>&1 || { cat "$BUILD/configure.log" >&2; exit 1; }
+cmake --build "$BUILD" -j "$JOBS" >"$BUILD/build.log" 2>&1 || { tail -50 "$BUILD/build.log" >&2; exit 1; }
+
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+args=(--test-dir "$BUILD" --output-on-failure -j "$JOBS")
+[[ -n "$EXCLUDE" ]] && args+=(-E "$EXCLUDE")
+ctest "${args[@]}" "$@"
