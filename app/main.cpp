@@ -79,9 +79,13 @@ void add_examples_command(CLI::App& app, int& status) {
 /// `towsim plot DIR`: figures of a run's outputs (src/io/plot.cpp).
 void add_plot_command(CLI::App& app, int& status) {
   auto dir = std::make_shared<std::string>();
+  auto opts = std::make_shared<PlotOptions>();
   CLI::App* cmd = app.add_subcommand("plot", "Render figures of a run's outputs into DIR/plots (gnuplot)");
   cmd->add_option("dir", *dir, "Output directory of `towsim run`")->required();
-  cmd->callback([dir, &status] { status = plot_run(*dir, std::cerr); });
+  cmd->add_option("--width", opts->width, "Figure width [pixels]")->check(CLI::Range(200, 8000));
+  cmd->add_option("--height", opts->height, "Figure height [pixels]")->check(CLI::Range(150, 8000));
+  cmd->add_option("--snapshots", opts->snapshots, "Cable shapes drawn in cable_shapes_*")->check(CLI::Range(1, 100));
+  cmd->callback([dir, opts, &status] { status = plot_run(*dir, std::cerr, *opts); });
 }
 
 /// `towsim statics SCENARIO.yaml [--set K=V]... [--out DIR]`.

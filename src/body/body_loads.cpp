@@ -47,9 +47,9 @@ void cylinder_loads(const Model& m, const CylinderLoad& cy, Workspace& ws) {
 void surface_loads(const Model& m, const LiftingSurface& ls, double t, Workspace& ws) {
   const Vec3 c = ws.R * ls.center;
   const Vec3 span = ws.R * ls.chord.cross(ls.normal);
-  // A positive deflection raises the incidence: chord and normal turn by -d
-  // about the span axis (the leading edge towards +normal), so that with the
-  // flow along the chord, alpha = +d and the lift points to +normal.
+  // Deflection d: chord and normal turn by +d about the span axis
+  // (chord x normal), the leading edge towards +normal, so that with the flow
+  // along the undeflected chord alpha = +d and the lift points to +normal.
   const double d = surface_deflection(ls, t);
   const Vec3 chord = ws.R * (std::cos(d) * ls.chord + std::sin(d) * ls.normal);
   const Vec3 normal = ws.R * (-std::sin(d) * ls.chord + std::cos(d) * ls.normal);
