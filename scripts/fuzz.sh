@@ -49,7 +49,7 @@ for target in scenario track_csv; do
     echo "== fuzz_$target: ${SECONDS_EACH} s"
     "$exe" "${args[@]}" -max_total_time="$SECONDS_EACH" "$work" "$seeds" >"$log" 2>&1 && rc=0 || rc=$?
   fi
-  grep -E '^(Done|stat::number_of_executed_units|stat::peak_rss_mb|#[0-9]+ +DONE)' "$log" || true
+  grep -E '^(stat::number_of_executed_units|stat::peak_rss_mb|#[0-9]+[[:space:]]+DONE)' "$log" || true
   if [[ $rc -ne 0 ]]; then
     echo "fuzz_$target FAILED (exit $rc); log: $log" >&2
     grep -E 'ERROR|SUMMARY|runtime error|Test unit written' "$log" >&2 || tail -30 "$log" >&2
