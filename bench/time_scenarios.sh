@@ -7,14 +7,14 @@
 #   SCENARIO: a built-in example name or a .yaml file. Default: every built-in
 #   example (towsim examples) and bench/scenarios/*.yaml.
 #   EXTRA args go to every run, e.g. -- --set simulation.time_step=0.05
-# Environment: TOWSIM (default build/towsim), RUNS (default 5).
+# Environment: TOWSIM (default build/towsim; or BUILD=DIR for DIR/towsim), RUNS (default 5).
 # Prints a Markdown table; the outputs of the last run of each scenario stay
 # in OUTROOT/NAME (default a temporary directory, removed at exit unless -o).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/.." && pwd)"
-towsim="${TOWSIM:-$root/build/towsim}"
+towsim="${TOWSIM:-${BUILD:-$root/build}/towsim}"
 runs="${RUNS:-5}"
 outroot=""
 scenarios=()
@@ -102,3 +102,5 @@ for sc in "${scenarios[@]}"; do
     printf '| %s | - | - | %.3f | %.3f | - | - | - | - | - | - | %s (no summary.json) |\n' "$name" "$med" "$min" "$status"
   fi
 done
+echo
+echo "load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
