@@ -5,6 +5,10 @@ set -euo pipefail
 
 packages=(build-essential cmake libeigen3-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev libboost-dev gnuplot-nox)
+# --reliability: also what scripts/fuzz.sh and scripts/soak.sh need (clang + libFuzzer, GNU time).
+if [ "${1:-}" = "--reliability" ]; then
+  packages+=(clang libclang-rt-14-dev time)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

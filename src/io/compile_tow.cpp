@@ -54,6 +54,7 @@ TowPiece build_piece(const PieceSpec& p) {
     piece.track_time.push_back(row.values[0]);
     piece.track_pos.emplace_back(row.values[1], row.values[2], row.values[3]);
   }
+  prepare_track(piece);
   return piece;
 }
 

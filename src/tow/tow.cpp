@@ -44,6 +44,24 @@ TowKinematics heave(const TowPiece& p, double t) {
   return k;
 }
 
+/// Second derivatives of the natural cubic spline through (ts, xs) (Thomas algorithm).
+std::vector<Vec3> spline_curvatures(const std::vector<double>& ts, const std::vector<Vec3>& xs) {
+  const std::size_t m = ts.size();
+  std::vector<Vec3> M(m, Vec3::Zero());
+  if (m <= 2) return M;
+  std::vector<double> c(m, 0.0);
+  std::vector<Vec3> d(m, Vec3::Zero());
+  for (std::size_t i = 1; i + 1 < m; ++i) {
+    const double h0 = ts[i] - ts[i - 1], h1 = ts[i + 1] - ts[i];
+    const Vec3 rhs = 6 * ((xs[i + 1] - xs[i]) / h1 - (xs[i] - xs[i - 1]) / h0);
+    const double diag = 2 * (h0 + h1) - h0 * c[i - 1];
+    c[i] = h1 / diag;
+    d[i] = (rhs - h0 * d[i - 1]) / diag;
+  }
+  for (std::size_t i = m - 2; i >= 1; --i) M[i] = d[i] - c[i] * M[i + 1];
+  return M;
+}
+
 /// Track: natural cubic spline through (time, position), so velocity and
 /// acceleration are continuous; straight-line extrapolation outside the table.
 TowKinematics track(const TowPiece& p, double t) {
@@ -52,21 +70,8 @@ TowKinematics track(const TowPiece& p, double t) {
   const std::size_t m = ts.size();
   TowKinematics k{xs.front(), Vec3::Zero(), Vec3::Zero()};
   if (m < 2) return k;
-  // Second derivatives of the natural spline (Thomas algorithm). Tables are
-  // short; recomputing per call keeps the model immutable and simple.
-  std::vector<Vec3> M(m, Vec3::Zero());
-  if (m > 2) {
-    std::vector<double> c(m, 0.0);
-    std::vector<Vec3> d(m, Vec3::Zero());
-    for (std::size_t i = 1; i + 1 < m; ++i) {
-      const double h0 = ts[i] - ts[i - 1], h1 = ts[i + 1] - ts[i];
-      const Vec3 rhs = 6 * ((xs[i + 1] - xs[i]) / h1 - (xs[i] - xs[i - 1]) / h0);
-      const double diag = 2 * (h0 + h1) - h0 * c[i - 1];
-      c[i] = h1 / diag;
-      d[i] = (rhs - h0 * d[i - 1]) / diag;
-    }
-    for (std::size_t i = m - 2; i >= 1; --i) M[i] = d[i] - c[i] * M[i + 1];
-  }
+  const std::vector<Vec3> local = p.track_curv.size() == m ? std::vector<Vec3>{} : spline_curvatures(ts, xs);
+  const std::vector<Vec3>& M = p.track_curv.size() == m ? p.track_curv : local;
   auto segment = [&](std::size_t i, double tt) {
     const double h = ts[i + 1] - ts[i];
     const double a = (ts[i + 1] - tt) / h, b = (tt - ts[i]) / h;
@@ -130,6 +135,11 @@ TowKinematics tow_kinematics(const Tow& tow, double t) {
   k.vel = Vec3(vv.x(), vv.y(), k.vel.z());
   k.acc = Vec3(aa.x(), aa.y(), k.acc.z());
   return k;
+}
+
+void prepare_track(TowPiece& piece) {
+  if (piece.type == TowPiece::Type::Track && piece.track_time.size() >= 2)
+    piece.track_curv = spline_curvatures(piece.track_time, piece.track_pos);
 }
 
 std::vector<double> tow_breakpoints(const Tow& tow) {

@@ -29,7 +29,9 @@ TEST(IoExamples, EveryExampleParsesAndCompiles) {
   for (const auto& e : examples()) {
     const auto s = load_scenario_text(e.yaml, e.name + ".yaml", e.name, "");
     EXPECT_TRUE(s.ok()) << e.name << ":\n" << s.diags.str();
-    if (s.ok()) EXPECT_EQ(s.model->name, e.name);
+    if (s.ok()) {
+      EXPECT_EQ(s.model->name, e.name);
+    }
   }
 }
 

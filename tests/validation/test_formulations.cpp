@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "../support/models.hpp"
+#include "../support/physics.hpp"
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/paper.hpp"
 
@@ -40,7 +41,7 @@ TEST_P(FormulationAgreement, SameAccelerationsAndForces) {
     m.fluid.current_velocity = {Vec3(1.0, 0.3, 0), Vec3(0.5, 0.1, 0.0), Vec3(0.1, 0, 0)};
   }
   m.tow.mode = c.mode;
-  m.tow.pieces.push_back({TowPiece::Type::Ramp, Vec3(1, 0.2, 0), 2.0, 15.0});
+  m.tow.pieces.push_back(testing::ramp_piece(Vec3(1, 0.2, 0), 2.0, 15.0));
   m.tow.force_value = {Vec3(300, -50, 120)};
   std::mt19937 rng(1234 + c.n);
   Workspace ws(m);

@@ -147,7 +147,13 @@ struct TowPiece {
   // track: time, and position relative to the tow start (natural cubic spline)
   std::vector<double> track_time;  // [s], strictly increasing
   std::vector<Vec3> track_pos;     // [m, R_g]
+  std::vector<Vec3> track_curv;    // spline second derivatives at the knots [m/s^2] (prepare_track)
 };
+
+/// Precompute a track piece's natural-spline coefficients (track_curv), so
+/// that evaluating it costs O(log rows) with no allocation. Pieces without
+/// them are still evaluated correctly, recomputing the spline per call.
+void prepare_track(TowPiece& piece);
 
 /// The tow point O_r: imposed motion (tow force is an output) or imposed force.
 struct Tow {
