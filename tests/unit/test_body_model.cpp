@@ -17,9 +17,12 @@
 
 #include "towsim/dynamics/state.hpp"
 #include "towsim/hydro/loads.hpp"
+#include "../support/fd.hpp"
 
 namespace {
 
+using towsim::testing::fd_richardson;
+using towsim::testing::fd_with_bound;
 using towsim::Body;
 using towsim::CylinderLoad;
 using towsim::LiftingSurface;
@@ -33,7 +36,6 @@ using towsim::Vec3;
 using towsim::Vec6;
 using towsim::Workspace;
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double pi = std::numbers::pi;
 
 void report(const char* what, double err, double tol) {
@@ -81,32 +83,6 @@ Mat3 rotation(double roll, double pitch, double yaw) {
   return towsim::quat_from_rpy(roll, pitch, yaw).toRotationMatrix();
 }
 
-template <class F>
-std::pair<Eigen::VectorXd, double> fd_with_bound(F f, double t, double h) {
-  const Eigen::VectorXd fp = f(t + h), fm = f(t - h);
-  const double H = 1e-2;
-  const Eigen::VectorXd third = (f(t + 2 * H) - 2 * f(t + H) + 2 * f(t - H) - f(t - 2 * H)) / (2 * H * H * H);
-  const double bound = 2 * (h * h / 6 * third.norm()) + 8 * kEps * (fp.norm() + fm.norm()) / h;
-  return {(fp - fm) / (2 * h), bound};
-}
-
-/// Richardson extrapolation of the central differences at h and h/2:
-/// (4 D_{h/2} - D_h) / 3 = f' - h^4/480 f^(5) + O(h^6). With h = 1e-3 the
-/// truncation is ~2e-15 |f^(5)|; for the trigonometric trajectories used here
-/// (frequencies <= 2.6 rad/s, |f^(5)| < 1e3 |f|) that is < 1e-12 |f|. Round-off:
-/// each evaluation of f carries ~c eps S, S the size of the terms f is
-/// computed from (|f| itself, or `scale` when f is a difference of larger
-/// terms, e.g. P = ma (u - (e.u) e)), c <= 10 for these few-operation
-/// expressions; the combination amplifies it by (4 * 2 + 1) / 3 / h = 3 / h.
-/// Bound: 30 eps S / h + 1e-12 S.
-template <class F>
-std::pair<Eigen::VectorXd, double> fd_richardson(F f, double t, double h, double scale = 0) {
-  const Eigen::VectorXd fp = f(t + h), fm = f(t - h);
-  const Eigen::VectorXd d1 = (fp - fm) / (2 * h);
-  const Eigen::VectorXd d2 = (f(t + h / 2) - f(t - h / 2)) / h;
-  const double fmag = std::max({fp.norm(), fm.norm(), scale});
-  return {(4 * d2 - d1) / 3, 30 * kEps * fmag / h + 1e-12 * fmag};
-}
 
 }  // namespace
 
