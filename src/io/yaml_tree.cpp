@@ -39,8 +39,20 @@ struct TooManyValues {
   YAML::Mark mark;
 };
 
-YNode convert(const YAML::Node& n, const Origin& o, const SourceLoc& fallback, std::size_t& budget) {
+/// Deepest nesting accepted. A scenario needs about 6 levels; an alias that
+/// refers to itself (`a: &a [*a]`) makes a cyclic node, which would otherwise
+/// recurse until the stack overflows.
+constexpr int kMaxDepth = 64;
+
+/// Thrown by convert() past kMaxDepth.
+struct TooDeep {
+  YAML::Mark mark;
+};
+
+YNode convert(const YAML::Node& n, const Origin& o, const SourceLoc& fallback, std::size_t& budget,
+              int depth = 0) {
   if (budget == 0) throw TooManyValues{n.Mark()};
+  if (depth > kMaxDepth) throw TooDeep{n.Mark()};
   --budget;
   YNode out;
   out.loc = n.Mark().line < 0 ? fallback : loc_of(n.Mark(), o.file, o.line_override, o.col_offset);
@@ -52,14 +64,14 @@ YNode convert(const YAML::Node& n, const Origin& o, const SourceLoc& fallback, s
       break;
     case YAML::NodeType::Sequence:
       out.kind = YNode::Kind::Sequence;
-      for (const auto& item : n) out.items.push_back(convert(item, o, out.loc, budget));
+      for (const auto& item : n) out.items.push_back(convert(item, o, out.loc, budget, depth + 1));
       break;
     case YAML::NodeType::Map:
       out.kind = YNode::Kind::Map;
       for (const auto& kv : n) {
         const SourceLoc kl = loc_of(kv.first.Mark(), o.file, o.line_override, o.col_offset);
         // A null value has no useful mark of its own: use its key's.
-        YNode v = kv.second.IsNull() ? YNode{} : convert(kv.second, o, kl, budget);
+        YNode v = kv.second.IsNull() ? YNode{} : convert(kv.second, o, kl, budget, depth + 1);
         if (v.is_null()) v.loc = kl;
         v.key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("<complex key>");
         v.key_loc = kl;
@@ -84,6 +96,10 @@ YNode parse_with_origin(const std::string& text, const Origin& o, Diagnostics& d
     diags.error(loc_of(e.mark, o.file, o.line_override, o.col_offset), err_path,
                 "the document has more than " + std::to_string(max_values(text.size())) +
                     " values (counting each use of an alias)");
+    return YNode{};
+  } catch (const TooDeep& e) {
+    diags.error(loc_of(e.mark, o.file, o.line_override, o.col_offset), err_path,
+                "nested more than " + std::to_string(kMaxDepth) + " levels deep (or an alias refers to itself)");
     return YNode{};
   } catch (const YAML::Exception& e) {
     diags.error(loc_of(e.mark, o.file, o.line_override, o.col_offset), err_path,

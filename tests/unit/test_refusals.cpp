@@ -309,6 +309,15 @@ TEST_F(Refusal, AliasBombIsRefused) {
                                            " values (counting each use of an alias)");
 }
 
+TEST_F(Refusal, SelfReferringAliasIsRefused) {
+  // `&c [*c]` makes a cyclic node (found by fuzzing: a stack overflow).
+  const std::string yaml = "c: &c [*c, 1]\n" + kCable + kSim;
+  const auto s = load(yaml);
+  ASSERT_EQ(s.diags.size(), 1u) << s.diags.str();
+  EXPECT_EQ(s.diags.list()[0].path, "(yaml)");
+  EXPECT_EQ(s.diags.list()[0].message, "nested more than 64 levels deep (or an alias refers to itself)");
+}
+
 // --- --set: bad paths and values ---------------------------------------------
 
 TEST_F(Refusal, SetBadPathsAndValues) {
