@@ -5,6 +5,9 @@
 #
 #   scripts/fuzz.sh [SECONDS]   fuzz each target for SECONDS (default 60)
 #   scripts/fuzz.sh 0           only replay the committed corpus (fuzz/corpus/)
+#   FUZZ_RUNS=N FUZZ_SEED=S scripts/fuzz.sh [SECONDS]
+#                               N inputs per target from seed S (reproducible:
+#                               what CI runs), SECONDS still caps the time
 #
 # Environment: JOBS (build parallelism, default 2), FUZZ_BUILD (build dir,
 # default build-fuzz). New interesting inputs go to $FUZZ_BUILD/corpus/, never
@@ -46,8 +49,11 @@ for target in scenario track_csv; do
     echo "== fuzz_$target: replaying $seeds"
     "$exe" "${args[@]}" -runs=0 "$seeds" >"$log" 2>&1 && rc=0 || rc=$?
   else
-    echo "== fuzz_$target: ${SECONDS_EACH} s"
-    "$exe" "${args[@]}" -max_total_time="$SECONDS_EACH" "$work" "$seeds" >"$log" 2>&1 && rc=0 || rc=$?
+    extra=()
+    [[ -n "${FUZZ_RUNS:-}" ]] && extra+=("-runs=$FUZZ_RUNS")
+    [[ -n "${FUZZ_SEED:-}" ]] && extra+=("-seed=$FUZZ_SEED")
+    echo "== fuzz_$target: ${SECONDS_EACH} s at most${FUZZ_RUNS:+, $FUZZ_RUNS inputs}${FUZZ_SEED:+, seed $FUZZ_SEED}"
+    "$exe" "${args[@]}" "${extra[@]}" -max_total_time="$SECONDS_EACH" "$work" "$seeds" >"$log" 2>&1 && rc=0 || rc=$?
   fi
   grep -E '^(stat::number_of_executed_units|stat::peak_rss_mb|#[0-9]+[[:space:]]+DONE)' "$log" || true
   if [[ $rc -ne 0 ]]; then
