@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "towsim/io/scenario.hpp"
+#include "../support/scenario_files.hpp"
 
 namespace fs = std::filesystem;
 using towsim::io::LoadedScenario;
@@ -25,48 +26,10 @@ using towsim::io::load_scenario_file;
 
 namespace {
 
-class Refusal : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("towsim_refusal_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+using Refusal = towsim::testing::ScenarioFiles;
+using towsim::testing::kCable;
+using towsim::testing::kSim;
 
-  /// Write `text` into DIR/name and return its path.
-  std::string write(const std::string& text, const std::string& name = "scen.yaml") {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << text;
-    return p.string();
-  }
-  /// Load `text` as a scenario file with --set overrides.
-  LoadedScenario load(const std::string& text, const std::vector<std::string>& sets = {}) {
-    path_ = write(text);
-    return load_scenario_file(path_, sets);
-  }
-  /// The expected error line for the scenario file.
-  std::string at(const std::string& rest) const { return path_ + ":" + rest + "\n"; }
-  /// The same for another file of the test directory.
-  std::string in(const std::string& name, const std::string& rest) const {
-    return (dir_ / name).string() + ":" + rest + "\n";
-  }
-
-  fs::path dir_;
-  std::string path_;
-};
-
-// Lines 1-5 and 6-7; a body, when added after them, starts on line 8.
-const std::string kCable =
-    "cable:\n"
-    "  length: 100\n"
-    "  elements: 5\n"
-    "  mass_per_length: 1.5\n"
-    "  diameter: 0.019\n";
-const std::string kSim =
-    "simulation:\n"
-    "  duration: 10\n";
 const std::string kBody =  // lines 8-11
     "body:\n"
     "  mass: 3\n"
