@@ -39,6 +39,11 @@ struct RunCase {
 inline std::string run_case_name(const RunCase& c) {
   return formulation_name(c.formulation) + "_" + integrator_name(c.integrator);
 }
+
+/// Test-name generator for INSTANTIATE_TEST_SUITE_P over RunCase values.
+inline std::string run_case_param_name(const ::testing::TestParamInfo<RunCase>& info) {
+  return run_case_name(info.param);
+}
 inline std::vector<RunCase> all_run_cases() {
   return {{Formulation::Default, Integrator::RK4},
           {Formulation::Default, Integrator::DOPRI5},

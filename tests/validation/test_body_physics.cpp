@@ -23,9 +23,7 @@ using testing::RunCase;
 constexpr double kPi = std::numbers::pi;
 constexpr double kG = 9.81;
 
-std::string run_case_param_name(const ::testing::TestParamInfo<RunCase>& info) {
-  return testing::run_case_name(info.param);
-}
+using testing::run_case_param_name;
 
 /// The paper's 5.2 cable, shortened.
 CableSpec light_cable(int n, double length) {

@@ -23,9 +23,7 @@ using testing::RunCase;
 constexpr double kPi = std::numbers::pi;
 constexpr double kG = 9.81;
 
-std::string run_case_param_name(const ::testing::TestParamInfo<RunCase>& info) {
-  return testing::run_case_name(info.param);
-}
+using testing::run_case_param_name;
 
 // ---------------------------------------------------------------------------
 // 1. Single rod pendulum in vacuum: period against the exact elliptic integral.
