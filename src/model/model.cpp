@@ -101,4 +101,15 @@ void finalize_body(Body& body, const Fluid& fluid) {
   body.buoyancy_center = volume > 0 ? Vec3(moment / volume) : body.cg;
 }
 
+const Body* end_body(const Model& model) {
+  if (model.bodies.empty() || model.bodies.back().inline_body) return nullptr;
+  return &model.bodies.back();
+}
+
+void link_bodies(Model& model) {
+  model.body_at_joint.assign(model.cable.elements.size() + 1, -1);
+  for (std::size_t b = 0; b < model.bodies.size(); ++b)
+    model.body_at_joint[static_cast<std::size_t>(model.bodies[b].joint)] = static_cast<int>(b);
+}
+
 }  // namespace towsim

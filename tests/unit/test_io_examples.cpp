@@ -114,7 +114,7 @@ TEST(IoOutput, TimeseriesColumnsAndExtremes) {
     w.flush();
     EXPECT_EQ(w.samples(), 2);
     EXPECT_DOUBLE_EQ(w.extremes().max_tow_tension.value, 5.0);
-    EXPECT_DOUBLE_EQ(w.extremes().max_body_depth.value, 10.5);
+    EXPECT_DOUBLE_EQ(w.extremes().end_body_extremes.max_depth.value, 10.5);
     EXPECT_DOUBLE_EQ(w.extremes().min_body_deg[1].value, -0.5);
     EXPECT_DOUBLE_EQ(w.extremes().min_body_deg[1].time, 0.5);
     EXPECT_DOUBLE_EQ(w.extremes().min_axial_force.value, -2.0);
