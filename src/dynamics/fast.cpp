@@ -94,7 +94,7 @@ void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
   ws.b[n] = -ws.Fa[n];
   for (std::size_t k = n; k-- > 0;) {
     // What the bottom joint of element k+1 carries: a body, or joint k+1.
-    const int bi = model.body_at_joint[k + 1];
+    const int bi = ws.body_at[k + 1];
     const Mat3* Kk = &ws.K[k + 1];
     const Vec3* bk = &ws.b[k + 1];
     if (bi >= 0) {
@@ -144,7 +144,7 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
     const Vec3 beta = ws.T[k] * (ws.Phi[k] * (ws.Tr0[k] - ws.GT[k].transpose() * a));  // alpha x e
     acc.alpha[k] = s.e[k].cross(beta);
     a += els[k].length * (beta + ws.c[k]);
-    const int bi = model.body_at_joint[k + 1];
+    const int bi = ws.body_at[k + 1];
     if (bi < 0) {
       acc.joint_force[k + 1] = ws.K[k + 1] * a + ws.b[k + 1];
       continue;

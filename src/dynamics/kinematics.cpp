@@ -33,6 +33,9 @@ Workspace::Workspace(const Model& model) {
   Phi.resize(n);
   Tr0.resize(n);
   body.resize(model.bodies.size());
+  body_at.assign(n + 1, -1);
+  for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    body_at[static_cast<std::size_t>(body_joint(model, model.bodies[i]))] = static_cast<int>(i);
   acc.alpha.resize(n);
   acc.joint_force.resize(n + 1);
   acc.alpha_b.resize(model.bodies.size());
@@ -44,7 +47,12 @@ bool Workspace::fits(const Model& model) const {
   const std::size_t n = model.cable.elements.size();
   return P.size() == n + 1 && G.size() == n && K.size() == n + 1 && Phi.size() == n &&
          body.size() == model.bodies.size() && acc.alpha.size() == n &&
-         acc.link_force.size() == model.bodies.size() && model.body_at_joint.size() == n + 1;
+         acc.link_force.size() == model.bodies.size() && body_at.size() == n + 1 &&
+         std::all_of(model.bodies.begin(), model.bodies.end(), [&](const Body& b) {
+           const int k = body_joint(model, b);
+           return k >= 1 && k <= static_cast<int>(n) && body.size() > static_cast<std::size_t>(body_at[static_cast<std::size_t>(k)]) &&
+                  body_at[static_cast<std::size_t>(k)] >= 0;
+         });
 }
 
 namespace {
@@ -75,7 +83,7 @@ void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& w
     ws.vG[i] = ws.vP[i] + 0.5 * L * ws.edot[i];
     ws.P[i + 1] = ws.P[i] + L * s.e[i];
     ws.vP[i + 1] = ws.vP[i] + L * ws.edot[i];
-    const int b = model.body_at_joint[i + 1];
+    const int b = ws.body_at[i + 1];
     if (b < 0) continue;
     BodyWork& bw = ws.body[static_cast<std::size_t>(b)];
     body_kinematics(model.bodies[static_cast<std::size_t>(b)], s.bodies[static_cast<std::size_t>(b)], ws.P[i + 1],

@@ -64,12 +64,14 @@ void require(const Field<double>& f, const Where& section, const std::string& ke
   d.error(section.loc, join_path(section.path, key), "missing (give it in the section or at cable level)");
 }
 
-void check_section(const Resolved& s, Diagnostics& d) {
+void check_section(const Resolved& s, Diagnostics& d, bool sectioned) {
   check_positive(s.length, d);
   check_at_least(s.elements, 1, d);
   check_at_most(s.elements, kMaxElements, d);
-  require(s.mass_per_length, s.where, "mass_per_length", d);
-  require(s.diameter, s.where, "diameter", d);
+  if (sectioned) {  // the single-section form reports them as missing keys
+    require(s.mass_per_length, s.where, "mass_per_length", d);
+    require(s.diameter, s.where, "diameter", d);
+  }
   check_positive(s.mass_per_length, d);
   check_positive(s.diameter, d);
   check_non_negative(s.normal_drag, d);
@@ -162,7 +164,7 @@ void check_cable(const CableSpec& c, const BodySpec& end_body, const SimulationS
   const std::vector<Resolved> secs = resolve(c);
   long long total = 0;
   for (const Resolved& s : secs) {
-    check_section(s, d);
+    check_section(s, d, !c.item_body.empty());
     total += std::max(0LL, s.elements.value);
   }
   check_positive(c.sign_smoothing_speed, d);
@@ -220,7 +222,6 @@ void build_chain(const CableSpec& c, const BodySpec& end_body, Model& m) {
   if (end_body.present) {
     m.bodies.push_back(build_body(end_body, m.fluid));
     m.bodies.back().name = "body";
-    m.bodies.back().joint = cable.n();
   }
   // Attachments at the nearest joint, sorted by joint.
   for (const AttachmentSpec& a : c.attachments)
@@ -228,7 +229,6 @@ void build_chain(const CableSpec& c, const BodySpec& end_body, Model& m) {
                                  a.drag_area.value, a.added_mass.value});
   std::stable_sort(cable.attachments.begin(), cable.attachments.end(),
                    [](const Attachment& x, const Attachment& y) { return x.joint < y.joint; });
-  link_bodies(m);
 }
 
 }  // namespace towsim::io

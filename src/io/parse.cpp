@@ -107,7 +107,7 @@ void parse_attachment(MapReader& r, AttachmentSpec& a) {
 
 void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {
   cable.where = r.where();
-  const bool sectioned = r.get("sections") != nullptr;
+  const bool sectioned = r.has("sections");
   r.read("length", cable.length, !sectioned);
   r.read("elements", cable.elements, !sectioned);
   r.read("mass_per_length", cable.mass_per_length, !sectioned);
@@ -118,7 +118,7 @@ void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {
   r.choice("added_mass_model", cable.added_mass_model, {"ideal_fluid", "morison"});
   r.read("sign_smoothing_speed", cable.sign_smoothing_speed);
   r.read("breaking_load", cable.breaking_load);
-  if (const YNode* n = r.get("sections")) cable.sections_where = r.where(*n, "sections");
+  if (const YNode* n = r.get("sections")) cable.sections_where = r.where(*n, "sections");  // after the single form's keys
   // Sections top to bottom; an item {body: {...}} is an in-line body.
   r.list("sections", [&](MapReader& item, std::size_t) {
     cable.item_where.push_back(item.where());

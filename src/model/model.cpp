@@ -106,10 +106,6 @@ const Body* end_body(const Model& model) {
   return &model.bodies.back();
 }
 
-void link_bodies(Model& model) {
-  model.body_at_joint.assign(model.cable.elements.size() + 1, -1);
-  for (std::size_t b = 0; b < model.bodies.size(); ++b)
-    model.body_at_joint[static_cast<std::size_t>(model.bodies[b].joint)] = static_cast<int>(b);
-}
+int body_joint(const Model& model, const Body& body) { return body.joint < 0 ? model.cable.n() : body.joint; }
 
 }  // namespace towsim

@@ -22,7 +22,7 @@ Sample sample_of(const Model& model, System& sys, const StateVector& y, double t
   const Workspace& ws = sys.evaluate(y, t);
   const Sample out = make_sample(model, sys.physical(y), ws, t);
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
-    const int b = model.body_at_joint[k + 1];
+    const int b = ws.body_at[k + 1];
     const Vec3& bottom = b >= 0 ? ws.body[static_cast<std::size_t>(b)].Q : ws.P[k + 1];
     const double L = model.cable.elements[k].length;
     stats.max_element_drift = std::max(stats.max_element_drift, std::abs((bottom - ws.P[k]).norm() / L - 1));
@@ -49,7 +49,7 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
   };
   const std::size_t n = model.cable.elements.size();
   for (std::size_t k = 0; k <= n; ++k) {
-    const int b = k == 0 ? -1 : model.body_at_joint[k];
+    const int b = k == 0 ? -1 : ws.body_at[k];
     const Vec3& e_above = s.e[k == 0 ? 0 : k - 1];
     if (b >= 0 && model.bodies[static_cast<std::size_t>(b)].inline_body) {
       const BodyWork& bw = ws.body[static_cast<std::size_t>(b)];

@@ -109,7 +109,7 @@ void sweep_from_bottom(SteadyProblem& p) {
   attachment_loads(m, p.ws);
   Vec3 f = -p.ws.Fa.back();  // force through the joint below the element
   for (int k = p.n - 1; k >= 0; --k) {
-    const int bi = m.body_at_joint[static_cast<std::size_t>(k + 1)];
+    const int bi = p.ws.body_at[static_cast<std::size_t>(k + 1)];
     if (bi >= 0) {
       BodyWork& bw = p.ws.body[static_cast<std::size_t>(bi)];
       bw.vO = p.V;

@@ -38,8 +38,8 @@ inline Model cable_model(const CableSpec& c, double rho = 1025, double g = 9.81)
 
 /// The paper 5.2 sphere (3 kg, r = 0.05 m, link on its surface) attached to m.
 inline void add_sphere_body(Model& m, double mass = 3.0, double radius = 0.05, double cd = 0.5, double ca = 0.5) {
-  m.has_body = true;
-  Body& b = m.body;
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
   b.mass = mass;
   b.inertia_cg = 0.4 * mass * radius * radius * Mat3::Identity();
   b.cg = Vec3::Zero();
@@ -50,8 +50,8 @@ inline void add_sphere_body(Model& m, double mass = 3.0, double radius = 0.05, d
 
 /// A body with every load model and off-diagonal terms, for agreement tests.
 inline void add_rich_body(Model& m) {
-  m.has_body = true;
-  Body& b = m.body;
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
   b.mass = 40;
   b.inertia_cg << 2.0, 0.1, -0.05, 0.1, 5.0, 0.2, -0.05, 0.2, 5.5;
   b.cg = Vec3(-0.1, 0.02, -0.05);
@@ -75,7 +75,7 @@ inline void add_rich_body(Model& m) {
 inline PhysicalState random_state(const Model& m, std::mt19937& rng, double rate = 0.5) {
   std::normal_distribution<double> N(0.0, 1.0);
   auto rnd = [&] { return Vec3(N(rng), N(rng), N(rng)); };
-  PhysicalState s = PhysicalState::hanging(m.cable.n());
+  PhysicalState s = PhysicalState::hanging(m);
   s.r0 = rnd();
   s.v0 = rnd();
   for (int k = 0; k < m.cable.n(); ++k) {
@@ -83,8 +83,10 @@ inline PhysicalState random_state(const Model& m, std::mt19937& rng, double rate
     const Vec3 w = rate * rnd();
     s.w[k] = w - w.dot(s.e[k]) * s.e[k];
   }
-  s.q = Quat(N(rng), N(rng), N(rng), N(rng)).normalized();
-  s.wb = rate * rnd();
+  // Drawn even without a body, so that every model sees the same sequence.
+  const Quat q = Quat(N(rng), N(rng), N(rng), N(rng)).normalized();
+  const Vec3 wb = rate * rnd();
+  for (auto& b : s.bodies) b.q = q, b.w = wb;
   return s;
 }
 

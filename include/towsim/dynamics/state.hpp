@@ -93,6 +93,7 @@ struct Workspace {
   std::vector<Eigen::Vector2d> Tr0;             // T^T r_0 (moment of the known loads) [N m]
   std::vector<Vec3> c;                          // centripetal part of d2e/dt2: -|w|^2 e [1/s^2]
   std::vector<BodyWork> body;   // per Model::bodies entry
+  std::vector<int> body_at;     // index of the body hanging at joint k, or -1 (k = 0..n)
   Accelerations acc;            // result of the last evaluation
 
   /// Allocate for a model.

@@ -138,8 +138,8 @@ struct LiftingSurface {
 /// the end, or an in-line body (depressor) between two cable sections.
 struct Body {
   std::string name = "body"; // output column prefix ("body" = today's columns)
-  int joint = 0;             // joint k of the chain where its link point Q hangs
-                             // (the bottom of element k; k = n for the end body) [-]
+  int joint = -1;            // joint k of the chain where its link point Q hangs
+                             // (the bottom of element k); -1 = the cable's end, n [-]
   bool inline_body = false;  // true: the next section hangs from lower_link_point
   Vec3 lower_link_point = Vec3::Zero();  // r_Q2, ball joint with the cable below, body axes [m]
   double mass = 0;             // m_B [kg]
@@ -234,14 +234,12 @@ struct Simulation {
 /// The whole compiled system: a chain of linked parts from the tow point
 /// down, cable elements (grouped in sections) and rigid bodies. Body b
 /// hangs from joint bodies[b].joint; bodies are sorted by joint, at most one
-/// per joint, the end body (joint n, nothing below) last.
+/// per joint, the end body (at the cable's end, nothing below) last.
 struct Model {
   std::string name;        // scenario name (file stem or example name)
   Fluid fluid;
   Cable cable;
   std::vector<Body> bodies;
-  /// Index of the body hanging at joint k, or -1 (k = 0..n; compile fills it).
-  std::vector<int> body_at_joint;
   Tow tow;
   Initial initial;
   Simulation sim;
@@ -259,7 +257,7 @@ void finalize_body(Body& body, const Fluid& fluid);
 /// The end body (the one with nothing below it), or nullptr.
 const Body* end_body(const Model& model);
 
-/// Fill model.body_at_joint from model.bodies (after the cable is built).
-void link_bodies(Model& model);
+/// The joint a body hangs from: body.joint, or n for the end body (-1).
+int body_joint(const Model& model, const Body& body);
 
 }  // namespace towsim
