@@ -29,7 +29,7 @@ void print_statics(const Model& model, const StaticsResult& r, const Sample& s, 
       << " m horizontally from the tow point\n";
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodySample& bs = s.bodies[b];
-    out << "  body " << model.bodies[b].name << ": depth " << -bs.pos.z() << " m, roll/pitch/yaw ("
+    out << "  " << (model.bodies[b].inline_body ? "body " + model.bodies[b].name : std::string("body")) << ": depth " << -bs.pos.z() << " m, roll/pitch/yaw ("
         << bs.rpy_deg.transpose() << ") deg\n";
     out << "  link force F_L = (" << bs.link_force.transpose() << ") N, |F_L| = " << bs.link_force.norm() << " N\n";
     if (model.bodies[b].inline_body)
