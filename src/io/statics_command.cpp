@@ -7,6 +7,7 @@
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/io/commands.hpp"
 #include "towsim/io/output.hpp"
+#include "towsim/sim/simulate.hpp"
 #include "towsim/sim/statics.hpp"
 
 namespace towsim::io {
@@ -15,27 +16,16 @@ namespace {
 
 constexpr double kDeg = 180.0 / M_PI;
 
-/// The statics result as one output sample (every point moving at V).
+/// The statics result as one output sample (every point moving at V), by the
+/// run's own sample assembly.
 Sample statics_sample(const Model& model, const StaticsResult& r) {
   Workspace ws(model);
-  compute_kinematics(model, r.state, ws);
-  Sample s;
-  s.t = 0;
-  s.tow_pos = ws.P.front();
-  s.tow_vel = r.tow_velocity;
-  s.tow_force = r.tow_force;
-  s.node_pos = ws.P;
-  s.node_vel = ws.vP;
-  for (const Vec3& f : r.joint_force) s.tension.push_back(f.norm());
-  s.has_body = model.has_body;
-  if (model.has_body) {
-    s.body_pos = ws.O;
-    s.body_vel = ws.vO;
-    s.body_rpy_deg = roll_pitch_yaw(r.state.q) * kDeg;
-    s.body_omega = Vec3::Zero();
-    s.link_force = r.link_force;
-  }
-  return s;
+  compute_kinematics(model, r.state, ws);  // r.state.v0 = V, at rest relative to the tow point
+  Accelerations acc;                       // the equilibrium's forces; accelerations zero
+  acc.tow_force = r.tow_force;
+  acc.link_force = r.link_force;
+  acc.joint_force = r.joint_force;
+  return make_sample(model, r.state, ws, acc, 0.0);
 }
 
 /// Print the engineer's summary of a steady tow.
@@ -73,7 +63,11 @@ int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream&
   }
   const Model& model = *sc.model;
   if (model.tow.mode != Tow::Mode::Motion) {
-    err << "towsim: statics: tow.mode: statics needs mode: motion (the steady speed comes from the tow law)\n";
+    // A rule between the command and the scenario, in the scenario's error format.
+    const Where& w = sc.spec.tow.mode.where;
+    err << Diagnostic{w.loc, w.path, "statics needs mode: motion (the steady speed comes from the tow law; got force)"}
+               .str()
+        << "\n";
     return kExitInvalid;
   }
   const StaticsResult r = solve_statics(model, final_tow_velocity(model.tow));

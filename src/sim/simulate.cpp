@@ -17,27 +17,33 @@ namespace {
 constexpr double kRad2Deg = 180.0 / M_PI;
 constexpr double kMaxRate = 1e4;  // an angular velocity beyond this [rad/s] means divergence
 
-/// Build the output sample of state y at time t.
-Sample make_sample(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats) {
+/// The output sample of state y at time t; records the element length drift.
+Sample sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats) {
   const Workspace& ws = sys.evaluate(y, t);
-  const PhysicalState s = sys.physical(y);
+  for (std::size_t k = 1; k < ws.P.size(); ++k) {
+    const double L = model.cable.elements[k - 1].length;
+    stats.max_element_drift = std::max(stats.max_element_drift, std::abs((ws.P[k] - ws.P[k - 1]).norm() / L - 1));
+  }
+  return make_sample(model, sys.physical(y), ws, ws.acc, t);
+}
+
+}  // namespace
+
+Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, const Accelerations& acc,
+                   double t) {
   Sample out;
   out.t = t;
   out.tow_pos = ws.P.front();
   out.tow_vel = ws.vP.front();
-  out.tow_force = ws.acc.tow_force;
+  out.tow_force = acc.tow_force;
   out.node_pos = ws.P;
   out.node_vel = ws.vP;
-  out.tension.resize(ws.acc.joint_force.size());
+  out.tension.resize(acc.joint_force.size());
   out.axial.resize(out.tension.size());
   for (std::size_t k = 0; k < out.tension.size(); ++k) {
-    out.tension[k] = ws.acc.joint_force[k].norm();
+    out.tension[k] = acc.joint_force[k].norm();
     // f_k acts on the part below joint k; tension pulls it back along -e.
-    out.axial[k] = -ws.acc.joint_force[k].dot(s.e[k == 0 ? 0 : k - 1]);
-  }
-  for (std::size_t k = 1; k < ws.P.size(); ++k) {
-    const double L = model.cable.elements[k - 1].length;
-    stats.max_element_drift = std::max(stats.max_element_drift, std::abs((ws.P[k] - ws.P[k - 1]).norm() / L - 1));
+    out.axial[k] = -acc.joint_force[k].dot(s.e[k == 0 ? 0 : k - 1]);
   }
   out.has_body = model.has_body;
   if (model.has_body) {
@@ -45,10 +51,12 @@ Sample make_sample(const Model& model, System& sys, const StateVector& y, double
     out.body_vel = ws.vO;
     out.body_rpy_deg = roll_pitch_yaw(s.q) * kRad2Deg;
     out.body_omega = s.wb;
-    out.link_force = ws.acc.link_force;
+    out.link_force = acc.link_force;
   }
   return out;
 }
+
+namespace {
 
 /// Empty if y is sound; else what went wrong and where.
 std::string check_state(const Model& model, const System& sys, const StateVector& y) {
@@ -122,7 +130,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   if (model.initial.kind != Initial::Kind::Steady) sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
   sys->project(y, 0.0);
   double t = 0;
-  sink.write(make_sample(model, *sys, y, t, stats));
+  sink.write(sample_of(model, *sys, y, t, stats));
 
   odeint::runge_kutta4<StateVector> rk4;
   auto dopri = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
@@ -167,7 +175,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       stats.message = os.str();
       break;
     }
-    sink.write(make_sample(model, *sys, y, t, stats));
+    sink.write(sample_of(model, *sys, y, t, stats));
     if (progress) progress(t / T);
   }
   stats.end_time = t;

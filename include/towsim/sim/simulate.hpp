@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "towsim/dynamics/state.hpp"
 #include "towsim/model/model.hpp"
 
 namespace towsim {
@@ -26,6 +27,12 @@ struct Sample {
   Vec3 body_omega;              // angular velocity [rad/s, R_g]
   Vec3 link_force;              // F_L exerted by the cable on the body at Q [N, R_g]
 };
+
+/// The output sample of the physical state s at time t, from one evaluation
+/// of it: ws holds s's kinematics and `acc` its forces (joint forces
+/// included). The one place samples are assembled (runs and `towsim statics`).
+Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, const Accelerations& acc,
+                   double t);
 
 /// Receives samples in time order. Implementations write files.
 class OutputSink {
