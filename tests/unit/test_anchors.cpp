@@ -162,7 +162,8 @@ TEST_P(CliDeterminism, TwoProcessesWriteIdenticalFiles) {
   EXPECT_EQ(ja.dump(), jb.dump());
 }
 
-INSTANTIATE_TEST_SUITE_P(Anchors, CliDeterminism, ::testing::Values("default", "paper"));
+INSTANTIATE_TEST_SUITE_P(Anchors, CliDeterminism, ::testing::Values("default", "paper"),
+                         [](const auto& info) { return info.param; });
 
 // --- evaluations leave their inputs unchanged -----------------------------------
 
@@ -301,11 +302,12 @@ double rel_diff(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return d / scale;
 }
 
-// Both sides solve the same linear system, one by the O(n) recursion and one
-// by a dense LU of M_aa (condition number up to ~1e6 here: elements near the
-// pole and a light body against a long cable): 1e-9 relative leaves three
-// orders for that round-off and catches any missing term (they are O(1)).
-constexpr double kJumpTol = 1e-9;
+// Both sides solve the same linear system exactly, one by the O(n) recursion
+// and one by a dense LU of M_aa, so they differ by round-off times M_aa's
+// condition number: measured 7e-15 (no body) and 2e-14 (body) over these
+// random states. 1e-10 leaves four orders for other states and compilers and
+// still catches any missing or wrong term (those are O(1) relative).
+constexpr double kJumpTol = 1e-10;
 
 class VelocityJump : public ::testing::TestWithParam<bool> {};
 
@@ -341,15 +343,19 @@ TEST_P(VelocityJump, BothSystemsApplyTheDenseJump) {
     const PhysicalState before = sys->physical(y);
     const double size = sys->apply_tow_jump(y, 1.0);
     const Vec3 dv = Vec3(0, 0, 2 * std::numbers::pi * 0.5 / 4.0);  // heave: A 2 pi / T, upwards
-    EXPECT_NEAR(size, dv.norm(), 1e-6 * dv.norm());  // the jump is found by +-1e-9 s differences
+    EXPECT_NEAR(size, dv.norm(), 1e-7 * dv.norm());  // found by +-1e-9 s differences (see below)
     const PhysicalState after = sys->physical(y);
     std::vector<Vec3> applied;
     for (int k = 0; k < m.cable.n(); ++k) applied.push_back(after.w[k] - before.w[k]);
     if (m.has_body) applied.push_back(after.wb - before.wb);
-    // The tow's velocity is measured across the breakpoint by finite
-    // differences (1e-9 s): dv carries ~1e-8 relative error, which bounds
-    // the agreement here; the recursion itself is checked above.
-    EXPECT_LT(rel_diff(applied, dense_jump(m, before, dv)), 1e-6) << testing::formulation_name(f);
+    // The Systems measure the tow's velocity jump by differences across the
+    // breakpoint (+-1e-9 s), so dv carries an error of order 1e-9 s times the
+    // tow acceleration over |dv| (measured 1.5e-9 here): 1e-7 allows for that;
+    // the recursion itself is checked to 1e-10 above.
+    const double d = rel_diff(applied, dense_jump(m, before, dv));
+    std::printf("[measured] %s System jump vs dense, %s: relative difference %.2e\n",
+                testing::formulation_name(f).c_str(), GetParam() ? "body" : "no body", d);
+    EXPECT_LT(d, 1e-7) << testing::formulation_name(f);
   }
 }
 

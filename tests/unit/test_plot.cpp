@@ -75,8 +75,6 @@ class PlotRun : public towsim::testing::TempDirTest {
         EXPECT_GT(fs::file_size(p), 0u) << p;
       }
   }
-
-  fs::path dir_;
 };
 
 }  // namespace
