@@ -298,7 +298,10 @@ std::vector<Vec3> dense_jump(const Model& m, const PhysicalState& s, const Vec3&
 /// Largest |a_i - b_i| over the largest |b_i|.
 double rel_diff(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   double d = 0, scale = 0;
-  for (std::size_t i = 0; i < b.size(); ++i) d = std::max(d, (a[i] - b[i]).norm()), scale = std::max(scale, b[i].norm());
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    d = std::max(d, (a[i] - b[i]).norm());
+    scale = std::max(scale, b[i].norm());
+  }
   return d / scale;
 }
 

@@ -52,7 +52,8 @@ INSTANTIATE_TEST_SUITE_P(BuiltIn, CliStatics,
 TEST(CliStaticsErrors, ForceModeIsRefused) {
   const auto [status, out] = run_towsim("statics --example cable-tow --set tow.mode=force --set 'tow.force=[10,0,0]'");
   EXPECT_EQ(status, 2) << out;
-  EXPECT_EQ(out, "--set:1:10: tow.mode: statics needs mode: motion (the steady speed comes from the tow law; got force)\n");
+  EXPECT_EQ(out,
+            "--set:1:10: tow.mode: statics needs mode: motion (the steady speed comes from the tow law; got force)\n");
 }
 
 // The statics output equals the first sample of a run started `initial:
@@ -83,9 +84,11 @@ TEST_F(CliStaticsVsRun, NodesEqualTheSteadyRunAtTimeZero) {
   ASSERT_GE(r.rows.size(), s.rows.size());
   const int tension = s.column("tension"), axial = s.column("axial_force");
   ASSERT_GE(axial, 0);
-  // Both files print 12 significant digits of the same computation (the same
-  // solve, the same assembly), so only printing round-off (~5e-12 of a
-  // column's largest value) may separate them; 1e-10 allows for that alone.
+  // The same solve and the same assembly, printed to 12 significant digits:
+  // measured, the forces print identically and positions differ by 2e-12 m
+  // (the run reads the tow law 1e-12 s inside its first step, at V = 2 m/s).
+  // 1e-10 of each column's largest magnitude allows for that and for
+  // printing round-off (5e-12 relative) alone.
   constexpr double kRelTol = 1e-10;
   for (std::size_t j = 0; j < s.header.size(); ++j) {
     double scale = 1;  // the column's largest magnitude (at least 1: time, node)
