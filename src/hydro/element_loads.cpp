@@ -12,7 +12,7 @@ Mat3 element_mass(const Element& el, const Vec3& e) {
 }
 
 void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot,
-                   const Vec3& vG, double zG, Vec3& F, Vec3& M) {
+                   const Vec3& vG, const Vec3& xG, double t, Vec3& F, Vec3& M) {
   const Fluid& fluid = model.fluid;
   // Weight and buoyancy (apparent weight), along -z.
   F = Vec3(0, 0, -el.weight);
@@ -20,7 +20,7 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   if (fluid.rho == 0) return;
 
   // Velocity relative to the water, split along and across the element.
-  const Vec3 u = vG - fluid.current(zG);
+  const Vec3 u = vG - fluid.velocity(xG, t);
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
 
@@ -34,9 +34,9 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
     F -= el.friction_factor * std::abs(ue) * ue * e;
 
   // Added mass: the relative velocity also changes as G moves through a
-  // sheared current, du/dt = a_G - U'(z) zdot; the U' term is known here.
-  if (fluid.current_velocity.size() > 1) {
-    const Vec3 dU = fluid.current_gradient(zG) * vG.z();
+  // non-uniform flow, du/dt = a_G - rate seen by G; that rate is known here.
+  if (!fluid.uniform()) {
+    const Vec3 dU = fluid.rate_seen(xG, vG, t);
     F += el.added_mass * (dU - dU.dot(e) * e);
   }
   // Ideal fluid: -dP/dt velocity terms and the Munk moment (paper 2.42).

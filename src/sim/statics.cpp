@@ -115,7 +115,7 @@ void sweep_from_body(SteadyProblem& p) {
     const Element& el = m.cable.elements[k];
     Vec3 e = s.e[k], F, M;
     for (int it = 0; it < 30; ++it) {
-      element_loads(m, el, e, Vec3::Zero(), p.V, p.ws.G[k].z(), F, M);
+      element_loads(m, el, e, Vec3::Zero(), p.V, p.ws.G[k], 0.0, F, M);
       const Vec3 d = 0.5 * F - f;
       if (d.norm() < 1e-300) break;
       e = d.normalized();
@@ -133,9 +133,14 @@ void sweep_from_body(SteadyProblem& p) {
 Vec3 final_tow_velocity(const Tow& tow) {
   Vec3 v = Vec3::Zero();
   for (const auto& piece : tow.pieces) {
-    if (piece.type == TowPiece::Type::Ramp) v += piece.speed * piece.direction.normalized();
-    if (piece.type == TowPiece::Type::Track && piece.track_time.size() > 1)
-      v += tow_kinematics(Tow{Tow::Mode::Motion, Vec3::Zero(), {piece}, {}, {}}, piece.track_time.back()).vel;
+    if (const auto* ramp = std::get_if<Ramp>(&piece)) v += ramp->speed * ramp->direction.normalized();
+    if (const auto* track = std::get_if<Track>(&piece); track != nullptr && track->time.size() > 1)
+      v += track->at(track->time.back()).vel;
+  }
+  // Manoeuvres: the course's last speed and heading replace the horizontal part.
+  CourseState c;
+  if (final_course(tow, c)) {
+    v = Vec3(c.U * c.h.x(), c.U * c.h.y(), v.z());
   }
   return v;
 }
