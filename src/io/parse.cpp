@@ -37,10 +37,18 @@ void parse_initial(const YNode* n, InitialSpec& init, Diagnostics& d) {
 void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
   r.read("water_density", env.water_density);
   r.read("gravity", env.gravity);
+  // current (m/s) or current_kn (knots): a vector, or rows {depth, velocity | velocity_kn}.
   const YNode* c = r.get("current");
+  const YNode* c_kn = r.get("current_kn");
+  if (c != nullptr && c_kn != nullptr) {
+    d.error(c_kn->key_loc, "environment.current_kn", "give either 'current' or 'current_kn', not both");
+    return;
+  }
+  const double unit = c_kn != nullptr ? knots_to_mps(1.0) : 1.0;  // [m/s per unit given]
+  if (c == nullptr) c = c_kn;
   if (c == nullptr) return;
   env.current_given = true;
-  env.current_where = r.where(*c, "current");
+  env.current_where = r.where(*c, c_kn != nullptr ? "current_kn" : "current");
   const std::string path = env.current_where.path;
   if (c->is_seq() && !c->items.empty() && c->items[0].is_map()) {
     const std::size_t errors_before = d.size();
@@ -49,17 +57,20 @@ void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
       Field<double> depth;
       Field<Vec3> vel;
       row.read("depth", depth, row.present());
-      row.read("velocity", vel, row.present());
+      row.read(c_kn != nullptr ? "velocity_kn" : "velocity", vel, row.present());
       row.finish();
+      const Vec3 u = unit == 1.0 ? vel.value : Vec3(knots_to_mps(vel.value.x()), knots_to_mps(vel.value.y()),
+                                                    knots_to_mps(vel.value.z()));
       if (depth.given && vel.given)
-        env.current.push_back(RowSpec{{depth.value, vel.value.x(), vel.value.y(), vel.value.z()},
-                                      depth.where});
+        env.current.push_back(RowSpec{{depth.value, u.x(), u.y(), u.z()}, depth.where});
     }
     if (d.size() != errors_before) env.current.clear();  // no order checks on a partial table
     return;
   }
   Vec3 u;
-  if (convert(*c, path, d, u)) env.current.push_back(RowSpec{{0.0, u.x(), u.y(), u.z()}, env.current_where});
+  if (!convert(*c, path, d, u)) return;
+  if (unit != 1.0) u = Vec3(knots_to_mps(u.x()), knots_to_mps(u.y()), knots_to_mps(u.z()));
+  env.current.push_back(RowSpec{{0.0, u.x(), u.y(), u.z()}, env.current_where});
 }
 
 void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {

@@ -151,6 +151,18 @@ std::vector<ManoeuvreSpan> manoeuvre_spans(const Tow& tow) {
     for (auto& s : spans)
       if (s.piece == piece) s.end = te;
   });
+  // A turn cut short by a later one (refused by compile): its end without the later turns.
+  for (auto& s : spans) {
+    const auto* turn = std::get_if<Turn>(&tow.pieces[s.piece]);
+    if (turn == nullptr || std::isfinite(s.end) || !std::isfinite(turn->angle)) continue;
+    Tow alone = tow;
+    alone.pieces.clear();
+    for (std::size_t j = 0; j < tow.pieces.size(); ++j)
+      if (j <= s.piece || !std::holds_alternative<Turn>(tow.pieces[j])) alone.pieces.push_back(tow.pieces[j]);
+    walk(alone, CourseState::kNever, c, [&](double te, Event ev, std::size_t piece, const CourseState&) {
+      if (ev == Event::TurnEnd && piece == s.piece) s.end = te;
+    });
+  }
   return spans;
 }
 

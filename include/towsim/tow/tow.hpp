@@ -56,7 +56,7 @@ std::vector<double> tow_breakpoints(const Tow& tow);
 struct ManoeuvreSpan {
   std::size_t piece = 0;  // index in Tow::pieces [-]
   double start = 0;       // [s]
-  double end = 0;         // [s]; CourseState::kNever for a turn that never ends
+  double end = 0;         // [s], as if no later turn cut it short; CourseState::kNever: never ends
   double speed = 0;       // course speed at its start [m/s]
 };
 /// The manoeuvres' spans, in list order. Empty when the course cannot start
