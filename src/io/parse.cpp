@@ -44,11 +44,14 @@ void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
     d.error(c_kn->key_loc, "environment.current_kn", "give either 'current' or 'current_kn', not both");
     return;
   }
-  const double unit = c_kn != nullptr ? knots_to_mps(1.0) : 1.0;  // [m/s per unit given]
+  const bool knots = c_kn != nullptr;
+  const auto to_mps = [knots](const Vec3& u) {  // [m/s]
+    return knots ? Vec3(knots_to_mps(u.x()), knots_to_mps(u.y()), knots_to_mps(u.z())) : u;
+  };
   if (c == nullptr) c = c_kn;
   if (c == nullptr) return;
   env.current_given = true;
-  env.current_where = r.where(*c, c_kn != nullptr ? "current_kn" : "current");
+  env.current_where = r.where(*c, knots ? "current_kn" : "current");
   const std::string path = env.current_where.path;
   if (c->is_seq() && !c->items.empty() && c->items[0].is_map()) {
     const std::size_t errors_before = d.size();
@@ -57,10 +60,9 @@ void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
       Field<double> depth;
       Field<Vec3> vel;
       row.read("depth", depth, row.present());
-      row.read(c_kn != nullptr ? "velocity_kn" : "velocity", vel, row.present());
+      row.read(knots ? "velocity_kn" : "velocity", vel, row.present());
       row.finish();
-      const Vec3 u = unit == 1.0 ? vel.value : Vec3(knots_to_mps(vel.value.x()), knots_to_mps(vel.value.y()),
-                                                    knots_to_mps(vel.value.z()));
+      const Vec3 u = to_mps(vel.value);
       if (depth.given && vel.given)
         env.current.push_back(RowSpec{{depth.value, u.x(), u.y(), u.z()}, depth.where});
     }
@@ -69,7 +71,7 @@ void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
   }
   Vec3 u;
   if (!convert(*c, path, d, u)) return;
-  if (unit != 1.0) u = Vec3(knots_to_mps(u.x()), knots_to_mps(u.y()), knots_to_mps(u.z()));
+  u = to_mps(u);
   env.current.push_back(RowSpec{{0.0, u.x(), u.y(), u.z()}, env.current_where});
 }
 
