@@ -129,6 +129,10 @@ TEST_F(TowKeys, TrackSpeedScale) {
   const auto a = towsim::tow_kinematics(one.model->tow, 12.0), b = towsim::tow_kinematics(two.model->tow, 6.0);
   EXPECT_LE((a.pos - b.pos).norm(), 1e-12);        // round-off on ~20 m
   EXPECT_LE((2 * a.vel - b.vel).norm(), 1e-12);
+  // From the command line: --set on the track piece.
+  const auto set = load(kCable + kSim + kTow + track + "}\n", {"tow.motion.0.speed_scale=4"});
+  ASSERT_TRUE(set.ok()) << set.diags.str();
+  EXPECT_EQ(std::get<towsim::Track>(set.model->tow.pieces.at(0)).time, (std::vector<double>{0, 2.5, 7.5}));
   const auto bad = load(kCable + kSim + kTow + track + ", speed_scale: 0}\n");
   EXPECT_EQ(bad.diags.str(), at("10:91: tow.motion.0.speed_scale: must be > 0 (got 0)"));
 }
