@@ -1,6 +1,8 @@
 #include "towsim/io/commands.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <exception>
 #include <filesystem>
@@ -25,17 +27,26 @@ std::string unknown_example(const std::string& name) {
   return msg + "; `towsim examples` lists them";
 }
 
-/// A progress bar on `err`, redrawn when the percentage changes.
+/// A progress bar on `err`, redrawn when the percentage changes: the
+/// simulated time reached and the estimated wall time left.
 class ProgressBar {
  public:
-  explicit ProgressBar(std::ostream& err) : err_(err) {}
+  ProgressBar(std::ostream& err, double duration)
+      : err_(err), duration_(duration), start_(std::chrono::steady_clock::now()) {}
   void operator()(double fraction) {
-    const int pct = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100.0);
+    const double f = std::clamp(fraction, 0.0, 1.0);
+    const int pct = static_cast<int>(f * 100.0);
     if (pct == last_) return;
     last_ = pct;
     const int filled = pct * kWidth / 100;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    char eta[32] = "";
+    if (f > 0.01 && f < 1) std::snprintf(eta, sizeof eta, ", ETA %.0f s", wall * (1 - f) / f);
+    char t[64];
+    std::snprintf(t, sizeof t, " t = %.6g / %.6g s", tidy_time(f * duration_), duration_);
     err_ << "\r[" << std::string(static_cast<std::size_t>(filled), '#')
-         << std::string(static_cast<std::size_t>(kWidth - filled), ' ') << "] " << pct << "%" << std::flush;
+         << std::string(static_cast<std::size_t>(kWidth - filled), ' ') << "] " << pct << "%" << t << eta
+         << "   " << std::flush;
   }
   void done() {
     if (last_ >= 0) err_ << "\n" << std::flush;
@@ -44,13 +55,15 @@ class ProgressBar {
  private:
   static constexpr int kWidth = 40;
   std::ostream& err_;
+  double duration_;  // [s] simulated
+  std::chrono::steady_clock::time_point start_;
   int last_ = -1;
 };
 
 /// Run the simulation into `writer`; exceptions become a failed run.
 RunStats simulate_safely(const Model& model, RunWriter& writer, const RunOptions& opts, std::ostream& err,
                          const volatile int* stop_flag) {
-  ProgressBar bar(err);
+  ProgressBar bar(err, model.sim.duration);
   ProgressFn progress;
   if (opts.progress && !opts.quiet) progress = [&bar](double f) { bar(f); };
   RunStats stats;

@@ -113,10 +113,10 @@ const std::vector<std::pair<std::string, std::string>>& figure_captions() {
 }
 
 /// The summary's key results as table rows (label, value, time or "").
-std::vector<std::array<std::string, 3>> summary_rows(const nlohmann::json& sm) {
+std::vector<std::array<std::string, 3>> summary_rows(const json& sm) {
   std::vector<std::array<std::string, 3>> rows;
-  auto value = [](const nlohmann::json& j) { return j.is_number() ? fmt(j.get<double>()) : std::string("&ndash;"); };
-  const auto fin = sm.value("final", nlohmann::json::object());
+  auto value = [](const json& j) { return j.is_number() ? fmt(j.get<double>()) : std::string("&ndash;"); };
+  const auto fin = sm.value("final", json::object());
   auto final_row = [&](const char* key, const std::string& label) {
     if (fin.is_object() && fin.contains(key)) rows.push_back({label, value(fin[key]), ""});
   };
@@ -128,16 +128,16 @@ std::vector<std::array<std::string, 3>> summary_rows(const nlohmann::json& sm) {
   final_row("tow_tension", "final tow tension [N]");
   final_row("link_tension", "final link tension [N]");
   final_row("deployed_length", "deployed cable length [m]");
-  const auto ex = sm.value("extremes", nlohmann::json::object());
+  const auto ex = sm.value("extremes", json::object());
   if (ex.is_object())
     for (const auto& [k, v] : ex.items()) {
       if (v.is_object() && v.contains("value")) {
-        rows.push_back({html(k), value(v["value"]), value(v.value("time", nlohmann::json()))});
+        rows.push_back({html(k), value(v["value"]), value(v.value("time", json()))});
       } else if (v.is_object() && v.contains("min") && v.contains("max")) {
-        rows.push_back({html(k) + " min", value(v["min"].value("value", nlohmann::json())),
-                        value(v["min"].value("time", nlohmann::json()))});
-        rows.push_back({html(k) + " max", value(v["max"].value("value", nlohmann::json())),
-                        value(v["max"].value("time", nlohmann::json()))});
+        rows.push_back({html(k) + " min", value(v["min"].value("value", json())),
+                        value(v["min"].value("time", json()))});
+        rows.push_back({html(k) + " max", value(v["max"].value("value", json())),
+                        value(v["max"].value("time", json()))});
       }
     }
   for (const char* k : {"steps", "rhs_evaluations", "wall_seconds", "samples"})
@@ -146,7 +146,7 @@ std::vector<std::array<std::string, 3>> summary_rows(const nlohmann::json& sm) {
 }
 
 /// The animation data: frames of node positions and tensions, body pose.
-bool animation_data(const fs::path& root, const CsvTable& ts, const nlohmann::json& sm, const ReportOptions& opt,
+bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, const ReportOptions& opt,
                     json& data, std::string& error) {
   const int ct = ts.col("time");
   std::vector<double> times;
@@ -255,16 +255,16 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
       log << "towsim report: " << dir << " has no " << f << " (" << kUsage << ")\n";
       return kInvalid;
     }
-  nlohmann::json sm = nlohmann::json::object();
+  json sm = json::object();
   if (fs::is_regular_file(root / "summary.json", ec)) {
     try {
       std::ifstream in(root / "summary.json");
-      sm = nlohmann::json::parse(in);
+      sm = json::parse(in);
     } catch (const std::exception& e) {
       log << "towsim report: " << (root / "summary.json").string() << ": not valid JSON: " << e.what() << "\n";
       return kInvalid;
     }
-    if (!sm.is_object()) sm = nlohmann::json::object();
+    if (!sm.is_object()) sm = json::object();
   }
   CsvTable ts;
   std::string error;
@@ -343,7 +343,7 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
   // 4. The scenario echo.
   if (sm.contains("scenario")) {
     h << "<h2>Scenario</h2>\n<pre>"
-      << html(sm["scenario"].dump(2, ' ', false, nlohmann::json::error_handler_t::replace)) << "</pre>\n";
+      << html(sm["scenario"].dump(2, ' ', false, json::error_handler_t::replace)) << "</pre>\n";
   }
   h << "<p class=\"small\">Written by towsim report. Self-contained: no network access is needed to view it.</p>\n";
 

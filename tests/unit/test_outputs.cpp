@@ -165,3 +165,15 @@ TEST(StaticsOutputs, WritesSummaryWithFinalAndLayback) {
   expect_final_is_last_row(ts, sm);
   fs::remove_all(dir);
 }
+
+TEST(RunOutputs, TheProgressBarShowsSimulatedTime) {
+  // The bar is drawn only on a terminal: `script` gives the run one.
+  if (towsim::testing::shell("command -v script").first != 0) GTEST_SKIP() << "no `script` program (util-linux)";
+  const fs::path dir = fresh_dir("progress");
+  const auto [status, out] = towsim::testing::shell("script -qec \"'" + std::string(TOWSIM_BINARY) +
+                                                    "' run --example cable-tow --set simulation.duration=2 --out '" +
+                                                    dir.string() + "'\" /dev/null");
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("100% t = 2 / 2 s"), std::string::npos) << out;
+  fs::remove_all(dir);
+}
