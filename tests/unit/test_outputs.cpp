@@ -101,7 +101,9 @@ TEST(RunOutputs, LaybackOfTheCableEndWithoutABodyAndTimesWithoutNoise) {
   for (const auto& row : ts.rows)
     for (const auto& cell : row) {
       const auto e = cell.find('e');
-      if (e != std::string::npos) EXPECT_GE(std::stoi(cell.substr(e + 1)), -9) << cell;
+      if (e != std::string::npos) {
+        EXPECT_GE(std::stoi(cell.substr(e + 1)), -9) << cell;
+      }
     }
   const auto sm = read_json(dir / "summary.json");
   expect_final_is_last_row(ts, sm);
