@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <ostream>
@@ -91,8 +92,15 @@ std::string fmt(double v) {
   return b;
 }
 
-/// A tidied number as JSON (null when not finite).
-json jnum(double v) { return std::isfinite(v) ? json(tidy(v)) : json(nullptr); }
+/// A number for the 3-D view as JSON (null when not finite): 7 significant
+/// digits (a millimetre on a kilometre of cable) keep the page small.
+json jnum(double v) {
+  if (!std::isfinite(v)) return nullptr;
+  if (std::abs(v) < kZeroBelow) return 0.0;
+  char b[32];
+  std::snprintf(b, sizeof b, "%.7g", v);
+  return std::strtod(b, nullptr);
+}
 
 /// What each figure shows, in page order.
 const std::vector<std::pair<std::string, std::string>>& figure_captions() {
