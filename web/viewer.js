@@ -192,7 +192,16 @@ function main() {
     controls.update();
     renderer.render(scene, camera);
   }
-  show(0);
+  // report.html#t=20 opens at the frame nearest t = 20 s.
+  const want = /[#&]t=([-0-9.eE+]+)/.exec(window.location.hash);
+  if (want) {
+    let best = 0;
+    for (let i = 0; i < F; i++)
+      if (Math.abs(data.times[i] - Number(want[1])) < Math.abs(data.times[best] - Number(want[1]))) best = i;
+    frame = best;
+    slider.value = String(frame);
+  }
+  show(frame);
   renderer.render(scene, camera);
 
   // The first frame is drawn: count the pixels that are not background.
