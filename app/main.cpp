@@ -11,6 +11,7 @@
 
 #include "towsim/io/commands.hpp"
 #include "towsim/io/plot.hpp"
+#include "towsim/io/report.hpp"
 
 namespace {
 
@@ -88,6 +89,23 @@ void add_plot_command(CLI::App& app, int& status) {
   cmd->callback([dir, opts, &status] { status = plot_run(*dir, std::cerr, *opts); });
 }
 
+/// `towsim report DIR`: DIR/report.html (src/io/report.cpp).
+void add_report_command(CLI::App& app, int& status) {
+  auto dir = std::make_shared<std::string>();
+  auto opts = std::make_shared<ReportOptions>(default_report_options());
+  auto no_plots = std::make_shared<bool>(false);
+  CLI::App* cmd = app.add_subcommand(
+      "report", "Write DIR/report.html: a self-contained page with a 3-D view, the figures and the summary");
+  cmd->add_option("dir", *dir, "Output directory of `towsim run` or `towsim statics --out`")->required();
+  cmd->add_option("--frames", opts->max_frames, "Animation frames (spread over the output times)")
+      ->check(CLI::Range(1, 5000));
+  cmd->add_flag("--no-plots", *no_plots, "Use DIR/plots as it is instead of rendering the figures first");
+  cmd->callback([dir, opts, no_plots, &status] {
+    opts->plots = !*no_plots;
+    status = report_run(*dir, std::cerr, *opts);
+  });
+}
+
 /// `towsim statics SCENARIO.yaml [--set K=V]... [--out DIR]`.
 void add_statics_command(CLI::App& app, int& status) {
   auto opts = std::make_shared<StaticsOptions>();
@@ -111,6 +129,7 @@ int main(int argc, char** argv) {
   add_examples_command(app, status);
   add_plot_command(app, status);
   add_statics_command(app, status);
+  add_report_command(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
