@@ -4,7 +4,9 @@
 set -euo pipefail
 
 packages=(build-essential cmake libeigen3-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev libbenchmark-dev libboost-dev gnuplot-nox)
+          libgtest-dev libgmock-dev libbenchmark-dev libboost-dev gnuplot-nox
+          python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-distributed
+          python3-pytest)
 # --reliability: also what scripts/fuzz.sh and scripts/soak.sh need (clang + libFuzzer, GNU time).
 if [ "${1:-}" = "--reliability" ]; then
   packages+=(clang libclang-rt-14-dev time)

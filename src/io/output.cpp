@@ -16,13 +16,6 @@ void put(std::string& out, double v) {
   out.append(b, r.ptr);
 }
 
-void put3(std::string& out, const Vec3& v) {
-  for (int i = 0; i < 3; ++i) {
-    out += ',';
-    put(out, v[i]);
-  }
-}
-
 std::FILE* open_file(const std::string& dir, const std::string& name) {
   const std::string path = (std::filesystem::path(dir) / name).string();
   std::FILE* f = std::fopen(path.c_str(), "w");
@@ -33,6 +26,13 @@ std::FILE* open_file(const std::string& dir, const std::string& name) {
 void write_all(std::FILE* f, const std::string& s) {
   std::fwrite(s.data(), 1, s.size(), f);
   std::fflush(f);
+}
+
+/// Column names joined by commas.
+std::string join_columns(const std::vector<std::string>& columns) {
+  std::string out;
+  for (const auto& c : columns) out += (out.empty() ? "" : ",") + c;
+  return out;
 }
 
 /// JSON for an extreme: {value, time}, null values when never set.
@@ -48,49 +48,33 @@ nlohmann::ordered_json num(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
 }
 
-/// One timeseries.csv row (with its newline), columns as timeseries_header().
-void timeseries_row(const Sample& s, bool has_body, std::string& out) {
-  const Vec3 end = s.node_pos.empty() ? Vec3::Constant(std::nan("")) : s.node_pos.back();
-  put(out, s.t);
-  put3(out, s.tow_pos);
-  put3(out, s.tow_force);
-  put3(out, end);
-  if (has_body) {
-    put3(out, s.body_pos);
-    put3(out, s.body_rpy_deg);
-    put3(out, s.link_force);
-  }
-  out += ',';
-  put(out, s.tow_force.norm());
-  out += ',';
-  put(out, -end.z());
-  put3(out, s.tow_vel);
-  if (has_body) {
-    out += ',';
-    put(out, -s.body_pos.z());
-    out += ',';
-    put(out, s.link_force.norm());
+/// One timeseries.csv row (with its newline) from its values.
+void put_row(const std::vector<double>& values, std::string& out) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i > 0) out += ',';
+    put(out, values[i]);
   }
   out += '\n';
 }
 
-/// The nodes.csv rows of one sample: joints 0..n.
-void node_rows(const Sample& s, std::string& out) {
-  const Vec3 nan3 = Vec3::Constant(std::nan(""));
+/// The nodes.csv rows of one sample: joints 0..n, values from node_values().
+void node_rows(const Sample& s, std::vector<double>& values, std::string& out) {
   for (std::size_t k = 0; k < s.node_pos.size(); ++k) {
     put(out, s.t);
     out += ',' + std::to_string(k);
-    put3(out, s.node_pos[k]);
-    put3(out, k < s.node_vel.size() ? s.node_vel[k] : nan3);
-    out += ',';
-    put(out, k < s.tension.size() ? s.tension[k] : std::nan(""));
-    out += ',';
-    put(out, k < s.axial.size() ? s.axial[k] : std::nan(""));
+    values.clear();
+    node_values(s, k, values);
+    for (double v : values) {
+      out += ',';
+      put(out, v);
+    }
     out += '\n';
   }
 }
 
 }  // namespace
+
+void append_number(std::string& out, double v) { put(out, v); }
 
 void Extreme::max(double v, double t) {
   if (std::isnan(value) || v > value) {
@@ -120,22 +104,68 @@ void Extremes::add(const Sample& s) {
   }
 }
 
-std::string timeseries_header(bool has_body) {
-  std::string h = "time,tow_x,tow_y,tow_z,tow_force_x,tow_force_y,tow_force_z,end_x,end_y,end_z";
+std::vector<std::string> timeseries_columns(bool has_body) {
+  std::vector<std::string> c = {"time", "tow_x", "tow_y", "tow_z", "tow_force_x", "tow_force_y", "tow_force_z",
+                                "end_x", "end_y", "end_z"};
   if (has_body)
-    h += ",body_x,body_y,body_z,body_roll_deg,body_pitch_deg,body_yaw_deg,"
-         "link_force_x,link_force_y,link_force_z";
-  h += ",tow_tension,end_depth,tow_vx,tow_vy,tow_vz";
-  if (has_body) h += ",body_depth,link_tension";
-  return h;
+    c.insert(c.end(), {"body_x", "body_y", "body_z", "body_roll_deg", "body_pitch_deg", "body_yaw_deg",
+                       "link_force_x", "link_force_y", "link_force_z"});
+  c.insert(c.end(), {"tow_tension", "end_depth", "tow_vx", "tow_vy", "tow_vz"});
+  if (has_body) c.insert(c.end(), {"body_depth", "link_tension"});
+  return c;
 }
 
-RunWriter::RunWriter(const std::string& dir, bool has_body, bool write_nodes) : has_body_(has_body) {
+void timeseries_values(const Sample& s, bool has_body, std::vector<double>& out) {
+  const Vec3 end = s.node_pos.empty() ? Vec3::Constant(std::nan("")) : s.node_pos.back();
+  const auto add3 = [&out](const Vec3& v) { out.insert(out.end(), {v.x(), v.y(), v.z()}); };
+  out.push_back(s.t);
+  add3(s.tow_pos);
+  add3(s.tow_force);
+  add3(end);
+  if (has_body) {
+    add3(s.body_pos);
+    add3(s.body_rpy_deg);
+    add3(s.link_force);
+  }
+  out.push_back(s.tow_force.norm());
+  out.push_back(-end.z());
+  add3(s.tow_vel);
+  if (has_body) {
+    out.push_back(-s.body_pos.z());
+    out.push_back(s.link_force.norm());
+  }
+}
+
+std::string timeseries_header(bool has_body) {
+  return join_columns(timeseries_columns(has_body));
+}
+
+const std::vector<std::string>& node_columns() {
+  static const std::vector<std::string> c = {"x", "y", "z", "vx", "vy", "vz", "tension", "axial_force"};
+  return c;
+}
+
+void node_values(const Sample& s, std::size_t k, std::vector<double>& out) {
+  const double nan = std::nan("");
+  const Vec3 v = k < s.node_vel.size() ? s.node_vel[k] : Vec3::Constant(nan);
+  const Vec3& p = s.node_pos[k];
+  out.insert(out.end(), {p.x(), p.y(), p.z(), v.x(), v.y(), v.z(), k < s.tension.size() ? s.tension[k] : nan,
+                         k < s.axial.size() ? s.axial[k] : nan});
+}
+
+void RunRecord::write(const Sample& s) {
+  extremes_.add(s);
+  ++samples_;
+  last_row_.clear();
+  timeseries_values(s, has_body_, last_row_);
+}
+
+RunWriter::RunWriter(const std::string& dir, bool has_body, bool write_nodes) : RunRecord(has_body) {
   series_ = open_file(dir, "timeseries.csv");
   write_all(series_, timeseries_header(has_body) + "\n");
   if (write_nodes) {
     nodes_ = open_file(dir, "nodes.csv");
-    write_all(nodes_, "time,node,x,y,z,vx,vy,vz,tension,axial_force\n");
+    write_all(nodes_, "time,node," + join_columns(node_columns()) + "\n");
   }
 }
 
@@ -145,14 +175,13 @@ RunWriter::~RunWriter() {
 }
 
 void RunWriter::write(const Sample& s) {
-  extremes_.add(s);
-  ++samples_;
+  RunRecord::write(s);
   buf_.clear();
-  timeseries_row(s, has_body_, buf_);
+  put_row(last_row(), buf_);
   write_all(series_, buf_);
   if (nodes_ == nullptr) return;
   buf_.clear();
-  node_rows(s, buf_);
+  node_rows(s, values_, buf_);
   write_all(nodes_, buf_);
 }
 
@@ -163,7 +192,7 @@ void RunWriter::flush() {
 
 nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,
                                     const RunStats& stats, const Extremes& ex, long samples,
-                                    bool has_body, bool write_nodes) {
+                                    bool has_body, bool write_nodes, const std::vector<double>& final_row) {
   nlohmann::ordered_json j;
   j["model"] = model_name;
   j["status"] = stats.status;
@@ -190,6 +219,13 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
       e[names[i]] = {{"min", json_of(ex.min_body_deg[i])}, {"max", json_of(ex.max_body_deg[i])}};
   }
   j["extremes"] = e;
+  // The last row's values by their timeseries.csv names.
+  if (!final_row.empty()) {
+    const auto cols = timeseries_columns(has_body);
+    nlohmann::ordered_json f = nlohmann::ordered_json::object();
+    for (std::size_t i = 0; i < cols.size() && i < final_row.size(); ++i) f[cols[i]] = num(final_row[i]);
+    j["final"] = f;
+  }
   j["scenario"] = scenario;
   return j;
 }

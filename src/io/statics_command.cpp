@@ -15,7 +15,8 @@ namespace {
 
 constexpr double kDeg = 180.0 / M_PI;
 
-/// The statics result as one output sample (every point moving at V).
+}  // namespace
+
 Sample statics_sample(const Model& model, const StaticsResult& r) {
   Workspace ws(model);
   compute_kinematics(model, r.state, ws);
@@ -37,6 +38,8 @@ Sample statics_sample(const Model& model, const StaticsResult& r) {
   }
   return s;
 }
+
+namespace {
 
 /// Print the engineer's summary of a steady tow.
 void print_statics(const Model& model, const StaticsResult& r, const Sample& s, std::ostream& out) {

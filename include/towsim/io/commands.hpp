@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "towsim/io/scenario.hpp"
+#include "towsim/sim/simulate.hpp"
+#include "towsim/sim/statics.hpp"
 
 namespace towsim::io {
 
@@ -56,6 +58,10 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err,
 /// angles; writes the configuration when an output directory is given.
 /// Returns an ExitStatus (3 when the solver does not converge).
 int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err);
+
+/// A statics result as one output sample at t = 0 (every point moving at the
+/// tow velocity), as `towsim statics --out` writes it.
+Sample statics_sample(const Model& model, const StaticsResult& r);
 
 /// `towsim check`: validate and print the derived quantities. Returns an ExitStatus.
 int check_command(const InputOptions& in, std::ostream& out, std::ostream& err);
