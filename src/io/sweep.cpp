@@ -217,6 +217,7 @@ namespace {
 
 /// The sweep file's locations of each case's overrides, kept beside the spec.
 struct SweepLocs {
+  SourceLoc example;  // the example name's value
   std::vector<SourceLoc> common;
   std::vector<std::vector<SourceLoc>> cases;
 };
@@ -234,7 +235,10 @@ SweepSpec read_sweep_with_locs(const std::string& path, Diagnostics& d, SweepLoc
     const std::filesystem::path p(text);
     spec.scenario = p.is_absolute() ? text : (dir / p).string();
   }
-  if (ex != nullptr && convert(*ex, "example", d, text)) spec.example = text;
+  if (ex != nullptr && convert(*ex, "example", d, text)) {
+    spec.example = text;
+    locs.example = ex->loc;
+  }
   if (scen != nullptr && ex != nullptr)
     d.error(ex->key_loc, "example", "give either scenario or example, not both");
   if (scen == nullptr && ex == nullptr && root.present())
@@ -416,10 +420,14 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
   const LoadedScenario base = load_input(case_input(spec, spec.common));
   if (!base.ok()) {
     Diagnostics moved;
+    moved.set_primary(opts.file);
     for (const auto& e : base.diags.list()) {
       const bool from_set = e.loc.file == "--set" && e.loc.line >= 1 &&
                             static_cast<std::size_t>(e.loc.line) <= locs.common.size();
-      moved.error(from_set ? locs.common[static_cast<std::size_t>(e.loc.line) - 1] : e.loc, e.path, e.message);
+      if (e.loc.file == "--example")
+        moved.error(locs.example, "example", e.message);  // an unknown example: at its name in the sweep file
+      else
+        moved.error(from_set ? locs.common[static_cast<std::size_t>(e.loc.line) - 1] : e.loc, e.path, e.message);
     }
     err << moved.str();
     return kExitInvalid;

@@ -3,7 +3,7 @@ the loopback interface, started by the test) gives the local table (issue 16).""
 import pytest
 
 import towsim
-from conftest import SCENARIOS
+from conftest import SCENARIOS, read_csv, same_printed, towsim_cli
 
 distributed = pytest.importorskip("distributed")
 pandas = pytest.importorskip("pandas")
@@ -25,3 +25,17 @@ def test_dask_sweep_equals_local_sweep(tmp_path):
     assert list(remote["status"]) == ["ok"] * 6 + ["invalid"]
     # Deterministic runs: the same numbers bit for bit, row for row.
     pandas.testing.assert_frame_equal(remote, local)
+    # And the table of `towsim sweep --jobs 1` for the same grid, to its printed digits.
+    sweep = tmp_path / "sweep.yaml"
+    sweep.write_text(f"""scenario: {SCENARIOS / 'paper-3d-turn.yaml'}
+set: {{simulation.duration: 4, simulation.write_nodes: false}}
+grid: {{tow.motion.0.speed: [1.0, 1.57, 2.0], cable.elements: [4, 6]}}
+""")
+    status, _, err = towsim_cli("sweep", sweep, "--out", tmp_path / "cli", "--jobs", "1", "--quiet")
+    assert status == 0, err
+    header, rows = read_csv(tmp_path / "cli" / "sweep.csv")
+    assert len(rows) == 6
+    for i, row in enumerate(rows):
+        assert row[header.index("status")] == remote["status"][i]
+        for name in header[header.index("message") + 1:]:
+            assert same_printed(remote[name][i], row[header.index(name)]), (i, name)

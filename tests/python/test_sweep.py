@@ -130,6 +130,8 @@ BAD_SWEEPS = [
      "{f}:4:22: cases.0.cable.elements: also varied by grid\n"),
     ("bad value", "example: cable-tow\ngrid:\n  cable.elements: [2, -1, 0]\n",
      "{f}:3:23: cable.elements: must be >= 1 (got -1)\n{f}:3:27: cable.elements: must be >= 1 (got 0)\n"),
+    ("unknown example", "example: cable-tw\ngrid: {{cable.elements: [2]}}\n",
+     "{f}:1:10: example: unknown example (did you mean 'cable-tow'?); `towsim examples` lists them\n"),
     ("unknown scenario key", "example: cable-tow\nset: {{cable.lenght: 3}}\ngrid: {{cable.elements: [2]}}\n",
      "{f}:2:21: cable.lenght: unknown key (did you mean 'length'?)\n"),
 ]
