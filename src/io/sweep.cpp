@@ -1,5 +1,6 @@
 #include "towsim/io/sweep.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>

@@ -166,3 +166,18 @@ grid: {{cable.elements: [4, 5, 6, 7]}}
     assert len(rows) == 4
     assert statuses.count("interrupted") == 2 and statuses.count("not_run") == 2, statuses
     assert "interrupted after" in err
+
+
+def test_the_towing_table_example(tmp_path):
+    # examples/towing-table.sweep.yaml (docs/python.md): 5 speeds x 4 cable
+    # lengths, all steady. Physically: the body goes deeper with more cable
+    # and shallower with more speed (drag grows, weight does not).
+    header, rows = cli_table(tmp_path, SCENARIOS.parent / "examples" / "towing-table.sweep.yaml", "--quiet")
+    assert len(rows) == 20 and all(r[header.index("status")] == "ok" for r in rows)
+    depth = {(float(r[1]), float(r[2])): float(r[header.index("final_body_depth")]) for r in rows}
+    speeds = sorted({s for s, _ in depth})
+    lengths = sorted({L for _, L in depth})
+    for s in speeds:
+        assert all(depth[s, a] < depth[s, b] for a, b in zip(lengths, lengths[1:])), s
+    for L in lengths:
+        assert all(depth[a, L] > depth[b, L] for a, b in zip(speeds, speeds[1:])), L
