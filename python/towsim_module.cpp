@@ -196,14 +196,18 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   return out;
 }
 
-/// One sweep case, exactly as `towsim sweep` runs it: (status, message, [(figure, value)]).
+/// One sweep case, exactly as `towsim sweep` runs it: (status, message,
+/// [(figure, value)]). Ctrl-C in a worker process's main thread ends the case
+/// `interrupted` (the KeyboardInterrupt is cleared: the row says it).
 py::tuple run_case_py(const std::string& kind, const std::string& source, const std::string& label,
                       const std::vector<std::string>& sets, const std::string& out_dir) {
   CaseResult r;
+  volatile int stop = 0;
+  SignalPoll poll(stop);
   {
     py::gil_scoped_release release;
     const LoadedScenario sc = load(kind, source, label, sets);
-    r = run_case(sc, out_dir, nullptr);
+    r = run_case(sc, out_dir, &stop, [&poll](double) { poll(); });
   }
   return py::make_tuple(r.status, r.message, r.figures);
 }

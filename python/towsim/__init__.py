@@ -284,9 +284,17 @@ def sweep(cases, executor=None, *, max_workers=None, frame=None):
         from concurrent.futures import ProcessPoolExecutor
 
         executor = ProcessPoolExecutor(max_workers=max_workers or os.cpu_count() or 1)
+    futures = []
     try:
         futures = [executor.submit(_case, s, o) for s, o in cases]
         outcomes = [f.result() for f in futures]
+    except BaseException:  # Ctrl-C, or a worker lost: stop what is left
+        for f in futures:
+            f.cancel()
+        if own:  # our processes: end them now rather than after the cases already queued
+            for p in list((getattr(executor, "_processes", None) or {}).values()):
+                p.terminate()
+        raise
     finally:
         if own:
             executor.shutdown(wait=True, cancel_futures=True)

@@ -175,7 +175,8 @@ std::vector<Figure> summary_figures(const nlohmann::ordered_json& s) {
   return out;
 }
 
-CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag) {
+CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag,
+                    const ProgressFn& progress) {
   CaseResult res;
   if (!sc.ok()) {
     res.status = "invalid";
@@ -194,7 +195,7 @@ CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const 
     }
     RunStats stats;
     try {
-      stats = simulate(model, *rec, {}, stop_flag);
+      stats = simulate(model, *rec, progress, stop_flag);
     } catch (const std::exception& e) {
       stats.status = "failed";
       stats.message = std::string("internal error: ") + e.what();

@@ -4,6 +4,7 @@ import json
 import math
 import os
 import pathlib
+import signal
 import threading
 import time
 
@@ -150,13 +151,21 @@ def test_runs_in_two_threads_overlap_in_time():
 def test_ctrl_c_stops_the_run_and_keeps_the_result():
     # interrupt_main() is what Ctrl-C does to the main thread: the run stops
     # cleanly and towsim.Interrupted (a KeyboardInterrupt) carries its rows.
+    # Python's own SIGINT handler, as in an interactive session (a process
+    # started in the background by a shell inherits SIGINT ignored, and then
+    # interrupt_main() does nothing).
     path = SCENARIOS / "paper-3d-turn.yaml"
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.3, _thread.interrupt_main)
-    timer.start()
-    t0 = time.monotonic()
-    with pytest.raises(KeyboardInterrupt) as e:
-        towsim.run(path, {"simulation.duration": 100000, "simulation.write_nodes": False})
-    timer.join()
+    try:
+        timer.start()
+        t0 = time.monotonic()
+        with pytest.raises(KeyboardInterrupt) as e:
+            towsim.run(path, {"simulation.duration": 100000, "simulation.write_nodes": False})
+    finally:
+        timer.cancel()
+        timer.join()
+        signal.signal(signal.SIGINT, previous)
     assert isinstance(e.value, towsim.Interrupted)
     r = e.value.result
     assert r.status == "interrupted" and r.summary["status"] == "interrupted"

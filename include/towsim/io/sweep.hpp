@@ -12,6 +12,7 @@
 
 #include "towsim/io/diagnostics.hpp"
 #include "towsim/io/scenario.hpp"
+#include "towsim/sim/simulate.hpp"
 
 namespace towsim::io {
 
@@ -33,8 +34,10 @@ struct CaseResult {
 
 /// Simulate a loaded, valid scenario. With `out_dir` non-empty, write the
 /// files of `towsim run` there (created if missing); otherwise nothing is
-/// written. Never throws: internal errors become a failed case.
-CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag);
+/// written. Never throws: internal errors become a failed case. `progress`
+/// is called after each output sample (as by simulate()).
+CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag,
+                    const ProgressFn& progress = {});
 
 /// One case of a sweep: its overrides as (dotted key, YAML value text).
 struct SweepCase {
