@@ -12,6 +12,7 @@
 #include "towsim/io/commands.hpp"
 #include "towsim/io/plot.hpp"
 #include "towsim/io/report.hpp"
+#include "towsim/io/sweep.hpp"
 
 namespace {
 
@@ -118,6 +119,21 @@ void add_statics_command(CLI::App& app, int& status) {
   });
 }
 
+/// `towsim sweep SWEEP.yaml --out DIR [--jobs N] [--quiet]`.
+void add_sweep_command(CLI::App& app, int& status) {
+  auto opts = std::make_shared<SweepOptions>();
+  CLI::App* cmd = app.add_subcommand("sweep", "Run a base scenario over a grid or list of overrides; DIR/sweep.csv");
+  cmd->add_option("sweep", opts->file, "Sweep file (YAML; docs/scenario.md \"Sweeps\")")->required();
+  cmd->add_option("--out,-o", opts->out_dir, "Output directory (created if missing)")->required();
+  cmd->add_option("--jobs,-j", opts->jobs, "Cases run at once (default: every core)")->check(CLI::Range(1, 4096));
+  cmd->add_flag("--quiet,-q", opts->quiet, "Print nothing but errors");
+  cmd->callback([opts, &status] {
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    status = sweep_command(*opts, std::cout, std::cerr, &g_stop);
+  });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -130,6 +146,7 @@ int main(int argc, char** argv) {
   add_plot_command(app, status);
   add_statics_command(app, status);
   add_report_command(app, status);
+  add_sweep_command(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

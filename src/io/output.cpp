@@ -236,8 +236,9 @@ const std::vector<std::string>& node_columns() {
 void node_values(const Sample& s, std::size_t k, std::vector<double>& out) {
   const double nan = std::nan("");
   const Vec3 v = k < s.node_vel.size() ? s.node_vel[k] : Vec3::Constant(nan);
-  out.insert(out.end(), {s.node_pos[k].x(), s.node_pos[k].y(), s.node_pos[k].z(), v.x(), v.y(), v.z(),
-                         k < s.tension.size() ? s.tension[k] : nan, k < s.axial.size() ? s.axial[k] : nan});
+  for (double x : {s.node_pos[k].x(), s.node_pos[k].y(), s.node_pos[k].z(), v.x(), v.y(), v.z(),
+                   k < s.tension.size() ? s.tension[k] : nan, k < s.axial.size() ? s.axial[k] : nan})
+    out.push_back(tidy(x));  // as written
 }
 
 void RunRecord::write(const Sample& s) {
@@ -331,7 +332,6 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   e["min_depth"] = json_of(ex.min_depth);              // of the end body's origin, or of the cable end
   e["max_depth"] = json_of(ex.max_depth);
   e["max_layback"] = json_of(ex.max_layback);
-  if (!std::isnan(ex.max_utilisation.value)) e["max_utilisation"] = json_of(ex.max_utilisation);
   // The end body under today's names, in-line bodies under their own.
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const Body& body = model.bodies[b];
@@ -347,9 +347,11 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
       e[name + names[i]] = {{"min", json_of(be.min_deg[i])}, {"max", json_of(be.max_deg[i])}};
   }
   j["extremes"] = e;
-  // The figures engineers read most, also at the top level.
-  j["max_tow_tension"] = num(tidy(ex.max_tow_tension.value));
-  if (!std::isnan(ex.max_utilisation.value)) j["max_utilisation"] = num(tidy(ex.max_utilisation.value));
+  // With breaking loads: the largest tension / breaking load anywhere, and when.
+  if (!std::isnan(ex.max_utilisation.value)) {
+    j["max_utilisation"] = num(tidy(ex.max_utilisation.value));
+    j["max_utilisation_time"] = num(tidy_time(ex.max_utilisation.time));
+  }
   j["final"] = record.final_row();  // the last timeseries.csv row by column name
   j["scenario"] = scenario;
   return j;

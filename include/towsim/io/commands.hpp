@@ -11,6 +11,8 @@
 
 #include "towsim/io/output.hpp"
 #include "towsim/io/scenario.hpp"
+#include "towsim/sim/simulate.hpp"
+#include "towsim/sim/statics.hpp"
 
 namespace towsim::io {
 

@@ -80,7 +80,7 @@ void timeseries_values(const Model& model, const Sample& s, std::vector<double>&
 
 /// The per-node columns of nodes.csv (after `time,node`): x, y, z, vx, vy, vz, tension, axial_force.
 const std::vector<std::string>& node_columns();
-/// Node k's nodes.csv values of one sample, in the order of node_columns().
+/// Node k's nodes.csv values of one sample as written (tidied), in the order of node_columns().
 void node_values(const Sample& s, std::size_t k, std::vector<double>& out);
 
 /// Horizontal distance from the tow point to the end body's origin (or to
