@@ -125,6 +125,9 @@ void body_loads(const Fluid& fluid, const Body& b, double t, BodyWork& ws) {
   // Gravity at the CG, buoyancy at the centre of the displaced volume.
   add_force(ws, ws.R * b.cg, Vec3(0, 0, -b.mass * g));
   add_force(ws, ws.R * b.buoyancy_center, Vec3(0, 0, rho * g * b.displaced_volume));
+  // Thrusters (they push in vacuum too).
+  for (const Thruster& th : b.thrusters)
+    add_force(ws, ws.R * th.point, interpolate(th.time, th.force, t) * (ws.R * th.direction));
   if (rho == 0) return;
   for (const auto& sp : b.spheres) sphere_loads(fluid, sp, t, ws);
   for (const auto& cy : b.cylinders) cylinder_loads(fluid, cy, t, ws);

@@ -81,6 +81,10 @@ void check_body(const BodySpec& b, Diagnostics& d) {
   for (const auto& s : b.spheres) check_sphere(s, d);
   for (const auto& c : b.cylinders) check_cylinder(c, d);
   for (const auto& s : b.surfaces) check_surface(s, d);
+  for (const auto& th : b.thrusters) {
+    check_nonzero(th.direction, d);
+    check_increasing(th.force, "times", d);
+  }
 }
 
 Body build_body(const BodySpec& b, const Fluid& fluid) {
@@ -103,6 +107,11 @@ Body build_body(const BodySpec& b, const Fluid& fluid) {
                                           c.diameter.value, c.normal_drag.value, c.axial_drag.value,
                                           c.added_mass.value});
   for (const auto& s : b.surfaces) body.surfaces.push_back(build_surface(s));
+  for (const auto& th : b.thrusters) {
+    Thruster t{th.point.value, th.direction.value.normalized(), {}, {}};
+    for (const auto& row : th.force) t.time.push_back(row.values[0]), t.force.push_back(row.values[1]);
+    body.thrusters.push_back(t);
+  }
   body.initial_attitude = attitude(b.initial_attitude_deg.value);
   finalize_body(body, fluid);
   return body;

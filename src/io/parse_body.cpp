@@ -49,6 +49,22 @@ void parse_surface(MapReader& r, SurfaceSpec& s, Diagnostics& d) {
   parse_deflection(r, s, d);
 }
 
+/// thrusters item: point, direction, force (a number or a table [[t, N], ...]).
+void parse_thruster(MapReader& r, ThrusterSpec& th, Diagnostics& d) {
+  th.where = r.where();
+  r.read("point", th.point);
+  r.read("direction", th.direction);
+  const YNode* n = r.get("force", true);
+  if (n == nullptr) return;
+  th.force_where = r.where(*n, "force");
+  if (n->is_scalar()) {
+    double f = 0;
+    if (convert(*n, th.force_where.path, d, f)) th.force.push_back(RowSpec{{0.0, f}, th.force_where});
+    return;
+  }
+  if (!read_table(*n, th.force_where.path, 2, d, th.force)) th.force.clear();
+}
+
 }  // namespace
 
 void parse_body(MapReader& r, BodySpec& b, Diagnostics& d) {
@@ -76,6 +92,10 @@ void parse_body(MapReader& r, BodySpec& b, Diagnostics& d) {
   r.list("surfaces", [&](MapReader& item, std::size_t) {
     b.surfaces.emplace_back();
     parse_surface(item, b.surfaces.back(), d);
+  });
+  r.list("thrusters", [&](MapReader& item, std::size_t) {
+    b.thrusters.emplace_back();
+    parse_thruster(item, b.thrusters.back(), d);
   });
 }
 

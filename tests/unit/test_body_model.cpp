@@ -432,6 +432,24 @@ TEST(BodyModel, LinearAndQuadraticDamping) {
   EXPECT_LE((l.M - R * Vec3(-0.11, 0, 2.45)).norm(), 1e-12);
 }
 
+// A thruster: its force is the table's value along R d at R p, in vacuum as
+// in water; force and moment about O_t by hand: F = T(t) R d, M = (R p) x F.
+// Tolerance 1e-12 N: a rotation and a cross product of O(100) values.
+TEST(BodyModel, ThrusterForceAndMoment) {
+  Model m = body_model(0.0, 0.0);  // no fluid, no gravity: the thrust alone
+  Body& b = m.bodies[0];
+  b.thrusters.push_back({Vec3(-1.2, 0.1, -0.3), Vec3(1, 0.2, 0).normalized(), {0.0, 10.0}, {0.0, 400.0}});
+  const Mat3 R = rotation(0.2, -0.4, 0.9);
+  const auto l = body_loads(m, R, Vec3(0, 0, -50), Vec3::Zero(), Vec3::Zero(), 2.5);
+  const Vec3 F = 100.0 * (R * Vec3(1, 0.2, 0).normalized());  // 400 N * 2.5 / 10
+  const Vec3 M = (R * Vec3(-1.2, 0.1, -0.3)).cross(F);
+  EXPECT_LE((l.F - F).norm(), 1e-12);
+  EXPECT_LE((l.M - M).norm(), 1e-12);
+  // Held at the table's end.
+  const auto late = body_loads(m, R, Vec3(0, 0, -50), Vec3::Zero(), Vec3::Zero(), 99.0);
+  EXPECT_NEAR(late.F.norm(), 400.0, 1e-12);
+}
+
 // Every fluid load of a body in a uniform current depends on v - U only.
 TEST(BodyModel, UniformCurrentGalilean) {
   Model still = body_model(1025, 9.81);

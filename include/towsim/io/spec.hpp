@@ -133,6 +133,15 @@ struct SurfaceSpec {
   std::vector<RowSpec> deflection;       // rows {t [s], delta [deg]}; empty = 0
 };
 
+/// body.thrusters item.
+struct ThrusterSpec {
+  Where where;
+  Field<Vec3> point{Vec3::Zero()};       // body axes [m]
+  Field<Vec3> direction{Vec3::UnitX()};  // body axes, normalised by compile [-]
+  Where force_where;
+  std::vector<RowSpec> force;            // rows {t [s], thrust [N]}; a number = constant
+};
+
 /// body: the towed rigid body (optional).
 struct BodySpec {
   bool present = false;
@@ -152,6 +161,7 @@ struct BodySpec {
   std::vector<SphereSpec> spheres;
   std::vector<CylinderSpec> cylinders;
   std::vector<SurfaceSpec> surfaces;
+  std::vector<ThrusterSpec> thrusters;
 };
 
 /// tow.motion item: ramp, heave, turn, speed or track.

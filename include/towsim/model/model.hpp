@@ -113,6 +113,16 @@ struct LiftingSurface {
   std::vector<double> deflection_angle;  // [rad]
 };
 
+/// A thruster on a body: a force along a fixed body-axes direction, applied
+/// at a body-axes point, its magnitude a table over time (MODEL.md 9: the
+/// paper's "forces from propellers").
+struct Thruster {
+  Vec3 point = Vec3::Zero();          // where it acts, body axes [m]
+  Vec3 direction = Vec3::UnitX();     // unit direction of the thrust, body axes [-]
+  std::vector<double> time;           // [s]; one row = constant
+  std::vector<double> force;          // thrust at that time [N]; linear interpolation, held at the ends
+};
+
 /// A rigid body of the chain (MODEL.md 4, paper section 4): the towed body at
 /// the end, or an in-line body (depressor) between two cable sections.
 struct Body {
@@ -133,6 +143,7 @@ struct Body {
   std::vector<SphereLoad> spheres;
   std::vector<CylinderLoad> cylinders;
   std::vector<LiftingSurface> surfaces;
+  std::vector<Thruster> thrusters;
   Quat initial_attitude = Quat::Identity();  // body axes -> R_g at t = 0
 
   // Derived by finalize_body() (compile() calls it); zero until then:
