@@ -101,11 +101,11 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
 void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
   const auto& els = model.cable.elements;
   for (std::size_t k = 0; k < els.size(); ++k) {
-    element_loads(model, els[k], s.e[k], ws.edot[k], ws.vG[k], ws.G[k].z(), ws.F[k], ws.Mom[k]);
+    element_loads(model, els[k], s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
     ws.Mt[k] = element_mass(els[k], s.e[k]);
   }
   if (model.has_body) {
-    body_inertia(model, s, ws);
+    body_inertia(model, s, ws, t);
     body_loads(model, s, t, ws);
   }
 }

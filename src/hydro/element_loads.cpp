@@ -1,5 +1,6 @@
 // Loads on a cable element (MODEL.md 3; paper 2.3-2.43).
 #include <cmath>
+#include <numbers>
 
 #include "towsim/hydro/loads.hpp"
 
@@ -12,15 +13,16 @@ Mat3 element_mass(const Element& el, const Vec3& e) {
 }
 
 void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot,
-                   const Vec3& vG, double zG, Vec3& F, Vec3& M) {
+                   const Vec3& vG, const Vec3& xG, double t, Vec3& F, Vec3& M) {
   const Fluid& fluid = model.fluid;
+  const double zG = xG.z();
   // Weight and buoyancy (apparent weight), along -z.
   F = Vec3(0, 0, -el.weight);
   M.setZero();
   if (fluid.rho == 0) return;
 
   // Velocity relative to the water, split along and across the element.
-  const Vec3 u = vG - fluid.current(zG);
+  const Vec3 u = vG - fluid.velocity(xG, t);
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
 
@@ -38,6 +40,13 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   if (fluid.current_velocity.size() > 1) {
     const Vec3 dU = fluid.current_gradient(zG) * vG.z();
     F += el.added_mass * (dU - dU.dot(e) * e);
+  }
+  // Waves: Froude-Krylov rho V a_w plus the added mass's ma (I - ee^T) a_w
+  // (a_w the water's local acceleration; docs/theory.md "Wave loads").
+  if (fluid.waves) {
+    const Vec3 aw = fluid.acceleration(xG, t);
+    const double rhoV = fluid.rho * std::numbers::pi / 4 * el.diameter * el.diameter * el.length;
+    F += rhoV * aw + el.added_mass * (aw - aw.dot(e) * e);
   }
   // Ideal fluid: -dP/dt velocity terms and the Munk moment (paper 2.42).
   if (model.cable.added_mass_model == AddedMassModel::IdealFluid) {

@@ -49,7 +49,7 @@ nlohmann::ordered_json num(double v) {
 }
 
 /// One timeseries.csv row (with its newline), columns as timeseries_header().
-void timeseries_row(const Sample& s, bool has_body, std::string& out) {
+void timeseries_row(const Sample& s, bool has_body, bool has_waves, std::string& out) {
   const Vec3 end = s.node_pos.empty() ? Vec3::Constant(std::nan("")) : s.node_pos.back();
   put(out, s.t);
   put3(out, s.tow_pos);
@@ -70,6 +70,11 @@ void timeseries_row(const Sample& s, bool has_body, std::string& out) {
     put(out, -s.body_pos.z());
     out += ',';
     put(out, s.link_force.norm());
+  }
+  if (has_waves) {
+    out += ',';
+    put(out, s.wave_elevation);
+    put3(out, s.tow_wave);
   }
   out += '\n';
 }
@@ -120,19 +125,22 @@ void Extremes::add(const Sample& s) {
   }
 }
 
-std::string timeseries_header(bool has_body) {
+std::string timeseries_header(bool has_body, bool has_waves) {
   std::string h = "time,tow_x,tow_y,tow_z,tow_force_x,tow_force_y,tow_force_z,end_x,end_y,end_z";
   if (has_body)
     h += ",body_x,body_y,body_z,body_roll_deg,body_pitch_deg,body_yaw_deg,"
          "link_force_x,link_force_y,link_force_z";
   h += ",tow_tension,end_depth,tow_vx,tow_vy,tow_vz";
   if (has_body) h += ",body_depth,link_tension";
+  if (has_waves) h += ",wave_elevation,tow_wave_x,tow_wave_y,tow_wave_z";
   return h;
 }
 
-RunWriter::RunWriter(const std::string& dir, bool has_body, bool write_nodes) : has_body_(has_body) {
+RunWriter::RunWriter(const std::string& dir, bool has_body, bool write_nodes, bool has_waves,
+                     double statistics_start)
+    : has_body_(has_body), has_waves_(has_waves), sea_(statistics_start) {
   series_ = open_file(dir, "timeseries.csv");
-  write_all(series_, timeseries_header(has_body) + "\n");
+  write_all(series_, timeseries_header(has_body, has_waves) + "\n");
   if (write_nodes) {
     nodes_ = open_file(dir, "nodes.csv");
     write_all(nodes_, "time,node,x,y,z,vx,vy,vz,tension,axial_force\n");
@@ -146,9 +154,10 @@ RunWriter::~RunWriter() {
 
 void RunWriter::write(const Sample& s) {
   extremes_.add(s);
+  if (has_waves_) sea_.add(s);
   ++samples_;
   buf_.clear();
-  timeseries_row(s, has_body_, buf_);
+  timeseries_row(s, has_body_, has_waves_, buf_);
   write_all(series_, buf_);
   if (nodes_ == nullptr) return;
   buf_.clear();

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "towsim/integrators/system.hpp"
+#include "towsim/waves/vessel.hpp"
 
 namespace towsim {
 
@@ -47,6 +48,7 @@ Sample make_sample(const Model& model, System& sys, const StateVector& y, double
     out.body_omega = s.wb;
     out.link_force = ws.acc.link_force;
   }
+  if (has_sea(model)) sea_sample(model, t, out);
   return out;
 }
 

@@ -37,6 +37,8 @@ struct SteadyProblem {
   SteadyProblem(const Model& m, const Vec3& v) : model(m), V(v), ws(m), n(m.cable.n()) {
     model.tow.mode = Tow::Mode::Motion;
     model.tow.pieces.clear();  // a0 = 0; the velocity is set in the state
+    model.tow.vessel.reset();  // calm water: no ship motion, no waves
+    model.fluid.waves.reset();
     t1.resize(n);
     t2.resize(n);
     for (const Element& el : m.cable.elements)
@@ -115,7 +117,7 @@ void sweep_from_body(SteadyProblem& p) {
     const Element& el = m.cable.elements[k];
     Vec3 e = s.e[k], F, M;
     for (int it = 0; it < 30; ++it) {
-      element_loads(m, el, e, Vec3::Zero(), p.V, p.ws.G[k].z(), F, M);
+      element_loads(m, el, e, Vec3::Zero(), p.V, p.ws.G[k], 0.0, F, M);
       const Vec3 d = 0.5 * F - f;
       if (d.norm() < 1e-300) break;
       e = d.normalized();
@@ -135,7 +137,7 @@ Vec3 final_tow_velocity(const Tow& tow) {
   for (const auto& piece : tow.pieces) {
     if (piece.type == TowPiece::Type::Ramp) v += piece.speed * piece.direction.normalized();
     if (piece.type == TowPiece::Type::Track && piece.track_time.size() > 1)
-      v += tow_kinematics(Tow{Tow::Mode::Motion, Vec3::Zero(), {piece}, {}, {}}, piece.track_time.back()).vel;
+      v += tow_kinematics(Tow{Tow::Mode::Motion, Vec3::Zero(), {piece}, {}, {}, nullptr}, piece.track_time.back()).vel;
   }
   return v;
 }
@@ -207,7 +209,7 @@ StaticsResult steady_state(const Model& model) {
   if (model.tow.mode != Tow::Mode::Motion)
     throw std::runtime_error("initial: steady needs tow.mode: motion (the steady velocity comes from the tow law)");
   const TowKinematics k = tow_kinematics(model.tow, 0.0);
-  StaticsResult res = solve_statics(model, k.vel);
+  StaticsResult res = solve_statics(model, tow_law_kinematics(model.tow, 0.0).vel);  // the mean tow velocity
   if (!res.converged) throw std::runtime_error(res.message);
   res.state.r0 = k.pos;
   res.state.v0 = k.vel;

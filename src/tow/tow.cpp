@@ -113,7 +113,7 @@ TowKinematics straight_path(const Tow& tow, double t) {
 
 }  // namespace
 
-TowKinematics tow_kinematics(const Tow& tow, double t) {
+TowKinematics tow_law_kinematics(const Tow& tow, double t) {
   TowKinematics k = straight_path(tow, t);
   const auto turn = std::find_if(tow.pieces.begin(), tow.pieces.end(),
                                  [](const TowPiece& p) { return p.type == TowPiece::Type::Turn; });

@@ -12,10 +12,11 @@ double smooth_sign(double x, double v_s);
 /// normal pressure drag, tangential friction and the velocity terms of the
 /// ideal-fluid added mass (incl. the Munk moment). The acceleration terms of
 /// the added mass are NOT included: they belong to the mass matrix Mt, Ia.
-/// e: unit axis, edot = de/dt, vG: velocity of G, zG: height of G.
-/// Outputs: F [N, R_g] and moment about G, M [N m, R_g].
+/// With waves, also the wave inertia force rho V a_w + ma (I - ee^T) a_w.
+/// e: unit axis, edot = de/dt, vG: velocity of G, xG: position of G [m, R_g],
+/// t: time [s]. Outputs: F [N, R_g] and moment about G, M [N m, R_g].
 void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot,
-                   const Vec3& vG, double zG, Vec3& F, Vec3& M);
+                   const Vec3& vG, const Vec3& xG, double t, Vec3& F, Vec3& M);
 
 /// Translational inertia of an element at G: m I + ma (I - ee^T) [kg].
 Mat3 element_mass(const Element& el, const Vec3& e);
@@ -27,7 +28,8 @@ inline double element_rot_inertia(const Element& el) { return el.inertia + el.ad
 /// d(momentum, moment of momentum about O_t)/dt = Mw [a_O; alpha] + hw.
 /// Rigid part with absolute velocities, added mass with velocities relative to
 /// the water (Kirchhoff's equations). Needs ws.R, ws.O, ws.vO (compute_kinematics).
-void body_inertia(const Model& model, const PhysicalState& s, Workspace& ws);
+/// With waves, the water's acceleration at O_t enters the added-mass term.
+void body_inertia(const Model& model, const PhysicalState& s, Workspace& ws, double t = 0);
 
 /// External loads on the body except the link force: gravity, buoyancy,
 /// sphere, cylinder and lifting-surface loads, damping. Force ws.Fb [N] and

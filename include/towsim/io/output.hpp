@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "towsim/io/sea_statistics.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim::io {
@@ -41,7 +42,9 @@ class RunWriter : public OutputSink {
  public:
   /// Create the files in the existing directory `dir` and write their
   /// headers; throws std::runtime_error when a file cannot be created.
-  RunWriter(const std::string& dir, bool has_body, bool write_nodes);
+  /// With `has_waves`, the sea-state columns and statistics from `statistics_start` [s].
+  RunWriter(const std::string& dir, bool has_body, bool write_nodes, bool has_waves = false,
+            double statistics_start = 0);
   ~RunWriter() override;
   RunWriter(const RunWriter&) = delete;
   RunWriter& operator=(const RunWriter&) = delete;
@@ -52,11 +55,15 @@ class RunWriter : public OutputSink {
   void flush() override;
   /// Extremes of the samples written so far.
   const Extremes& extremes() const { return extremes_; }
+  /// Sea-state statistics of the samples written so far (has_waves).
+  const SeaStatistics& sea_statistics() const { return sea_; }
   /// Number of samples written.
   long samples() const { return samples_; }
 
  private:
   bool has_body_;
+  bool has_waves_;
+  SeaStatistics sea_;
   std::FILE* series_ = nullptr;
   std::FILE* nodes_ = nullptr;
   std::string buf_;
@@ -64,8 +71,9 @@ class RunWriter : public OutputSink {
   long samples_ = 0;
 };
 
-/// The timeseries.csv header for a run with or without a body (no newline).
-std::string timeseries_header(bool has_body);
+/// The timeseries.csv header for a run with or without a body, with or
+/// without waves (no newline).
+std::string timeseries_header(bool has_body, bool has_waves = false);
 
 /// summary.json content: model name, RunStats, extremes, the scenario echo.
 nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ using Mat3 = Eigen::Matrix3d;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Quat = Eigen::Quaterniond;
+
+struct WaveField;  // towsim/waves/waves.hpp
+class Vessel;      // towsim/waves/vessel.hpp
 
 /// Water and gravity. `rho == 0` means no fluid at all (vacuum).
 struct Fluid {
@@ -36,6 +40,13 @@ struct Fluid {
   /// dU/dz at height z [1/s, R_g] (zero for a uniform current).
   Vec3 current_gradient(double z) const;
   bool has_current() const { return !current_velocity.empty(); }
+
+  /// Waves (linear, long-crested), or none. Shared and immutable.
+  std::shared_ptr<const WaveField> waves;
+  /// Water velocity at x: current plus wave particle velocity [m/s, R_g].
+  Vec3 velocity(const Vec3& x, double t) const;
+  /// Water (local) acceleration at x: the waves' [m/s^2, R_g]; the current is steady.
+  Vec3 acceleration(const Vec3& x, double t) const;
 };
 
 /// Tangential (axial) friction law on a cable element (MODEL.md 3).
@@ -163,6 +174,9 @@ struct Tow {
   // Force: F_R(t) tabulated (one row = constant), linear interpolation [s], [N, R_g]
   std::vector<double> force_time;
   std::vector<Vec3> force_value;
+  /// Motion mode: a vessel whose wave motion carries the tow point on top of
+  /// the pieces (which then move its RAO origin), or none.
+  std::shared_ptr<const Vessel> vessel;
 };
 
 /// Kinematics of the tow point at one instant.
@@ -170,8 +184,11 @@ struct TowKinematics {
   Vec3 pos, vel, acc;  // [m], [m/s], [m/s^2], R_g
 };
 
-/// Imposed tow-point kinematics at time t (Motion mode).
+/// Imposed tow-point kinematics at time t (Motion mode): the pieces, then
+/// the vessel's wave motion when there is one (src/waves/vessel.cpp).
 TowKinematics tow_kinematics(const Tow& tow, double t);
+/// The pieces alone (the vessel's RAO origin when there is a vessel).
+TowKinematics tow_law_kinematics(const Tow& tow, double t);
 /// Imposed tow force at time t (Force mode) [N, R_g].
 Vec3 tow_force(const Tow& tow, double t);
 
@@ -199,6 +216,7 @@ struct Simulation {
   double max_step = 1.0;        // adaptive: largest step [s]
   Formulation formulation = Formulation::Default;
   bool write_nodes = true;      // write nodes.csv
+  double statistics_start = -1; // sea-state statistics from this time; < 0: half the duration [s]
 };
 
 /// The whole compiled system.

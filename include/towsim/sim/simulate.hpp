@@ -25,6 +25,9 @@ struct Sample {
   Vec3 body_rpy_deg;            // roll phi, pitch theta, yaw psi (ZYX as in the paper) [deg]
   Vec3 body_omega;              // angular velocity [rad/s, R_g]
   Vec3 link_force;              // F_L exerted by the cable on the body at Q [N, R_g]
+  bool has_waves = false;       // waves or a vessel in the model
+  double wave_elevation = 0;    // at the vessel's RAO origin (else at the tow point) [m]
+  Vec3 tow_wave = Vec3::Zero(); // tow point displacement by the vessel's wave motion [m, R_g]
 };
 
 /// Receives samples in time order. Implementations write files.

@@ -1,0 +1,42 @@
+// Sea-state statistics of a run's signals for summary.json (INTERFACE.md
+// "Ship motion from waves"): mean, standard deviation, extremes, mean
+// zero-up-crossing period and the most probable maximum over 3 hours.
+#pragma once
+
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "towsim/sim/simulate.hpp"
+
+namespace towsim::io {
+
+/// Duration of the most probable maximum [s] (a 3-hour storm).
+inline constexpr double kMpmDuration = 3 * 3600.0;
+
+/// Statistics of one sampled signal x(t).
+struct SignalStats {
+  long samples = 0;
+  double mean = 0, std = 0, min = 0, max = 0;  // [unit of x]
+  double zero_crossing_period = 0;  // record length / up-crossings of the mean [s]; 0 = none
+  double mpm = 0;  // mean + std sqrt(2 ln(kMpmDuration / Tz)) (Rayleigh maxima); NaN without crossings
+};
+
+/// Statistics of samples x at times t (equal length, increasing times).
+SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>& x);
+
+/// Collects tow tension, link force and body depth from `start` on.
+class SeaStatistics {
+ public:
+  explicit SeaStatistics(double start = 0) : start_(start) {}
+  /// Keep the sample's values when t >= start.
+  void add(const Sample& s);
+  /// {"from_time", "duration", "mpm_duration", "tow_tension": {...}, ...}.
+  nlohmann::ordered_json json() const;
+
+ private:
+  double start_;  // [s]
+  std::vector<double> t_, tension_, link_, depth_;
+};
+
+}  // namespace towsim::io
