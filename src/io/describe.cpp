@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "towsim/io/commands.hpp"
+#include "towsim/io/describe_sea.hpp"
 
 namespace towsim::io {
 namespace {
@@ -129,6 +130,7 @@ void describe_model(const Model& m, std::ostream& out) {
   else
     out << "body: none (free cable end)\n";
   describe_tow(m.tow, out);
+  describe_sea(m, out);
   describe_run(m, out);
 }
 

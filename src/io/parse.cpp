@@ -128,6 +128,9 @@ ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diag
   parse_tow(tow, s.tow, base_dir, d);
   tow.finish();
   parse_initial(r.get("initial"), s.initial, d);
+  MapReader sim(r.get("simulation", true), "simulation", d);
+  parse_simulation(sim, s.simulation);
+  sim.finish();
   MapReader waves(r.get("waves"), "waves", d);
   s.waves.present = waves.present();
   if (s.waves.present) parse_waves(waves, s.waves, d);
@@ -136,9 +139,6 @@ ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diag
   s.vessel.present = vessel.present();
   if (s.vessel.present) parse_vessel(vessel, s.vessel, base_dir, d);
   vessel.finish();
-  MapReader sim(r.get("simulation", true), "simulation", d);
-  parse_simulation(sim, s.simulation);
-  sim.finish();
   r.finish();
   return s;
 }

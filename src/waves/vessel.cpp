@@ -165,10 +165,12 @@ VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
 
 TowKinematics Vessel::tow_point(const TowKinematics& origin, double t) const {
   const VesselMotion m = motion(origin, t);
-  // Sheave in vessel axes: s = r_s + xi + theta x r_s (small angles, linear in the motions).
-  const Vec3 s = sheave_ + m.x.head<3>() + m.x.tail<3>().cross(sheave_);
-  const Vec3 sd = m.v.head<3>() + m.v.tail<3>().cross(sheave_);
-  const Vec3 sdd = m.a.head<3>() + m.a.tail<3>().cross(sheave_);
+  // Sheave in vessel axes: s = r_s + xi + theta x r_s (small angles, linear in
+  // the motions), theta = (roll, -pitch, yaw) about (x, y, z): pitch + = bow up.
+  const auto theta = [](const Vec6& x) { return Vec3(x[3], -x[4], x[5]); };
+  const Vec3 s = sheave_ + m.x.head<3>() + theta(m.x).cross(sheave_);
+  const Vec3 sd = m.v.head<3>() + theta(m.v).cross(sheave_);
+  const Vec3 sdd = m.a.head<3>() + theta(m.a).cross(sheave_);
   // Turned to the course psi about z; with psi' the course rate (psi'' = 0:
   // exact on straight legs and steady turns, see docs/theory.md).
   const Mat3 Rz = Eigen::AngleAxisd(m.course, Vec3::UnitZ()).toRotationMatrix();

@@ -77,9 +77,9 @@ TEST(Vessel, UnitHeaveRaoReproducesTheWave) {
 }
 
 // Pitch RAO only (2 deg/m, phase 0) and a sheave at x = -30 m: heave of the
-// sheave = -x * pitch (pitch in rad, + = bow down), and surge = z * pitch for a
+// sheave = x * pitch (pitch in rad, + = bow up), and surge = -z * pitch for a
 // sheave height z = 5 m (small-angle theta x r_s), to round-off.
-TEST(Vessel, PitchRaoMovesTheSheaveByMinusXTimesPitch) {
+TEST(Vessel, PitchRaoMovesTheSheaveByXTimesPitch) {
   auto w = regular(2.0, 8.0, 180);
   const double x = -30, z = 5;
   auto v = std::make_shared<const Vessel>(Vec3(x, 0, z), 0.0, w, table(kPitch, 2.0, 0.0));
@@ -88,8 +88,8 @@ TEST(Vessel, PitchRaoMovesTheSheaveByMinusXTimesPitch) {
     const double t = 0.13 * i;
     const double pitch = 2.0 * kPi / 180 * w->elevation(Vec3::Zero(), t);  // RAO 2 deg/m, in phase
     const TowKinematics k = tow_kinematics(tow, t);
-    EXPECT_NEAR(k.pos.z() - z, -x * pitch, 1e-12);
-    EXPECT_NEAR(k.pos.x() - x, z * pitch, 1e-12);
+    EXPECT_NEAR(k.pos.z() - z, x * pitch, 1e-12);
+    EXPECT_NEAR(k.pos.x() - x, -z * pitch, 1e-12);
   }
 }
 

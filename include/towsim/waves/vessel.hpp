@@ -3,9 +3,9 @@
 //
 // Vessel axes: origin at the RAO origin, x forward along the course, y to
 // port, z up. The six motions are surge, sway, heave [m] and roll, pitch,
-// yaw [rad, right-handed about x, y, z: roll + = starboard down, pitch + =
-// bow down, yaw + = bow to port]. The tow law moves the RAO origin; the
-// vessel's course is the direction of its horizontal velocity.
+// yaw [rad]: roll + = starboard down (about +x), pitch + = bow up (about -y:
+// a point at x rises by x pitch), yaw + = bow to port (about +z). The tow law
+// moves the RAO origin; the course is the direction of its horizontal velocity.
 #pragma once
 
 #include <memory>
@@ -53,8 +53,11 @@ class Vessel {
   /// The motions at t for the RAO origin moving as `origin` (the tow law).
   VesselMotion motion(const TowKinematics& origin, double t) const;
   /// The tow point: sheave offset r_s moved by the motions (small angles:
-  /// r_s + translation + theta x r_s), turned to the course, on the origin.
+  /// r_s + translation + theta x r_s, theta = (roll, -pitch, yaw)), turned to
+  /// the course, on the origin.
   TowKinematics tow_point(const TowKinematics& origin, double t) const;
+  /// True for a measured motion record (else RAOs).
+  bool measured() const { return !time_.empty(); }
   /// The sheave offset r_s [m, vessel axes].
   const Vec3& sheave() const { return sheave_; }
 
