@@ -124,7 +124,12 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     const RunStats stats = simulate_safely(model, writer, opts, err, stop_flag);
     auto summary = make_summary(to_json(sc.tree), model.name, stats, writer.extremes(), writer.samples(),
                                 model.has_body, model.sim.write_nodes);
-    if (sea) summary["statistics"] = writer.sea_statistics().json();
+    if (sea) {
+      summary["statistics"] = writer.sea_statistics().json();
+      if (!writer.sea_statistics().write_spectra((std::filesystem::path(opts.out_dir) / "spectra.csv").string()))
+        throw std::runtime_error("cannot write spectra.csv");
+      summary["files"]["spectra"] = "spectra.csv";
+    }
     if (!write_summary(opts.out_dir, summary)) throw std::runtime_error("cannot write summary.json");
     // Rigid elements can push; a real cable would go slack there.
     const Extreme& comp = writer.extremes().min_axial_force;

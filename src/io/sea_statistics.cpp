@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <fstream>
 #include <limits>
+#include <numbers>
 
 namespace towsim::io {
 
@@ -40,10 +43,59 @@ SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>
 void SeaStatistics::add(const Sample& s) {
   if (s.t < start_) return;
   t_.push_back(s.t);
+  eta_.push_back(s.wave_elevation);
   tension_.push_back(s.tow_force.norm());
   if (!s.has_body) return;
   link_.push_back(s.link_force.norm());
   depth_.push_back(-s.body_pos.z());
+}
+
+std::vector<std::pair<double, double>> spectral_density_estimate(const std::vector<double>& x, double dt, int band) {
+  std::vector<std::pair<double, double>> out;
+  const std::size_t N = x.size();
+  if (N < 4 || band < 1 || !(dt > 0)) return out;
+  double mean = 0;
+  for (double v : x) mean += v / static_cast<double>(N);
+  const double dw = 2 * std::numbers::pi / (static_cast<double>(N) * dt);
+  const std::size_t K = N / 2, b = static_cast<std::size_t>(band);
+  for (std::size_t k0 = 1; k0 + b - 1 <= K; k0 += b) {
+    double sum = 0;
+    for (std::size_t k = k0; k < k0 + b; ++k) {
+      // Direct DFT at omega_k by a rotating phasor (O(N) per frequency).
+      const std::complex<double> step = std::polar(1.0, -dw * static_cast<double>(k) * dt);
+      std::complex<double> z = 1, acc = 0;
+      for (double v : x) acc += (v - mean) * z, z *= step;
+      // Two-sided I at +/- omega_k, folded: the Nyquist bin (k = N/2, N even) is not doubled.
+      const double fold = (2 * k == N) ? 1.0 : 2.0;
+      sum += fold * dt / (2 * std::numbers::pi * static_cast<double>(N)) * std::norm(acc);
+    }
+    out.emplace_back(dw * (static_cast<double>(k0) + 0.5 * static_cast<double>(b - 1)), sum / static_cast<double>(b));
+  }
+  return out;
+}
+
+bool SeaStatistics::write_spectra(const std::string& path) const {
+  std::ofstream f(path);
+  f << "omega,wave_elevation,tow_tension,link_force,body_depth,body_heave_per_wave\n";
+  if (t_.size() >= 4) {
+    const double dt = (t_.back() - t_.front()) / static_cast<double>(t_.size() - 1);
+    constexpr int kBand = 5;  // Fourier bins per estimate: ~10 degrees of freedom
+    const auto se = spectral_density_estimate(eta_, dt, kBand), st = spectral_density_estimate(tension_, dt, kBand);
+    const auto sl = spectral_density_estimate(link_, dt, kBand), sd = spectral_density_estimate(depth_, dt, kBand);
+    double peak = 0;
+    for (const auto& p : se) peak = std::max(peak, p.second);
+    for (std::size_t j = 0; j < se.size(); ++j) {
+      f << se[j].first << ',' << se[j].second << ',' << st[j].second << ',';
+      if (!sl.empty()) f << sl[j].second;
+      f << ',';
+      if (!sd.empty()) f << sd[j].second;
+      f << ',';
+      if (!sd.empty() && peak > 0 && se[j].second >= 1e-3 * peak) f << std::sqrt(sd[j].second / se[j].second);
+      f << '\n';
+    }
+  }
+  f.flush();
+  return static_cast<bool>(f);
 }
 
 nlohmann::ordered_json SeaStatistics::json() const {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "../support/scenario_files.hpp"
 #include "towsim/io/examples.hpp"
@@ -135,6 +136,35 @@ TEST(SeaStatistics, SineHasClosedFormStatistics) {
   EXPECT_NEAR(s.max, m + A, 1e-9);
   EXPECT_NEAR(s.zero_crossing_period, T, 1e-6);
   EXPECT_NEAR(s.mpm, m + A / std::sqrt(2.0) * std::sqrt(2 * std::log(10800 / T)), 1e-6);
+}
+
+}  // namespace
+
+namespace {
+
+// Spectral estimate: Parseval (the estimates sum to the variance when the band
+// divides N/2, to round-off 1e-12 relative) and a sine's energy lands in the
+// band holding its frequency (a Fourier frequency, so no leakage).
+TEST(SeaStatistics, SpectralEstimateParsevalAndPeak) {
+  const double dt = 0.2;
+  const std::size_t N = 1000;  // N/2 = 500 = 100 bands of 5
+  const double w0 = 2 * std::numbers::pi * 37 / (N * dt);
+  std::vector<double> x(N);
+  std::mt19937_64 g(3);
+  double var = 0, mean = 0;
+  for (std::size_t n = 0; n < N; ++n) x[n] = 2 * std::cos(w0 * n * dt) + 0.3 * ((g() >> 11) * 0x1.0p-53 - 0.5);
+  for (double v : x) mean += v / N;
+  for (double v : x) var += (v - mean) * (v - mean) / N;
+  const auto S = towsim::io::spectral_density_estimate(x, dt, 5);
+  ASSERT_EQ(S.size(), 100u);
+  const double dw = 2 * std::numbers::pi / (N * dt);
+  double sum = 0, best = 0, wbest = 0;
+  for (const auto& [w, s] : S) {
+    sum += s * 5 * dw;
+    if (s > best) best = s, wbest = w;
+  }
+  EXPECT_NEAR(sum, var, 1e-12 * var);
+  EXPECT_NEAR(wbest, w0, 2.5 * dw) << "the peak band holds the sine's frequency";
 }
 
 }  // namespace
