@@ -15,6 +15,30 @@ namespace {
 constexpr long long kMaxComponents = 100000;  // waves.spectrum.components
 const char* const kDofNames[6] = {"surge", "sway", "heave", "roll", "pitch", "yaw"};
 
+/// A heading in [0, 360): -90 -> 270, 360 -> 0 [deg].
+double normal_heading(double h) {
+  double n = std::fmod(h, 360.0);
+  if (n < 0) n += 360;
+  return n == 360 ? 0.0 : n;
+}
+
+/// The rows that make the table: headings normalised to [0, 360); a row
+/// written at another turn of the same heading (360 for 0, -90 for 270) is
+/// dropped when that heading is also given as such.
+std::vector<RaoRowSpec> table_rows(const VesselSpec& v) {
+  std::vector<RaoRowSpec> out;
+  std::map<std::tuple<int, double, double>, bool> plain;
+  for (const auto& r : v.raos)
+    if (normal_heading(r.heading) == r.heading) plain[std::make_tuple(r.dof, r.period, r.heading)] = true;
+  for (RaoRowSpec r : v.raos) {
+    const double n = normal_heading(r.heading);
+    if (n != r.heading && plain.count(std::make_tuple(r.dof, r.period, n))) continue;
+    r.heading = n;
+    out.push_back(r);
+  }
+  return out;
+}
+
 /// Sorted distinct values.
 std::vector<double> distinct(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -27,8 +51,8 @@ void check_raos(const VesselSpec& v, Diagnostics& d) {
   for (const auto& r : v.raos) {
     const std::string& p = r.where.path;
     if (!(r.period > 0)) d.error(r.where.loc, p, "period must be > 0 (got " + fmt_num(r.period) + ")"), rows_ok = false;
-    if (!(r.heading >= 0 && r.heading < 360))
-      d.error(r.where.loc, p, "heading_deg must be in [0, 360) (got " + fmt_num(r.heading) + ")"), rows_ok = false;
+    if (!(r.heading >= -360 && r.heading <= 360))
+      d.error(r.where.loc, p, "heading_deg must be in [-360, 360] (got " + fmt_num(r.heading) + ")"), rows_ok = false;
     if (!(r.amplitude >= 0))
       d.error(r.where.loc, p, "amplitude must be >= 0 (got " + fmt_num(r.amplitude) + ")"), rows_ok = false;
   }
@@ -37,7 +61,8 @@ void check_raos(const VesselSpec& v, Diagnostics& d) {
   std::map<std::tuple<int, double, double>, const RaoRowSpec*> seen;
   std::vector<double> periods, headings;
   std::vector<bool> dofs(6, false);
-  for (const auto& r : v.raos) {
+  const std::vector<RaoRowSpec> rows = table_rows(v);
+  for (const auto& r : rows) {
     periods.push_back(r.period), headings.push_back(r.heading), dofs[static_cast<std::size_t>(r.dof)] = true;
     if (!seen.emplace(std::make_tuple(r.dof, r.period, r.heading), &r).second)
       d.error(r.where.loc, r.where.path,
@@ -60,11 +85,12 @@ void check_raos(const VesselSpec& v, Diagnostics& d) {
 
 RaoTable build_raos(const VesselSpec& v) {
   RaoTable t;
-  for (const auto& r : v.raos) t.periods.push_back(r.period), t.headings.push_back(r.heading);
+  const std::vector<RaoRowSpec> rows = table_rows(v);
+  for (const auto& r : rows) t.periods.push_back(r.period), t.headings.push_back(r.heading);
   t.periods = distinct(t.periods), t.headings = distinct(t.headings);
   t.amplitude.assign(6 * t.periods.size() * t.headings.size(), 0.0);  // a dof not given is zero
   t.phase_deg.assign(t.amplitude.size(), 0.0);
-  for (const auto& r : v.raos) {
+  for (const auto& r : rows) {
     const auto p = static_cast<std::size_t>(std::lower_bound(t.periods.begin(), t.periods.end(), r.period) - t.periods.begin());
     const auto h = static_cast<std::size_t>(std::lower_bound(t.headings.begin(), t.headings.end(), r.heading) - t.headings.begin());
     t.amplitude[t.index(r.dof, h, p)] = r.amplitude;

@@ -1,5 +1,6 @@
 // Parsing `waves:` and `vessel:` (INTERFACE.md "Ship motion from waves").
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 
@@ -45,7 +46,8 @@ bool rao_row(const std::vector<std::pair<std::string, int>>& f, const SourceLoc&
     }
     v[i] = *x;
   }
-  const std::string& dof = f[2].first;
+  std::string dof = f[2].first;
+  std::transform(dof.begin(), dof.end(), dof.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   const auto it = std::find(kDofs.begin(), kDofs.end(), dof);
   if (it == kDofs.end()) {
     d.error(SourceLoc{at.file, at.line, f[2].second}, path,

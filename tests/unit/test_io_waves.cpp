@@ -99,7 +99,14 @@ TEST_F(ScenarioFile, RaoCsvFileAndItsErrors) {
   EXPECT_EQ(s.diags.str(), in("raos.csv", "1:13: vessel.raos: expected a number (got 'x')"));
   write("5,400,heave,1,0\n", "raos.csv");
   s = load(head);
-  EXPECT_EQ(s.diags.str(), in("raos.csv", "1:1: vessel.raos: heading_deg must be in [0, 360) (got 400)"));
+  EXPECT_EQ(s.diags.str(), in("raos.csv", "1:1: vessel.raos: heading_deg must be in [-360, 360] (got 400)"));
+  // Headings are taken modulo 360 (a 360 row beside a 0 row is the same heading), dofs in any case.
+  write("5,0,Heave,1,0\n5,360,heave,1,0\n5,-90,HEAVE,0.5,0\n", "raos.csv");
+  s = load(head);
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  write("5,0,heave,1,0\n5,0,heave,1,0\n", "raos.csv");
+  s = load(head);
+  EXPECT_EQ(s.diags.str(), in("raos.csv", "2:1: vessel.raos: duplicate row for heave at period 5, heading 0"));
   s = load(kCable + kSim + "waves:\n  regular: {height: 1, period: 8}\nvessel:\n  raos: none.csv\n");
   EXPECT_EQ(s.diags.str(), at("11:9: vessel.raos: cannot open the RAO file '" + (dir_ / "none.csv").string() + "'"));
 }
