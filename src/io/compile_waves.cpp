@@ -154,8 +154,9 @@ void attach_waves(const ScenarioSpec& s, Model& m) {
   }
   const VesselSpec& v = s.vessel;
   if (!v.present) return;
+  std::shared_ptr<Vessel> vessel;
   if (v.raos_given) {
-    m.tow.vessel = std::make_shared<const Vessel>(v.tow_point.value, course0, field, build_raos(v));
+    vessel = std::make_shared<Vessel>(v.tow_point.value, course0, field, build_raos(v));
   } else {
     std::vector<double> t;
     std::vector<Vec6> x;
@@ -166,8 +167,10 @@ void attach_waves(const ScenarioSpec& s, Model& m) {
       row << r.values[1], r.values[2], r.values[3], r.values[4] * deg, r.values[5] * deg, r.values[6] * deg;
       x.push_back(row);
     }
-    m.tow.vessel = std::make_shared<const Vessel>(v.tow_point.value, course0, field, std::move(t), std::move(x));
+    vessel = std::make_shared<Vessel>(v.tow_point.value, course0, field, std::move(t), std::move(x));
   }
+  vessel->set_exact_rotations(v.rotations.value == "exact");
+  m.tow.vessel = vessel;
 }
 
 }  // namespace towsim::io

@@ -130,6 +130,7 @@ void parse_waves(MapReader& r, WavesSpec& w, Diagnostics& d) {
 void parse_vessel(MapReader& r, VesselSpec& v, const std::string& base_dir, Diagnostics& d) {
   v.where = r.where();
   r.read("tow_point", v.tow_point);
+  r.choice("rotations", v.rotations, {"small_angle", "exact"});
   if (const YNode* n = r.get("raos")) {
     v.raos_given = true;
     v.raos_where = r.where(*n, "raos");

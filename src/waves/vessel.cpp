@@ -13,6 +13,13 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180;
 constexpr double kRestSpeed = 1e-3;  // below this horizontal speed the course is course0 [m/s]
 
+/// cross_matrix(a) b = a x b.
+Mat3 cross_matrix(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
 /// Phase difference b - a wrapped into (-180, 180] [deg].
 double wrap180(double d) {
   d = std::fmod(d, 360.0);
@@ -168,9 +175,28 @@ TowKinematics Vessel::tow_point(const TowKinematics& origin, double t) const {
   // Sheave in vessel axes: s = r_s + xi + theta x r_s (small angles, linear in
   // the motions), theta = (roll, -pitch, yaw) about (x, y, z): pitch + = bow up.
   const auto theta = [](const Vec6& x) { return Vec3(x[3], -x[4], x[5]); };
-  const Vec3 s = sheave_ + m.x.head<3>() + theta(m.x).cross(sheave_);
-  const Vec3 sd = m.v.head<3>() + theta(m.v).cross(sheave_);
-  const Vec3 sdd = m.a.head<3>() + theta(m.a).cross(sheave_);
+  Vec3 s = sheave_ + m.x.head<3>() + theta(m.x).cross(sheave_);
+  Vec3 sd = m.v.head<3>() + theta(m.v).cross(sheave_);
+  Vec3 sdd = m.a.head<3>() + theta(m.a).cross(sheave_);
+  if (exact_) {
+    // R = A B C = Rz(q2) Ry(q1) Rx(q0), q = theta; each factor E about axis e:
+    // dE/dt = [e]x E q', d2E/dt2 = ([e]x^2 q'^2 + [e]x q'') E.
+    const Vec3 q = theta(m.x), qd = theta(m.v), qdd = theta(m.a);
+    Mat3 E[3], Ed[3], Edd[3];
+    for (int i = 0; i < 3; ++i) {
+      const Mat3 S = cross_matrix(Vec3::Unit(i));
+      E[i] = Eigen::AngleAxisd(q[i], Vec3::Unit(i)).toRotationMatrix();
+      Ed[i] = S * E[i] * qd[i];
+      Edd[i] = (S * S * qd[i] * qd[i] + S * qdd[i]) * E[i];
+    }
+    const Mat3 R = E[2] * E[1] * E[0];
+    const Mat3 Rd = Ed[2] * E[1] * E[0] + E[2] * Ed[1] * E[0] + E[2] * E[1] * Ed[0];
+    const Mat3 Rdd = Edd[2] * E[1] * E[0] + E[2] * Edd[1] * E[0] + E[2] * E[1] * Edd[0] +
+                     2 * (Ed[2] * Ed[1] * E[0] + Ed[2] * E[1] * Ed[0] + E[2] * Ed[1] * Ed[0]);
+    s = m.x.head<3>() + R * sheave_;
+    sd = m.v.head<3>() + Rd * sheave_;
+    sdd = m.a.head<3>() + Rdd * sheave_;
+  }
   // Turned to the course psi about z; with psi' the course rate (psi'' = 0:
   // exact on straight legs and steady turns, see docs/theory.md).
   const Mat3 Rz = Eigen::AngleAxisd(m.course, Vec3::UnitZ()).toRotationMatrix();

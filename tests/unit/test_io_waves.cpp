@@ -84,6 +84,14 @@ TEST_F(ScenarioFile, VesselErrors) {
                               "(each dof given needs every period x heading of the table)"));
 }
 
+TEST_F(ScenarioFile, VesselRotations) {
+  const std::string head = kCable + kSim + "waves:\n  regular: {height: 1, period: 8}\nvessel:\n  raos: [[5, 180, heave, 1, 0]]\n";
+  EXPECT_TRUE(load(head + "  rotations: exact\n").ok());
+  const auto s = load(head + "  rotations: exakt\n");
+  EXPECT_EQ(s.diags.str(),
+            at("12:14: vessel.rotations: expected one of small_angle, exact (got 'exakt'; did you mean 'exact'?)"));
+}
+
 TEST_F(ScenarioFile, RaoCsvFileAndItsErrors) {
   write("period,heading_deg,dof,amplitude,phase_deg\n5,180,heave,1,0\n12,180,heave,1,0\n", "raos.csv");
   const std::string head = kCable + kSim + "waves:\n  regular: {height: 1, period: 8}\nvessel:\n  raos: raos.csv\n";

@@ -191,6 +191,7 @@ struct VesselSpec {
   bool present = false;
   Where where;
   Field<Vec3> tow_point{Vec3::Zero()};  // sheave in vessel axes from the RAO origin [m]
+  Field<std::string> rotations{"small_angle"};  // small_angle | exact
   bool raos_given = false;
   Where raos_where;
   std::vector<RaoRowSpec> raos;

@@ -58,6 +58,9 @@ class Vessel {
   TowKinematics tow_point(const TowKinematics& origin, double t) const;
   /// True for a measured motion record (else RAOs).
   bool measured() const { return !time_.empty(); }
+  /// Turn the sheave offset by the exact rotation R = Rz(yaw) Ry(-pitch) Rx(roll)
+  /// instead of the small-angle theta x r_s (`vessel.rotations: exact`).
+  void set_exact_rotations(bool exact) { exact_ = exact; }
   /// The sheave offset r_s [m, vessel axes].
   const Vec3& sheave() const { return sheave_; }
 
@@ -70,6 +73,7 @@ class Vessel {
   std::vector<double> headings_;       // [deg]
   std::vector<double> amp_, lag_;      // [m/m or rad/m], [rad]
   bool mirror_ = false;                // headings only in [0, 180]: port-starboard symmetry
+  bool exact_ = false;                 // exact rotation of the sheave offset
   // Measured record.
   std::vector<double> time_;
   std::vector<Vec6> rec_, curv_;       // values and spline second derivatives
