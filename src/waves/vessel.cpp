@@ -133,21 +133,26 @@ VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
   // [0, 180] with sway, roll and yaw reversed when the table is one-sided.
   double beta = std::fmod((std::atan2(d.y(), d.x()) - m.course) / kDeg, 360.0);
   if (beta < 0) beta += 360;
+  // Its rate: beta' = -psi' [deg/s] (reversed when mirrored).
   double sign[6] = {1, 1, 1, 1, 1, 1};
+  double beta_rate = -m.course_rate / kDeg;
   if (mirror_ && beta > 180) {
     beta = 360 - beta;
+    beta_rate = -beta_rate;
     sign[1] = sign[3] = sign[5] = -1;
   }
   const std::size_t nh = headings_.size();
   std::size_t h0, h1;
-  double w;
+  double w, wd = 0;  // interpolation weight in heading and its rate [1/s]
   if (!mirror_ && nh > 1 && (beta < headings_.front() || beta > headings_.back())) {
     // Periodic table: between the last heading and the first + 360.
     h0 = nh - 1, h1 = 0;
     const double span = headings_.front() + 360 - headings_.back();
     w = (beta < headings_.front() ? beta + 360 - headings_.back() : beta - headings_.back()) / span;
+    wd = beta_rate / span;
   } else {
     bracket(headings_, beta, h0, h1, w);
+    if (h1 != h0) wd = beta_rate / (headings_[h1] - headings_[h0]);
   }
   const auto& comps = wf.components;
   for (std::size_t i = 0; i < comps.size(); ++i) {
@@ -158,13 +163,17 @@ VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
     const double* L0 = &lag_[(i * nh + h0) * 6];
     const double* L1 = &lag_[(i * nh + h1) * 6];
     for (int j = 0; j < 6; ++j) {
+      // A and the lag are linear in the heading weight w (A'' = lag'' = 0
+      // within a table interval; beta'' = -psi'' is taken as 0, see tow_point).
       const double A = sign[j] * ((1 - w) * A0[j] + w * A1[j]);
-      if (A == 0) continue;
-      const double lag = L0[j] + w * std::remainder(L1[j] - L0[j], 2 * std::numbers::pi);
+      const double Ad = sign[j] * wd * (A1[j] - A0[j]);
+      if (A == 0 && Ad == 0) continue;
+      const double dL = std::remainder(L1[j] - L0[j], 2 * std::numbers::pi);
+      const double lag = L0[j] + w * dL, phd = thd - wd * dL;  // phase th - lag and its rate
       const double cs = std::cos(th - lag), sn = std::sin(th - lag);
       m.x[j] += A * cs;
-      m.v[j] -= A * sn * thd;
-      m.a[j] -= A * (cs * thd * thd + sn * thdd);
+      m.v[j] += Ad * cs - A * sn * phd;
+      m.a[j] += -2 * Ad * sn * phd - A * (cs * phd * phd + sn * thdd);
     }
   }
   return m;
