@@ -118,6 +118,7 @@ void check_waves(const ScenarioSpec& s, Diagnostics& d) {
     }
     if (w.water_depth.given) check_positive(w.water_depth, d);
     if (w.statistics_start.given) check_non_negative(w.statistics_start, d);
+    check_non_negative(w.ramp_time, d);
   }
   const VesselSpec& v = s.vessel;
   if (!v.present) return;
@@ -143,12 +144,13 @@ void attach_waves(const ScenarioSpec& s, Model& m) {
     const double chi = course0 + w.heading_deg.value * std::numbers::pi / 180;  // travel direction in R_g
     const Vec3 dir(std::cos(chi), std::sin(chi), 0);
     const double depth = w.water_depth.given ? w.water_depth.value : std::numeric_limits<double>::infinity();
-    if (w.regular)
-      field = std::make_shared<const WaveField>(make_regular_wave(w.height.value, w.period.value, dir, depth, m.fluid.g));
-    else
-      field = std::make_shared<const WaveField>(make_irregular_sea(
-          w.hs.value, w.tp.value, w.type.value == "pierson_moskowitz" ? 1.0 : w.gamma.value,
-          static_cast<int>(w.components.value), static_cast<std::uint64_t>(w.seed.value), dir, depth, m.fluid.g));
+    WaveField built = w.regular ? make_regular_wave(w.height.value, w.period.value, dir, depth, m.fluid.g)
+                                : make_irregular_sea(w.hs.value, w.tp.value,
+                                                     w.type.value == "pierson_moskowitz" ? 1.0 : w.gamma.value,
+                                                     static_cast<int>(w.components.value),
+                                                     static_cast<std::uint64_t>(w.seed.value), dir, depth, m.fluid.g);
+    built.ramp_time = w.ramp_time.value;
+    field = std::make_shared<const WaveField>(std::move(built));
     if (m.fluid.rho > 0) m.fluid.waves = field;
     if (w.statistics_start.given) m.sim.statistics_start = w.statistics_start.value;
   }

@@ -104,6 +104,7 @@ void parse_waves(MapReader& r, WavesSpec& w, Diagnostics& d) {
   const YNode* spec = r.get("spectrum");
   r.read("water_depth", w.water_depth);
   r.read("statistics_start", w.statistics_start);
+  r.read("ramp_time", w.ramp_time);
   if ((reg == nullptr) == (spec == nullptr)) {
     d.error(w.where.loc, w.where.path.empty() ? "waves" : w.where.path,
             "give exactly one of 'regular' or 'spectrum'");

@@ -176,6 +176,14 @@ VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
       m.a[j] += -2 * Ad * sn * phd - A * (cs * phd * phd + sn * thdd);
     }
   }
+  // Build-up: r xi, (r xi)' and (r xi)''.
+  double r, rd, rdd;
+  wf.ramp(t, r, rd, rdd);
+  if (r != 1) {
+    m.a = r * m.a + 2 * rd * m.v + rdd * m.x;
+    m.v = r * m.v + rd * m.x;
+    m.x = r * m.x;
+  }
   return m;
 }
 

@@ -143,11 +143,26 @@ WaveField make_irregular_sea(double hs, double tp, double gamma, int n, std::uin
   return w;
 }
 
+void WaveField::ramp(double t, double& r, double& rd, double& rdd) const {
+  r = 1, rd = 0, rdd = 0;
+  if (!(ramp_time > 0) || t >= ramp_time) return;
+  if (t <= 0) {
+    r = 0;
+    return;
+  }
+  const double s = t / ramp_time, T = ramp_time;
+  r = s * s * s * (10 - 15 * s + 6 * s * s);
+  rd = 30 * s * s * (1 - s) * (1 - s) / T;
+  rdd = 60 * s * (1 - s) * (1 - 2 * s) / (T * T);
+}
+
 double WaveField::elevation(const Vec3& x, double t) const {
   const double s = direction.x() * x.x() + direction.y() * x.y();
   double eta = 0;
   for (const auto& c : components) eta += c.amplitude * std::cos(c.omega * t - c.k * s - c.phase);
-  return eta;
+  double r, rd, rdd;
+  ramp(t, r, rd, rdd);
+  return r * eta;
 }
 
 Vec3 WaveField::velocity(const Vec3& x, double t) const {
@@ -162,22 +177,28 @@ Vec3 WaveField::velocity(const Vec3& x, double t) const {
     uh += aw * C * std::cos(th);
     w -= aw * S * std::sin(th);
   }
-  return Vec3(uh * direction.x(), uh * direction.y(), w);
+  double r, rd, rdd;
+  ramp(t, r, rd, rdd);
+  return r * Vec3(uh * direction.x(), uh * direction.y(), w);
 }
 
 Vec3 WaveField::acceleration(const Vec3& x, double t) const {
   if (x.z() > 0) return Vec3::Zero();
   const double s = direction.x() * x.x() + direction.y() * x.y();
-  double ah = 0, az = 0;
+  double r, rd, rdd;
+  ramp(t, r, rd, rdd);
+  double ah = 0, az = 0, uh = 0, w = 0;
   for (const auto& c : components) {
     if (c.z_cut > x.z()) break;
     double C, S;
     depth_factors(c.k, x.z(), depth, C, S);
-    const double th = c.omega * t - c.k * s - c.phase, aw2 = c.amplitude * c.omega * c.omega;
-    ah -= aw2 * C * std::sin(th);
-    az -= aw2 * S * std::cos(th);
+    const double th = c.omega * t - c.k * s - c.phase, aw = c.amplitude * c.omega, aw2 = aw * c.omega;
+    const double cs = std::cos(th), sn = std::sin(th);
+    ah -= aw2 * C * sn;
+    az -= aw2 * S * cs;
+    if (rd != 0) uh += aw * C * cs, w -= aw * S * sn;  // d(r u)/dt = r' u + r du/dt during the build-up
   }
-  return Vec3(ah * direction.x(), ah * direction.y(), az);
+  return Vec3((r * ah + rd * uh) * direction.x(), (r * ah + rd * uh) * direction.y(), r * az + rd * w);
 }
 
 double WaveField::variance() const {

@@ -191,6 +191,25 @@ TEST(Vessel, TowPointRatesAreDerivativesOfPosition) {
     }
 }
 
+// Build-up: during the waves' ramp_time the motions are scaled by r(t) and
+// the tow point's rates still match finite differences of its position.
+TEST(Vessel, BuildUpRampKeepsRatesConsistent) {
+  WaveField wf = make_irregular_sea(3.0, 9.0, 3.3, 40, 3, Vec3(-1, 0, 0), kInf, kG);
+  wf.ramp_time = 30;
+  auto w = std::make_shared<const WaveField>(wf);
+  auto v = std::make_shared<const Vessel>(Vec3(-30, 2, 5), 0.0, w, table(kPitch, 2.0, 30.0));
+  const Tow tow = tow_at(2.0, v);
+  EXPECT_NEAR(tow_kinematics(tow, 0.0).pos.z(), 5.0, 1e-15);  // no motion yet
+  for (double t0 : {3.0, 15.0, 29.0}) {
+    auto pos = [&](double s) { return Eigen::VectorXd(tow_kinematics(tow, s).pos); };
+    auto vel = [&](double s) { return Eigen::VectorXd(tow_kinematics(tow, s).vel); };
+    const auto [dp, bp] = towsim::testing::fd_with_bound(pos, t0, 1e-4);
+    const auto [dv, bv] = towsim::testing::fd_with_bound(vel, t0, 1e-4);
+    EXPECT_LE((dp - Eigen::VectorXd(tow_kinematics(tow, t0).vel)).norm(), bp) << "t = " << t0;
+    EXPECT_LE((dv - Eigen::VectorXd(tow_kinematics(tow, t0).acc)).norm(), bv) << "t = " << t0;
+  }
+}
+
 /// Mean zero-up-crossing period of the tow point's heave about its mean
 /// (linear interpolation of the crossings, sampled at dt).
 double heave_period(const Tow& tow, double duration, double dt) {

@@ -233,3 +233,26 @@ TEST(Waves, JonswapRecordHasHsAndTp) {
 }
 
 }  // namespace
+
+namespace {
+
+// Build-up (ramp_time): nothing at t = 0, the full sea after it, and during it
+// the acceleration is still the time derivative of the velocity (r' u + r
+// du/dt), by central differences with their bound plus the phase round-off.
+TEST(Waves, BuildUpRampIsSmoothAndConsistent) {
+  WaveField w = towsim::make_irregular_sea(3.0, 9.0, 3.3, 30, 7, Vec3::UnitX(), kInf, kG);
+  const WaveField full = w;
+  w.ramp_time = 20;
+  const Vec3 x(4, 0, -3);
+  EXPECT_EQ(w.elevation(x, 0.0), 0.0);
+  EXPECT_EQ(w.velocity(x, 0.0), Vec3::Zero());
+  EXPECT_EQ(w.velocity(x, 25.0), full.velocity(x, 25.0));
+  EXPECT_EQ(w.acceleration(x, 25.0), full.acceleration(x, 25.0));
+  for (double t : {0.5, 7.0, 13.3, 19.9}) {
+    auto u_t = [&](double s) { return v3(w.velocity(x, s)); };
+    const auto [du, b] = fd_with_bound(u_t, t, 1e-4);
+    EXPECT_LE((du - v3(w.acceleration(x, t))).norm(), b + 1e-10) << "t = " << t;
+  }
+}
+
+}  // namespace

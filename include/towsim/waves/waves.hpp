@@ -37,12 +37,18 @@ struct WaveField {
   double depth = std::numeric_limits<double>::infinity();  // water depth h [m]; infinity = deep
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();    // unit horizontal travel direction d [-, R_g]
   std::vector<WaveComponent> components;                   // sorted by z_cut, deepest first
+  double ramp_time = 0;  // build-up: everything scaled by r(t), 0 -> 1 over [0, ramp_time] [s]
+
+  /// Build-up factor r(t) = s^3 (10 - 15 s + 6 s^2), s = t / ramp_time in [0, 1]
+  /// (twice continuously differentiable), and its first two derivatives.
+  void ramp(double t, double& r, double& rd, double& rdd) const;
 
   /// Surface elevation eta at the horizontal position of x [m].
   double elevation(const Eigen::Vector3d& x, double t) const;
   /// Particle velocity at x [m/s, R_g]; zero above the still surface (z > 0).
   Eigen::Vector3d velocity(const Eigen::Vector3d& x, double t) const;
-  /// Particle (local) acceleration du/dt at x [m/s^2, R_g]; zero for z > 0.
+  /// Particle (local) acceleration du/dt at x [m/s^2, R_g] (with the
+  /// build-up's rate: d(r u)/dt); zero for z > 0.
   Eigen::Vector3d acceleration(const Eigen::Vector3d& x, double t) const;
   /// Sum of the component variances a_i^2 / 2 [m^2] (Hs = 4 sqrt of it).
   double variance() const;
