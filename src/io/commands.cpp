@@ -119,12 +119,11 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     return kExitError;
   }
   try {
-    const bool sea = has_sea(model);
-    RunWriter writer(opts.out_dir, model.has_body, model.sim.write_nodes, sea, statistics_start(model));
+    RunWriter writer(opts.out_dir, model, model.sim.write_nodes);
     const RunStats stats = simulate_safely(model, writer, opts, err, stop_flag);
     auto summary = make_summary(to_json(sc.tree), model.name, stats, writer.extremes(), writer.samples(),
-                                model.has_body, model.sim.write_nodes);
-    if (sea) {
+                                      model, model.sim.write_nodes);
+    if (has_sea(model)) {
       summary["statistics"] = writer.sea_statistics().json();
       if (!writer.sea_statistics().write_spectra((std::filesystem::path(opts.out_dir) / "spectra.csv").string()))
         throw std::runtime_error("cannot write spectra.csv");

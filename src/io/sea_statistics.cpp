@@ -40,14 +40,15 @@ SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>
   return s;
 }
 
-void SeaStatistics::add(const Sample& s) {
+void SeaStatistics::add(const Model& model, const Sample& s) {
   if (s.t < start_) return;
   t_.push_back(s.t);
   eta_.push_back(s.wave_elevation);
   tension_.push_back(s.tow_force.norm());
-  if (!s.has_body) return;
-  link_.push_back(s.link_force.norm());
-  depth_.push_back(-s.body_pos.z());
+  if (end_body(model) == nullptr || s.bodies.empty()) return;
+  const BodySample& b = s.bodies.back();  // the end body is the last of the chain
+  link_.push_back(b.link_force.norm());
+  depth_.push_back(-b.pos.z());
 }
 
 std::vector<std::pair<double, double>> spectral_density_estimate(const std::vector<double>& x, double dt, int band) {

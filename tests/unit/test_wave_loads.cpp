@@ -77,17 +77,16 @@ TEST(WaveLoads, NeutralSphereFollowsTheOrbitalMotion) {
   m.fluid.waves = sea();
   for (const Vec3& O : {Vec3(0, 0, -2), Vec3(30, -7, -15)})
     for (double t : {1.0, 44.4}) {
-      PhysicalState s = PhysicalState::hanging(m.cable.n());
-      Workspace ws(m);
-      ws.R = Mat3::Identity();
-      ws.O = O;
-      ws.vO = m.fluid.velocity(O, t);
-      ws.wB.setZero();
-      body_inertia(m, s, ws, t);
-      body_loads(m, s, t, ws);
+      BodyWork bw;
+      bw.R = Mat3::Identity();
+      bw.O = O;
+      bw.vO = m.fluid.velocity(O, t);
+      bw.w.setZero();
+      body_inertia(m.fluid, m.bodies[0], bw, t);
+      body_loads(m.fluid, m.bodies[0], t, bw);
       Vec6 rhs;
-      rhs << ws.Fb, ws.Mb;
-      const Vec6 acc = ws.Mw.ldlt().solve(rhs - ws.hw);
+      rhs << bw.Fb, bw.Mb;
+      const Vec6 acc = bw.Mw.ldlt().solve(rhs - bw.hw);
       const Vec3 aw = m.fluid.acceleration(O, t);
       EXPECT_LE((acc.head<3>() - aw).norm(), 1e-10 * aw.norm()) << "t = " << t;
       EXPECT_LE(acc.tail<3>().norm(), 1e-10);

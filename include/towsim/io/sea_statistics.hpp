@@ -39,8 +39,8 @@ std::vector<std::pair<double, double>> spectral_density_estimate(const std::vect
 class SeaStatistics {
  public:
   explicit SeaStatistics(double start = 0) : start_(start) {}
-  /// Keep the sample's values when t >= start.
-  void add(const Sample& s);
+  /// Keep the sample's values when t >= start (body: the end body).
+  void add(const Model& model, const Sample& s);
   /// {"from_time", "duration", "mpm_duration", "tow_tension": {...}, ...}.
   nlohmann::ordered_json json() const;
   /// spectra.csv: omega, spectral densities of wave elevation, tow tension,
