@@ -94,3 +94,28 @@ TEST(WaveLoads, NeutralSphereFollowsTheOrbitalMotion) {
 }
 
 }  // namespace
+
+namespace {
+
+// A neutrally buoyant attachment (mass = rho V) moving with the water: its
+// lumped load is its inertia times the water's acceleration, Fa = Ma a_w
+// (Froude-Krylov + added mass; no drag at zero relative velocity), 1e-12.
+TEST(WaveLoads, NeutralAttachmentFollowsTheWater) {
+  towsim::testing::CableSpec c;
+  Model m = towsim::testing::cable_model(c);
+  m.fluid.waves = sea();
+  Attachment a;
+  a.joint = 2, a.volume = 0.05, a.mass = 1025 * 0.05, a.drag_area = 0.3, a.added_mass = 20;
+  m.cable.attachments.push_back(a);
+  Workspace ws(m);
+  const Vec3 P(3, -1, -4);
+  const double t = 12.5;
+  ws.P[2] = P;
+  ws.vP[2] = m.fluid.velocity(P, t);
+  attachment_loads(m, ws, t);
+  const Vec3 aw = m.fluid.acceleration(P, t);
+  EXPECT_LE((ws.Fa[2] - ws.Ma[2] * aw).norm(), 1e-12 * (ws.Ma[2] * aw).norm());
+  EXPECT_GT(aw.norm(), 1e-3);
+}
+
+}  // namespace
