@@ -41,7 +41,7 @@ Model bench_model(int n, bool body) {
   spec.tangential = 0.02;
   Model m = testing::cable_model(spec);
   if (body) testing::add_sphere_body(m);
-  m.tow.pieces.push_back({TowPiece::Type::Ramp, Vec3(1, 0, 0), 1.57, 15.0, 0, 0, 0, 0, true, {}, {}});
+  m.tow.pieces.push_back(Ramp{Vec3(1, 0, 0), 1.57, 15.0});
   return m;
 }
 

@@ -43,10 +43,7 @@ void tow_point(benchmark::State& st) {
   t.amplitude.assign(36, 1.0);
   t.phase_deg.assign(36, 10.0);
   Tow tow;
-  TowPiece p;
-  p.type = TowPiece::Type::Ramp;
-  p.speed = 2;
-  tow.pieces.push_back(p);
+  tow.pieces.push_back(Ramp{Vec3::UnitX(), 2.0, 0.0});
   tow.vessel = std::make_shared<const Vessel>(Vec3(-30, 0, 5), 0.0, sea(), t);
   double time = 0;
   for (auto _ : st) {
@@ -62,7 +59,7 @@ void forward_dynamics_waves(benchmark::State& st) {
   spec.length = 10.0 * spec.n;
   Model m = testing::cable_model(spec);
   if (st.range(1)) m.fluid.waves = sea();
-  PhysicalState s = PhysicalState::hanging(m.cable.n());
+  PhysicalState s = PhysicalState::hanging(m);
   Workspace ws(m);
   double t = 0;
   for (auto _ : st) {

@@ -94,9 +94,8 @@ void body_inertia(const Fluid& fluid, const Body& b, BodyWork& ws, double t) {
   const Vec3 vb = R.transpose() * ws.vO;
   const Vec3 wb = R.transpose() * ws.w;
   const Vec3 vr = R.transpose() * (ws.vO - fluid.velocity(ws.O, t));
-  // Rate of the water velocity seen by the body: the sheared current along
-  // its path, plus the waves' local acceleration (docs/theory.md "Wave loads").
-  const Vec3 dU = R.transpose() * (fluid.current_gradient(ws.O.z()) * ws.vO.z() + fluid.acceleration(ws.O, t));
+  // Rate of change of the water velocity seen by O_t as it moves.
+  const Vec3 dU = R.transpose() * fluid.rate_seen(ws.O, ws.vO, t);
   Vec6 nu, nur;
   nu << vb, wb;
   nur << vr, wb;
@@ -127,7 +126,8 @@ void body_loads(const Fluid& fluid, const Body& b, double t, BodyWork& ws) {
   add_force(ws, ws.R * b.cg, Vec3(0, 0, -b.mass * g));
   add_force(ws, ws.R * b.buoyancy_center, Vec3(0, 0, rho * g * b.displaced_volume));
   if (rho == 0) return;
-  // Waves: Froude-Krylov force rho V a_w at the centre of the displaced volume.
+  // Waves: Froude-Krylov force rho V a_w at the centre of the displaced volume
+  // (the added mass's part is in body_inertia through rate_seen).
   if (fluid.waves) {
     const Vec3 cb = ws.R * b.buoyancy_center;
     add_force(ws, cb, rho * b.displaced_volume * fluid.acceleration(ws.O + cb, t));

@@ -15,7 +15,6 @@ Mat3 element_mass(const Element& el, const Vec3& e) {
 void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot,
                    const Vec3& vG, const Vec3& xG, double t, Vec3& F, Vec3& M) {
   const Fluid& fluid = model.fluid;
-  const double zG = xG.z();
   // Weight and buoyancy (apparent weight), along -z.
   F = Vec3(0, 0, -el.weight);
   M.setZero();
@@ -36,18 +35,14 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
     F -= el.friction_factor * std::abs(ue) * ue * e;
 
   // Added mass: the relative velocity also changes as G moves through a
-  // sheared current, du/dt = a_G - U'(z) zdot; the U' term is known here.
-  if (fluid.current_velocity.size() > 1) {
-    const Vec3 dU = fluid.current_gradient(zG) * vG.z();
+  // non-uniform flow, du/dt = a_G - rate seen by G; that rate is known here.
+  if (!fluid.uniform()) {
+    const Vec3 dU = fluid.rate_seen(xG, vG, t);
     F += el.added_mass * (dU - dU.dot(e) * e);
   }
-  // Waves: Froude-Krylov rho V a_w plus the added mass's ma (I - ee^T) a_w
-  // (a_w the water's local acceleration; docs/theory.md "Wave loads").
-  if (fluid.waves) {
-    const Vec3 aw = fluid.acceleration(xG, t);
-    const double rhoV = fluid.rho * std::numbers::pi / 4 * el.diameter * el.diameter * el.length;
-    F += rhoV * aw + el.added_mass * (aw - aw.dot(e) * e);
-  }
+  // Waves: Froude-Krylov rho V a_w (the added mass's part is in rate_seen).
+  if (fluid.waves)
+    F += fluid.rho * std::numbers::pi / 4 * el.diameter * el.diameter * el.length * fluid.acceleration(xG, t);
   // Ideal fluid: -dP/dt velocity terms and the Munk moment (paper 2.42).
   if (model.cable.added_mass_model == AddedMassModel::IdealFluid) {
     F += el.added_mass * (edot * ue + e * edot.dot(u));
@@ -59,7 +54,7 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
 
 namespace towsim {
 
-void attachment_loads(const Model& model, Workspace& ws, double t) {
+void attachment_loads(const Model& model, double t, Workspace& ws) {
   const Fluid& fluid = model.fluid;
   for (std::size_t k = 0; k < ws.Ma.size(); ++k) ws.Ma[k].setZero(), ws.Fa[k].setZero();
   for (const Attachment& a : model.cable.attachments) {
@@ -71,11 +66,11 @@ void attachment_loads(const Model& model, Workspace& ws, double t) {
     if (fluid.rho == 0) continue;
     const Vec3 u = ws.vP[k] - fluid.velocity(ws.P[k], t);
     ws.Fa[k] -= 0.5 * fluid.rho * a.drag_area * u.norm() * u;
-    // Waves: Froude-Krylov plus added mass on the water's acceleration.
-    if (fluid.waves) ws.Fa[k] += (fluid.rho * a.volume + a.added_mass) * fluid.acceleration(ws.P[k], t);
-    // Added mass in a sheared current: the water's velocity at the moving
-    // joint changes at U'(z) zdot, known here (as for the elements).
-    if (fluid.current_velocity.size() > 1) ws.Fa[k] += a.added_mass * fluid.current_gradient(ws.P[k].z()) * ws.vP[k].z();
+    // Added mass in a non-uniform flow: the water's velocity seen by the
+    // moving joint changes at a known rate (as for the elements).
+    if (!fluid.uniform()) ws.Fa[k] += a.added_mass * fluid.rate_seen(ws.P[k], ws.vP[k], t);
+    // Waves: Froude-Krylov rho V a_w.
+    if (fluid.waves) ws.Fa[k] += fluid.rho * a.volume * fluid.acceleration(ws.P[k], t);
   }
 }
 

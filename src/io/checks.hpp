@@ -41,8 +41,9 @@ void build_chain(const CableSpec& c, const BodySpec& end_body, Model& model);
 
 /// Check the tow's values; needs no tow errors so far for the turn-speed check.
 void check_tow(const TowSpec& t, Diagnostics& d);
-/// Build the Tow from a checked spec.
-Tow build_tow(const TowSpec& t, bool include_turns = true);
+/// Build the Tow from a checked spec (without turns and speed changes: the
+/// offsets alone, whose velocity starts the course).
+Tow build_tow(const TowSpec& t, bool include_manoeuvres = true);
 
 /// Check `waves:` and `vessel:` (src/io/compile_waves.cpp).
 void check_waves(const ScenarioSpec& s, Diagnostics& d);

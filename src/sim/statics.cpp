@@ -108,7 +108,7 @@ void sweep_from_bottom(SteadyProblem& p) {
   s.v0 = p.V;
   compute_kinematics(m, s, p.ws);  // depths of the hanging guess (for a current profile)
   for (auto& v : p.ws.vP) v = p.V;
-  attachment_loads(m, p.ws);
+  attachment_loads(m, 0.0, p.ws);
   Vec3 f = -p.ws.Fa.back();  // force through the joint below the element
   for (int k = p.n - 1; k >= 0; --k) {
     const int bi = p.ws.body_at[static_cast<std::size_t>(k + 1)];
@@ -138,9 +138,14 @@ void sweep_from_bottom(SteadyProblem& p) {
 Vec3 final_tow_velocity(const Tow& tow) {
   Vec3 v = Vec3::Zero();
   for (const auto& piece : tow.pieces) {
-    if (piece.type == TowPiece::Type::Ramp) v += piece.speed * piece.direction.normalized();
-    if (piece.type == TowPiece::Type::Track && piece.track_time.size() > 1)
-      v += tow_kinematics(Tow{Tow::Mode::Motion, Vec3::Zero(), {piece}, {}, {}, nullptr}, piece.track_time.back()).vel;
+    if (const auto* ramp = std::get_if<Ramp>(&piece)) v += ramp->speed * ramp->direction.normalized();
+    if (const auto* track = std::get_if<Track>(&piece); track != nullptr && track->time.size() > 1)
+      v += track->at(track->time.back()).vel;
+  }
+  // Manoeuvres: the course's last speed and heading replace the horizontal part.
+  CourseState c;
+  if (final_course(tow, c)) {
+    v = Vec3(c.U * c.h.x(), c.U * c.h.y(), v.z());
   }
   return v;
 }

@@ -42,11 +42,7 @@ RaoTable table(int dof, double amplitude, double phase_deg, std::vector<double> 
 /// A tow at speed U along +x from t = 0 (no ramp), carrying `vessel`.
 Tow tow_at(double U, std::shared_ptr<const Vessel> vessel) {
   Tow tow;
-  TowPiece p;
-  p.type = TowPiece::Type::Ramp;
-  p.direction = Vec3::UnitX();
-  p.speed = U;
-  tow.pieces.push_back(p);
+  tow.pieces.push_back(Ramp{Vec3::UnitX(), U, 0.0});
   tow.vessel = std::move(vessel);
   return tow;
 }
@@ -174,8 +170,7 @@ TEST(Vessel, TowPointRatesAreDerivativesOfPosition) {
   // has kinks at the table's headings), where the RAOs' heading rates count.
   Tow straight = tow_at(2.0, v);
   Tow turning = tow_at(2.0, v);
-  TowPiece turn;
-  turn.type = TowPiece::Type::Turn;
+  Turn turn;
   turn.start_time = 1.0;
   turn.radius = 150;
   turning.pieces.push_back(turn);

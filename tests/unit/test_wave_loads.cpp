@@ -112,7 +112,7 @@ TEST(WaveLoads, NeutralAttachmentFollowsTheWater) {
   const double t = 12.5;
   ws.P[2] = P;
   ws.vP[2] = m.fluid.velocity(P, t);
-  attachment_loads(m, ws, t);
+  attachment_loads(m, t, ws);
   const Vec3 aw = m.fluid.acceleration(P, t);
   EXPECT_LE((ws.Fa[2] - ws.Ma[2] * aw).norm(), 1e-12 * (ws.Ma[2] * aw).norm());
   EXPECT_GT(aw.norm(), 1e-3);

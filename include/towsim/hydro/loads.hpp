@@ -12,7 +12,6 @@ double smooth_sign(double x, double v_s);
 /// normal pressure drag, tangential friction and the velocity terms of the
 /// ideal-fluid added mass (incl. the Munk moment). The acceleration terms of
 /// the added mass are NOT included: they belong to the mass matrix Mt, Ia.
-/// With waves, also the wave inertia force rho V a_w + ma (I - ee^T) a_w.
 /// e: unit axis, edot = de/dt, vG: velocity of G, xG: position of G [m, R_g],
 /// t: time [s]. Outputs: F [N, R_g] and moment about G, M [N m, R_g].
 void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot,
@@ -28,19 +27,18 @@ inline double element_rot_inertia(const Element& el) { return el.inertia + el.ad
 /// d(momentum, moment of momentum about O_t)/dt = Mw [a_O; alpha] + hw.
 /// Rigid part with absolute velocities, added mass with velocities relative to
 /// the water (Kirchhoff's equations). Needs bw's kinematics (compute_kinematics).
-/// With waves, the water's acceleration at O_t enters the added-mass term.
+/// t: time [s] (the water's velocity may depend on it; steady flows ignore it).
 void body_inertia(const Fluid& fluid, const Body& body, BodyWork& bw, double t = 0);
 
 /// External loads on the body except the link force: gravity, buoyancy,
-/// sphere, cylinder and lifting-surface loads, damping, and with waves the
-/// Froude-Krylov force. Force bw.Fb [N] and moment about O_t bw.Mb [N m], both R_g.
+/// sphere, cylinder and lifting-surface loads, damping. Force bw.Fb [N] and
+/// moment about O_t bw.Mb [N m], both R_g.
 void body_loads(const Fluid& fluid, const Body& body, double t, BodyWork& bw);
 
 /// Loads of the attachments lumped at each joint: ws.Ma (mass + added mass)
 /// and ws.Fa (apparent weight, drag on the velocity relative to the water).
-/// With waves, also Froude-Krylov + added mass on the water's acceleration.
 /// Needs the joints' kinematics (compute_kinematics).
-void attachment_loads(const Model& model, Workspace& ws, double t = 0);
+void attachment_loads(const Model& model, double t, Workspace& ws);
 
 /// Lift coefficient of a lifting surface at angle of attack alpha [rad]:
 /// linear up to stall, then falling smoothly to zero at 90 degrees.
