@@ -11,6 +11,8 @@
 
 #include "towsim/io/commands.hpp"
 #include "towsim/io/plot.hpp"
+#include "towsim/io/report.hpp"
+#include "towsim/io/sweep.hpp"
 
 namespace {
 
@@ -88,6 +90,23 @@ void add_plot_command(CLI::App& app, int& status) {
   cmd->callback([dir, opts, &status] { status = plot_run(*dir, std::cerr, *opts); });
 }
 
+/// `towsim report DIR`: DIR/report.html (src/io/report.cpp).
+void add_report_command(CLI::App& app, int& status) {
+  auto dir = std::make_shared<std::string>();
+  auto opts = std::make_shared<ReportOptions>(default_report_options());
+  auto no_plots = std::make_shared<bool>(false);
+  CLI::App* cmd = app.add_subcommand(
+      "report", "Write DIR/report.html: a self-contained page with a 3-D view, the figures and the summary");
+  cmd->add_option("dir", *dir, "Output directory of `towsim run` or `towsim statics --out`")->required();
+  cmd->add_option("--frames", opts->max_frames, "Animation frames (spread over the output times)")
+      ->check(CLI::Range(1, 5000));
+  cmd->add_flag("--no-plots", *no_plots, "Use DIR/plots as it is instead of rendering the figures first");
+  cmd->callback([dir, opts, no_plots, &status] {
+    opts->plots = !*no_plots;
+    status = report_run(*dir, std::cerr, *opts);
+  });
+}
+
 /// `towsim statics SCENARIO.yaml [--set K=V]... [--out DIR]`.
 void add_statics_command(CLI::App& app, int& status) {
   auto opts = std::make_shared<StaticsOptions>();
@@ -97,6 +116,21 @@ void add_statics_command(CLI::App& app, int& status) {
   cmd->callback([opts, &status] {
     require_one_input(opts->input);
     status = statics_command(*opts, std::cout, std::cerr);
+  });
+}
+
+/// `towsim sweep SWEEP.yaml --out DIR [--jobs N] [--quiet]`.
+void add_sweep_command(CLI::App& app, int& status) {
+  auto opts = std::make_shared<SweepOptions>();
+  CLI::App* cmd = app.add_subcommand("sweep", "Run a base scenario over a grid or list of overrides; DIR/sweep.csv");
+  cmd->add_option("sweep", opts->file, "Sweep file (YAML; docs/scenario.md \"Sweeps\")")->required();
+  cmd->add_option("--out,-o", opts->out_dir, "Output directory (created if missing)")->required();
+  cmd->add_option("--jobs,-j", opts->jobs, "Cases run at once (default: every core)")->check(CLI::Range(1, 4096));
+  cmd->add_flag("--quiet,-q", opts->quiet, "Print nothing but errors");
+  cmd->callback([opts, &status] {
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    status = sweep_command(*opts, std::cout, std::cerr, &g_stop);
   });
 }
 
@@ -111,6 +145,8 @@ int main(int argc, char** argv) {
   add_examples_command(app, status);
   add_plot_command(app, status);
   add_statics_command(app, status);
+  add_report_command(app, status);
+  add_sweep_command(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -2,6 +2,9 @@
 #include "towsim/waves/vessel.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -25,17 +28,26 @@ std::string unknown_example(const std::string& name) {
   return msg + "; `towsim examples` lists them";
 }
 
-/// A progress bar on `err`, redrawn when the percentage changes.
+/// A progress bar on `err`, redrawn when the percentage changes: the
+/// simulated time reached and the estimated wall time left.
 class ProgressBar {
  public:
-  explicit ProgressBar(std::ostream& err) : err_(err) {}
+  ProgressBar(std::ostream& err, double duration)
+      : err_(err), duration_(duration), start_(std::chrono::steady_clock::now()) {}
   void operator()(double fraction) {
-    const int pct = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100.0);
+    const double f = std::clamp(fraction, 0.0, 1.0);
+    const int pct = static_cast<int>(f * 100.0);
     if (pct == last_) return;
     last_ = pct;
     const int filled = pct * kWidth / 100;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    char eta[32] = "";
+    if (f > 0.01 && f < 1) std::snprintf(eta, sizeof eta, ", ETA %.0f s", wall * (1 - f) / f);
+    char t[64];
+    std::snprintf(t, sizeof t, " t = %.6g / %.6g s", tidy_time(f * duration_), duration_);
     err_ << "\r[" << std::string(static_cast<std::size_t>(filled), '#')
-         << std::string(static_cast<std::size_t>(kWidth - filled), ' ') << "] " << pct << "%" << std::flush;
+         << std::string(static_cast<std::size_t>(kWidth - filled), ' ') << "] " << pct << "%" << t << eta
+         << "   " << std::flush;
   }
   void done() {
     if (last_ >= 0) err_ << "\n" << std::flush;
@@ -44,13 +56,15 @@ class ProgressBar {
  private:
   static constexpr int kWidth = 40;
   std::ostream& err_;
+  double duration_;  // [s] simulated
+  std::chrono::steady_clock::time_point start_;
   int last_ = -1;
 };
 
 /// Run the simulation into `writer`; exceptions become a failed run.
 RunStats simulate_safely(const Model& model, RunWriter& writer, const RunOptions& opts, std::ostream& err,
                          const volatile int* stop_flag) {
-  ProgressBar bar(err);
+  ProgressBar bar(err, model.sim.duration);
   ProgressFn progress;
   if (opts.progress && !opts.quiet) progress = [&bar](double f) { bar(f); };
   RunStats stats;
@@ -65,9 +79,39 @@ RunStats simulate_safely(const Model& model, RunWriter& writer, const RunOptions
   return stats;
 }
 
+/// `name` of the final row as text with its unit, "?" when absent.
+std::string final_value(const nlohmann::ordered_json& row, const char* name, const char* unit) {
+  if (!row.is_object() || !row.contains(name) || !row[name].is_number()) return "?";
+  return fmt_num(row[name].get<double>()) + unit;
+}
+
+/// An extreme as "V unit at t = T s".
+std::string extreme_text(const Extreme& e, const char* unit) {
+  if (std::isnan(e.value)) return "?";
+  return fmt_num(e.value) + unit + " at t = " + fmt_num(e.time) + " s";
+}
+
+}  // namespace
+
+std::string end_of_run_line(const Model& model, const RunStats& stats, const nlohmann::ordered_json& final_row,
+                            const Extremes& ex, long samples, const std::string& out_dir) {
+  // The results an engineer reads first, then the run's cost.
+  const bool body = end_body(model) != nullptr;
+  std::string s = model.name + ": t = " + fmt_num(tidy_time(stats.end_time)) + " s: layback " +
+                  final_value(final_row, "layback", " m") + ", " + (body ? "body" : "end") + " depth " +
+                  final_value(final_row, body ? "body_depth" : "end_depth", " m") + ", tow tension " +
+                  final_value(final_row, "tow_tension", " N") + "; max tow tension " +
+                  extreme_text(ex.max_tow_tension, " N") + "; " + std::to_string(samples) + " samples to " + out_dir +
+                  " (" + std::to_string(stats.steps) + " steps, " + std::to_string(stats.rhs_evaluations) +
+                  " RHS evaluations, " + fmt_num(std::round(stats.wall_seconds * 1e3) / 1e3) + " s wall)";
+  return s;
+}
+
+namespace {
+
 /// Print the outcome and map RunStats.status to an exit status.
 int report_run(const RunStats& stats, const Model& model, const RunOptions& opts, long samples,
-               std::ostream& out, std::ostream& err) {
+               const nlohmann::ordered_json& final_row, const Extremes& ex, std::ostream& out, std::ostream& err) {
   if (stats.status == "failed") {
     err << "towsim: simulation failed (t = " << fmt_num(stats.end_time) << " s reached): " << stats.message
         << " (results up to then are in " << opts.out_dir << ")\n";
@@ -78,10 +122,7 @@ int report_run(const RunStats& stats, const Model& model, const RunOptions& opts
         << opts.out_dir << ")\n";
     return kExitInterrupted;
   }
-  if (!opts.quiet)
-    out << model.name << ": " << samples << " samples to " << opts.out_dir << " (t = " << fmt_num(stats.end_time)
-        << " s, " << stats.steps << " steps, " << stats.rhs_evaluations << " RHS evaluations, "
-        << fmt_num(stats.wall_seconds) << " s wall)\n";
+  if (!opts.quiet) out << end_of_run_line(model, stats, final_row, ex, samples, opts.out_dir) << "\n";
   return kExitOk;
 }
 
@@ -119,10 +160,10 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     return kExitError;
   }
   try {
+    remove_run_outputs(opts.out_dir);  // no stale file of a previous run
     RunWriter writer(opts.out_dir, model, model.sim.write_nodes);
     const RunStats stats = simulate_safely(model, writer, opts, err, stop_flag);
-    auto summary = make_summary(to_json(sc.tree), model.name, stats, writer.extremes(), writer.samples(),
-                                      model, model.sim.write_nodes);
+    auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, model.sim.write_nodes);
     if (has_sea(model)) {
       summary["statistics"] = writer.sea_statistics().json();
       if (!writer.sea_statistics().write_spectra((std::filesystem::path(opts.out_dir) / "spectra.csv").string()))
@@ -135,7 +176,7 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     if (!opts.quiet && comp.value < 0)
       err << "towsim: warning: the cable was in compression (axial force " << fmt_num(comp.value) << " N at t = "
           << fmt_num(comp.time) << " s; see axial_force in nodes.csv): a real cable would go slack there\n";
-    return report_run(stats, model, opts, writer.samples(), out, err);
+    return report_run(stats, model, opts, writer.samples(), writer.final_row(), writer.extremes(), out, err);
   } catch (const std::exception& e) {
     err << "towsim: " << e.what() << "\n";
     return kExitError;

@@ -20,6 +20,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "towsim/io/run_files.hpp"
+
 extern char** environ;
 
 namespace towsim::io {
@@ -172,8 +174,12 @@ struct Run {
   bool second_sphere = false;      // plot the second sphere's centre
   std::array<double, 3> sphere2{};  // its centre, body axes
   double t0 = 0, t1 = 0;
+  double t_last = 0;               // the last row's time [s]
+  long rows = 0;                   // timeseries rows
   double min_dt = 0;               // smallest output interval
   std::vector<double> snapshot_times;
+  bool single = false;             // one output time: a statics configuration
+  bool has_layback = false;        // timeseries.csv has the layback column
   double marker_every = 10;        // s between trajectory markers
   int marker_rows = 1;             // the same in rows
   // Data spans for the equal-scale decisions.
@@ -217,7 +223,8 @@ std::string preamble(const Run& run, const std::string& name, const std::string&
     << "set key outside right top vertical reverse Left samplen 2 spacing 1.1 width 1\n"
     << "set border lw 1.2\n"
     << "ts = '../timeseries.csv'\n"
-    << "nodes = '../nodes.csv'\n";
+    << "# Node data: cable_shapes.dat and tension_map.dat beside this script, extracted\n"
+    << "# from ../nodes.csv in one pass by `towsim plot` (gnuplot never reads nodes.csv).\n";
   return s.str();
 }
 
@@ -422,16 +429,15 @@ std::string fig_shapes(const Run& run, const PlotOptions& opt, bool plan) {
   s << title(run, std::string(plan ? "cable shapes, plan view (x-y)" : "cable shapes, side view (x-z)") + scale);
   s << "set xlabel 'x (m)'\nset ylabel " << (plan ? "'y (m)'" : "'z (m), up; surface z = 0'") << "\n"
     << "set key title 'time'\n"
-    << "# Joints P_0 (tow point) .. P_n of each snapshot; rows of other times are skipped.\n"
-    << "tol = " << num(run.min_dt > 0 ? 0.25 * run.min_dt : 1e-6) << "\n"
-    << "at(T, c) = abs(column('time') - T) < tol ? column(c) : NaN\n";
+    << "# cable_shapes.dat: one block (index k) per snapshot, columns time, node, x, y, z, tension.\n"
+    << "shapes = 'cable_shapes.dat'\n";
   std::ostringstream p;
   p << "plot ";
   const int n = static_cast<int>(run.snapshot_times.size());
   for (int k = 0; k < n; ++k) {
     const std::string T = num(run.snapshot_times[static_cast<std::size_t>(k)]);
     if (k > 0) p << ", \\\n  ";
-    p << "nodes using (at(" << T << ", 'x')):(at(" << T << ", '" << v << "')) with linespoints lw 2 pt 7 ps 0.5 lc rgb '"
+    p << "shapes index " << k << " using 3:" << (plan ? 4 : 5) << " with linespoints lw 2 pt 7 ps 0.5 lc rgb '"
       << ramp(k, n) << "' title '" << T << " s'";
   }
   if (n == 0) p << "NaN notitle";
@@ -439,6 +445,117 @@ std::string fig_shapes(const Run& run, const PlotOptions& opt, bool plan) {
     p << ", \\\n  ts using 'tow_x':'tow_y' with lines lw 1 dt 3 lc rgb '#909090' title 'tow path'";
   s << render(name, p.str(), o);
   return s.str();
+}
+
+std::string fig_depth_layback(const Run& run, const PlotOptions& o) {
+  const std::string name = "depth_layback";
+  const std::string who = run.has_body ? "body origin O_t" : "cable lower end P_n";
+  const std::string p = run.has_body ? "body_" : "end_";
+  std::ostringstream s;
+  s << preamble(run, name, "depth of the " + who + " against layback");
+  s << title(run, "depth against layback of the " + who);
+  s << "set xlabel 'layback: horizontal distance from the tow point (m)'\n"
+    << "set ylabel 'depth -z (m), downwards'\nset yrange [*:*] reverse\n";
+  if (run.has_layback) s << "lay(dummy) = column('layback')\n";
+  else
+    s << "lay(dummy) = sqrt((column('" << p << "x') - column('tow_x'))**2 + (column('" << p
+      << "y') - column('tow_y'))**2)\n";
+  std::ostringstream q;
+  q << "plot ts using (lay(0)):(-column('" << p << "z')) with lines lw 2 lc rgb '" << kPalette[run.has_body ? 3 : 1]
+    << "' title " << quote(who) << ", \\\n"
+    << "  ts every ::0::0 using (lay(0)):(-column('" << p << "z')) with points pt 4 ps 1.5 lc rgb '#000000' title "
+    << quote("start, t = " + num(run.t0) + " s") << ", \\\n"
+    << "  ts using (lay(0)):(-column('" << p << "z')) every ::" << std::max<long>(0, run.rows - 1)
+    << " with points pt 7 ps 1.5 lc rgb '#000000' title " << quote("end, t = " + num(run.t_last) + " s");
+  s << render(name, q.str(), o);
+  return s.str();
+}
+
+std::string fig_tension_map(const Run& run, const PlotOptions& o) {
+  const std::string name = "tension_map";
+  std::ostringstream s;
+  s << preamble(run, name, "tension along the cable against time");
+  s << title(run, "tension along the cable against time");
+  s << "# tension_map.dat: one block per output time (at most 200, evenly spread), columns time,\n"
+    << "# distance along the cable from the tow point (m), tension (N).\n"
+    << "unset datafile columnheaders\n"
+    << "set view map\nset pm3d map corners2color c1\nunset key\nunset grid\n"
+    << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 '#fde725')\n"
+    << "set xlabel 'time (s)'\nset ylabel 'distance along the cable from the tow point (m)'\n"
+    << "set cblabel 'tension (N)'\nset autoscale fix\nset yrange [*:*] reverse\n"
+    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n";
+  s << render(name, "splot 'tension_map.dat' using 1:2:3 with pm3d notitle", o);
+  return s.str();
+}
+
+std::string fig_tension_along(const Run& run, const PlotOptions& o) {
+  const std::string name = "tension_along_cable";
+  std::ostringstream s;
+  s << preamble(run, name, "tension along the cable");
+  s << title(run, "tension along the cable" + (run.single ? std::string() : " (snapshots)"));
+  s << "unset datafile columnheaders\n"
+    << "set xlabel 'distance along the cable from the tow point (m)'\nset ylabel 'tension (N)'\n"
+    << "set key title 'time'\n";
+  std::ostringstream p;
+  p << "plot ";
+  const int n = static_cast<int>(run.snapshot_times.size());
+  for (int k = 0; k < n; ++k) {
+    if (k > 0) p << ", \\\n  ";
+    p << "'cable_shapes.dat' index " << k << " using 7:6 with linespoints lw 2 pt 7 ps 0.5 lc rgb '" << ramp(k, n)
+      << "' title '" << num(run.snapshot_times[static_cast<std::size_t>(k)]) << " s'";
+  }
+  if (n == 0) p << "NaN notitle";
+  s << render(name, p.str(), o);
+  return s.str();
+}
+
+/// Write the node data the figures read (cable_shapes.dat, tension_map.dat)
+/// from ONE pass over nodes.csv. False with `error` set on failure.
+bool write_node_data(const fs::path& root, const fs::path& plots, const Run& run, const std::vector<double>& times,
+                     std::string& error) {
+  // Wanted: the snapshots and up to 200 heat-map columns.
+  std::vector<double> map_times;
+  for (std::size_t i : spread_indices(times.size(), 200)) map_times.push_back(times[i]);
+  std::vector<double> wanted = map_times;
+  wanted.insert(wanted.end(), run.snapshot_times.begin(), run.snapshot_times.end());
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  std::vector<NodeFrame> frames;
+  if (!read_node_frames((root / "nodes.csv").string(), wanted, frames, error)) return false;
+  auto find = [&frames](double t) -> const NodeFrame* {
+    for (const auto& f : frames)
+      if (std::abs(f.t - t) <= 1e-9 * std::max(1.0, std::abs(t))) return &f;
+    return nullptr;
+  };
+  std::ofstream sh(plots / "cable_shapes.dat", std::ios::trunc);
+  sh << "# towsim plot: the cable at the snapshot times, one block per time (gnuplot index k)\n"
+     << "# time,node,x,y,z,tension,distance_along_cable\n";
+  for (double t : run.snapshot_times) {
+    const NodeFrame* f = find(t);
+    if (f != nullptr) {
+      const auto arc = arc_lengths(*f);
+      for (std::size_t k = 0; k < f->x.size(); ++k)
+        sh << num(f->t) << ',' << k << ',' << num(f->x[k]) << ',' << num(f->y[k]) << ',' << num(f->z[k]) << ','
+           << num(f->tension[k]) << ',' << num(arc[k]) << '\n';
+    }
+    sh << "\n\n";
+  }
+  std::ofstream tm(plots / "tension_map.dat", std::ios::trunc);
+  tm << "# towsim plot: tension along the cable, one block per output time\n"
+     << "# time,distance_along_cable,tension\n";
+  for (double t : map_times) {
+    const NodeFrame* f = find(t);
+    if (f == nullptr) continue;
+    const auto arc = arc_lengths(*f);
+    for (std::size_t k : spread_indices(f->x.size(), 100))
+      tm << num(f->t) << ',' << num(arc[k]) << ',' << num(f->tension[k]) << '\n';
+    tm << '\n';
+  }
+  if (!sh || !tm) {
+    error = "cannot write the node data in " + plots.string();
+    return false;
+  }
+  return true;
 }
 
 bool exists_file(const fs::path& p) {
@@ -457,13 +574,21 @@ std::string join(const std::vector<std::string>& v, const std::string& sep, cons
 
 }  // namespace
 
-std::vector<std::string> plot_names(bool has_body, bool three_d) {
+std::vector<std::string> plot_names(bool has_body, bool three_d, bool single) {
+  if (single) {  // one configuration (towsim statics --out): no time histories
+    std::vector<std::string> names{"cable_shapes_xz"};
+    if (three_d) names.push_back("cable_shapes_xy");
+    names.push_back("tension_along_cable");
+    return names;
+  }
   std::vector<std::string> names{"trajectories_xz", "tow_force"};
   if (three_d) names.push_back("paths_xy");
   names.push_back("end_depth");
+  names.push_back("depth_layback");
   if (has_body) names.push_back("body_angles");
   names.push_back("cable_shapes_xz");
   if (three_d) names.push_back("cable_shapes_xy");
+  names.push_back("tension_map");
   if (has_body) names.push_back("link_force");
   return names;
 }
@@ -472,7 +597,7 @@ int plot_run(const std::string& dir, std::ostream& log) { return plot_run(dir, l
 
 int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) {
   const fs::path root(dir);
-  const char* kUsage = "expected the output directory of `towsim run --out DIR`";
+  const char* kUsage = "expected the output directory of `towsim run --out DIR` or `towsim statics --out DIR`";
 
   // 1. The run's files.
   std::error_code ec;
@@ -502,15 +627,15 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   std::vector<std::string> missing;
   if (!exists_file(root / "timeseries.csv")) missing.push_back("timeseries.csv");
   if (run.has_nodes && !exists_file(root / "nodes.csv")) missing.push_back("nodes.csv");
-  if (!summary_ok && !exists_file(root / "summary.json")) missing.push_back("summary.json");
   if (!missing.empty()) {
     log << "towsim plot: " << dir << " has no " << join(missing, ", ", " and ") << " (" << kUsage << ")\n";
     return kInvalid;
   }
-  if (!summary_ok) {
+  if (!summary_ok && exists_file(root / "summary.json")) {
     log << "towsim plot: " << (root / "summary.json").string() << ": not a JSON object\n";
     return kInvalid;
   }
+  if (!summary_ok) summary = nlohmann::json::object();  // optional: e.g. an older `towsim statics --out`
 
   // 2. What the run is.
   run.model = summary.value("model", std::string());
@@ -543,6 +668,7 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
     return kInvalid;
   }
   run.has_body = ts.has("body_x");
+  run.has_layback = ts.has("layback");
   std::vector<std::string> need{"time", "tow_x", "tow_y", "tow_z", "tow_force_x", "tow_force_y", "tow_force_z",
                                 "end_x", "end_y", "end_z"};
   if (run.has_body)
@@ -598,6 +724,9 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   }
   run.t0 = times.front();
   run.t1 = times.back();
+  run.t_last = times.back();
+  run.rows = static_cast<long>(ts.rows.size());
+  run.single = times.size() == 1;
   if (run.t1 <= run.t0) run.t1 = run.t0 + 1;  // a single row: still a valid range
   run.min_dt = 0;
   for (std::size_t i = 1; i < times.size(); ++i) {
@@ -653,6 +782,7 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
 
   // 4. Scripts, then figures.
   const fs::path plots = root / "plots";
+  fs::remove_all(plots, ec);  // towsim's folder: no stale figure of an earlier run
   fs::create_directories(plots, ec);
   if (ec) {
     log << "towsim plot: cannot create " << plots.string() << ": " << ec.message() << "\n";
@@ -660,10 +790,17 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   }
   if (run.status != "ok")
     log << "towsim plot: note: the run ended with status '" << run.status << "'; plotting what it wrote\n";
+  if (run.has_nodes) {  // nodes.csv, read once
+    std::string error;
+    if (!write_node_data(root, plots, run, times, error)) {
+      log << "towsim plot: " << error << "\n";
+      return kInvalid;
+    }
+  }
   const std::string mag_tow = ts.has("tow_tension") ? "tow_tension" : "";
   const std::string mag_link = ts.has("link_tension") ? "link_tension" : "";
   std::vector<std::pair<std::string, std::string>> scripts;
-  for (const auto& name : plot_names(run.has_body, run.three_d)) {
+  for (const auto& name : plot_names(run.has_body, run.three_d, run.single)) {
     std::string text;
     if (name == "trajectories_xz") text = fig_trajectories(run, opt);
     else if (name == "tow_force")
@@ -677,7 +814,15 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
         continue;
       }
       text = fig_shapes(run, opt, name == "cable_shapes_xy");
-    } else if (name == "link_force")
+    } else if (name == "tension_map" || name == "tension_along_cable") {
+      if (!run.has_nodes) {
+        log << "towsim plot: skipped " << name << " (the run wrote no nodes.csv)\n";
+        continue;
+      }
+      text = name == "tension_map" ? fig_tension_map(run, opt) : fig_tension_along(run, opt);
+    } else if (name == "depth_layback")
+      text = fig_depth_layback(run, opt);
+    else if (name == "link_force")
       text = fig_components(run, opt, name, "link force exerted by the cable on the body", "link_force_", mag_link,
                             "F_L");
     scripts.emplace_back(name, text);

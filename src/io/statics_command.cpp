@@ -72,10 +72,21 @@ int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream&
       err << "towsim: statics: " << opts.out_dir << ": cannot create the directory: " << ec.message() << "\n";
       return kExitError;
     }
+    remove_run_outputs(opts.out_dir);  // no stale file of a previous run
     RunWriter writer(opts.out_dir, model, true);
     writer.write(s);
     writer.flush();
-    out << "  written: " << opts.out_dir << "/timeseries.csv, " << opts.out_dir << "/nodes.csv\n";
+    RunStats stats;  // a statics "run": one sample at t = 0
+    stats.status = r.converged ? "ok" : "failed";
+    stats.message = r.converged ? "" : r.message;
+    stats.steps = r.iterations;
+    const auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, true);
+    if (!write_summary(opts.out_dir, summary)) {
+      err << "towsim: statics: cannot write " << opts.out_dir << "/summary.json\n";
+      return kExitError;
+    }
+    out << "  written: " << opts.out_dir << "/timeseries.csv, " << opts.out_dir << "/nodes.csv, " << opts.out_dir
+        << "/summary.json\n";
   }
   if (!r.converged) {
     err << "towsim: statics: " << r.message << "\n";

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
+#include <utility>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -196,5 +198,59 @@ class Child {
   bool waited_ = false;
   int status_ = 0;
 };
+
+/// Run a shell command; returns (exit status, stdout + stderr).
+inline std::pair<int, std::string> shell(const std::string& cmd) {
+  std::string out;
+  FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
+  if (p == nullptr) return {-1, out};
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
+  const int st = ::pclose(p);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+/// Run the towsim binary with `args`; returns (exit status, stdout + stderr).
+inline std::pair<int, std::string> towsim_cli(const std::string& args) {
+  return shell(std::string("'") + TOWSIM_BINARY + "' " + args);
+}
+
+/// A CSV file as text cells: header and rows.
+struct TextCsv {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  int col(const std::string& n) const {
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == n) return static_cast<int>(i);
+    return -1;
+  }
+  /// Cell (r, name) as a number (exact parse of the written text).
+  double num(std::size_t r, const std::string& n) const {
+    const std::string& s = rows.at(r).at(static_cast<std::size_t>(col(n)));
+    double v = 0;
+    std::from_chars(s.data(), s.data() + s.size(), v);
+    return v;
+  }
+};
+
+inline std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> out(1);
+  for (char c : line) {
+    if (c == ',') out.emplace_back();
+    else out.back() += c;
+  }
+  return out;
+}
+
+inline TextCsv read_text_csv(const std::filesystem::path& p) {
+  TextCsv t;
+  std::ifstream in(p);
+  std::string line;
+  if (std::getline(in, line)) t.header = split_csv(line);
+  while (std::getline(in, line))
+    if (!line.empty()) t.rows.push_back(split_csv(line));
+  return t;
+}
 
 }  // namespace towsim::testing

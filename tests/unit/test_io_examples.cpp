@@ -118,7 +118,7 @@ TEST(IoOutput, TimeseriesColumnsAndExtremes) {
     EXPECT_DOUBLE_EQ(w.extremes().min_axial_force.value, -2.0);
     towsim::RunStats st;
     st.end_time = 0.5;
-    const auto j = make_summary({{"cable", {{"elements", 1}}}}, "m", st, w.extremes(), w.samples(), model, true);
+    const auto j = make_summary({{"cable", {{"elements", 1}}}}, "m", st, w, true);
     ASSERT_TRUE(write_summary(dir.string(), j));
   }
   const auto ts = lines_of(dir / "timeseries.csv");

@@ -81,10 +81,15 @@ class PlotRun : public towsim::testing::TempDirTest {
 
 TEST(PlotNames, DependOnBodyAndDimension) {
   EXPECT_EQ(plot_names(false, false),
-            (std::vector<std::string>{"trajectories_xz", "tow_force", "end_depth", "cable_shapes_xz"}));
+            (std::vector<std::string>{"trajectories_xz", "tow_force", "end_depth", "depth_layback", "cable_shapes_xz",
+                                      "tension_map"}));
   EXPECT_EQ(plot_names(true, true),
-            (std::vector<std::string>{"trajectories_xz", "tow_force", "paths_xy", "end_depth", "body_angles",
-                                      "cable_shapes_xz", "cable_shapes_xy", "link_force"}));
+            (std::vector<std::string>{"trajectories_xz", "tow_force", "paths_xy", "end_depth", "depth_layback",
+                                      "body_angles", "cable_shapes_xz", "cable_shapes_xy", "tension_map",
+                                      "link_force"}));
+  // One output time (towsim statics --out): shapes and tension only.
+  EXPECT_EQ(plot_names(true, true, true),
+            (std::vector<std::string>{"cable_shapes_xz", "cable_shapes_xy", "tension_along_cable"}));
 }
 
 TEST_F(PlotRun, RendersEveryFigureOfA3DRunWithABody) {
@@ -124,8 +129,9 @@ TEST_F(PlotRun, WithoutNodesWhenTheRunWroteNone) {
   write_run(false, false, /*nodes=*/false);
   std::ostringstream log;
   ASSERT_EQ(plot_run(dir_.string(), log), 0) << log.str();
-  expect_figures({"trajectories_xz", "tow_force", "end_depth"});
+  expect_figures({"trajectories_xz", "tow_force", "end_depth", "depth_layback"});
   EXPECT_FALSE(fs::exists(dir_ / "plots" / "cable_shapes_xz.png"));
+  EXPECT_NE(log.str().find("skipped tension_map"), std::string::npos) << log.str();
   EXPECT_NE(log.str().find("skipped cable_shapes_xz"), std::string::npos) << log.str();
 }
 
@@ -146,13 +152,14 @@ TEST_F(PlotRun, MissingFileIsStatus2AndNamesIt) {
   std::ostringstream log;
   EXPECT_EQ(plot_run(dir_.string(), log), 2);
   EXPECT_EQ(log.str(), "towsim plot: " + dir_.string() +
-                           " has no nodes.csv (expected the output directory of `towsim run --out DIR`)\n");
+                           " has no nodes.csv (expected the output directory of `towsim run --out DIR` or "
+                           "`towsim statics --out DIR`)\n");
   EXPECT_FALSE(fs::exists(dir_ / "plots"));
 
-  fs::remove(dir_ / "summary.json");
+  fs::remove(dir_ / "timeseries.csv");
   std::ostringstream log2;
   EXPECT_EQ(plot_run(dir_.string(), log2), 2);
-  EXPECT_NE(log2.str().find("has no nodes.csv and summary.json"), std::string::npos) << log2.str();
+  EXPECT_NE(log2.str().find("has no timeseries.csv and nodes.csv"), std::string::npos) << log2.str();
 }
 
 TEST_F(PlotRun, MissingColumnIsStatus2AndNamesIt) {
@@ -172,4 +179,68 @@ TEST_F(PlotRun, MissingGnuplotIsStatus2AndSaysWhatToInstall) {
   EXPECT_NE(log.str().find("gnuplot-nox"), std::string::npos) << log.str();
   EXPECT_NE(log.str().find("/nonexistent/towsim-test/gnuplot"), std::string::npos) << log.str();
   EXPECT_FALSE(fs::exists(dir_ / "plots"));
+}
+
+TEST_F(PlotRun, NodesAreReadOnceByTowsimNotByGnuplot) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
+  write_run(true, false);
+  std::ostringstream log;
+  ASSERT_EQ(plot_run(dir_.string(), log), 0) << log.str();
+  // No script reads nodes.csv (gnuplot re-read it per snapshot: minutes on a
+  // 99 MB file); the snapshots are extracted into cable_shapes.dat.
+  for (const auto& n : plot_names(true, false)) {
+    std::stringstream gp;
+    gp << std::ifstream(dir_ / "plots" / (n + ".gp")).rdbuf();
+    EXPECT_EQ(gp.str().find("nodes.csv'"), std::string::npos) << n;
+  }
+  // cable_shapes.dat: one block of 3 joints per snapshot, the snapshot's
+  // nodes.csv rows (write_run: joint j of time t at x = 2t + j(0.5x - x)/2).
+  std::ifstream in(dir_ / "plots" / "cable_shapes.dat");
+  std::string line;
+  int rows = 0;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') {
+      ++rows;
+      std::istringstream cells(line);
+      std::string t, node, x;
+      std::getline(cells, t, ',');
+      std::getline(cells, node, ',');
+      std::getline(cells, x, ',');
+      const double T = std::stod(t);
+      EXPECT_DOUBLE_EQ(std::stod(x), 2 * T + std::stoi(node) * (T - 2 * T) / 2) << line;
+    }
+  EXPECT_EQ(rows % 3, 0);
+  EXPECT_GE(rows, 3 * 4);
+  // tension_map.dat: every output time (11 <= 200), 3 joints each.
+  std::ifstream tm(dir_ / "plots" / "tension_map.dat");
+  rows = 0;
+  while (std::getline(tm, line))
+    if (!line.empty() && line[0] != '#') ++rows;
+  EXPECT_EQ(rows, 11 * 3);
+}
+
+TEST_F(PlotRun, AStaticsOutputDirectory) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
+  const std::string cmd = std::string("'") + TOWSIM_BINARY + "' statics --example paper-3d-turn --out '" +
+                          dir_.string() + "' >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::ostringstream log;
+  ASSERT_EQ(plot_run(dir_.string(), log), 0) << log.str();
+  expect_figures({"cable_shapes_xz", "tension_along_cable"});
+  EXPECT_FALSE(fs::exists(dir_ / "plots" / "tow_force.png"));  // no time histories of one configuration
+  // Also without summary.json (as written by an older towsim statics).
+  fs::remove(dir_ / "summary.json");
+  std::ostringstream log2;
+  ASSERT_EQ(plot_run(dir_.string(), log2), 0) << log2.str();
+  expect_figures({"cable_shapes_xz", "tension_along_cable"});
+}
+
+TEST_F(PlotRun, StaleFiguresOfAnEarlierPlotAreRemoved) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
+  write_run(false, false);
+  fs::create_directories(dir_ / "plots");
+  std::ofstream(dir_ / "plots" / "body_angles.png") << "old";
+  std::ostringstream log;
+  ASSERT_EQ(plot_run(dir_.string(), log), 0) << log.str();
+  EXPECT_FALSE(fs::exists(dir_ / "plots" / "body_angles.png"));
 }

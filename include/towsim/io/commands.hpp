@@ -7,7 +7,12 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "towsim/io/output.hpp"
 #include "towsim/io/scenario.hpp"
+#include "towsim/sim/simulate.hpp"
+#include "towsim/sim/statics.hpp"
 
 namespace towsim::io {
 
@@ -56,6 +61,12 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err,
 /// angles; writes the configuration when an output directory is given.
 /// Returns an ExitStatus (3 when the solver does not converge).
 int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err);
+
+/// The line `towsim run` prints at the end of a successful run: final
+/// layback, depth of the body (or cable end) and tow tension, the maximum
+/// tow tension and when, then samples, steps and wall time.
+std::string end_of_run_line(const Model& model, const RunStats& stats, const nlohmann::ordered_json& final_row,
+                            const Extremes& ex, long samples, const std::string& out_dir);
 
 /// `towsim check`: validate and print the derived quantities. Returns an ExitStatus.
 int check_command(const InputOptions& in, std::ostream& out, std::ostream& err);

@@ -16,6 +16,15 @@
 //   cable_shapes_xz  cable shape at 8 evenly spaced times, side view
 //   cable_shapes_xy  the same in plan view (3D runs only)
 //   link_force       link force components and magnitude vs time (with a body)
+//   depth_layback    depth of the body origin (or cable end) against layback
+//   tension_map      tension along the cable (distance from the tow point)
+//                    against time, a colour map of up to 200 output times
+//   tension_along_cable  (one output time, `towsim statics --out DIR`) tension
+//                    against distance along the cable
+// nodes.csv is read once: the rows the figures need are extracted into
+// DIR/plots/cable_shapes.dat and DIR/plots/tension_map.dat. summary.json is
+// optional (the model name is then the directory's name). DIR/plots/ is
+// emptied first (it is towsim's; no stale figure of an earlier run remains).
 // A run is "3D" when some y coordinate is non-zero. The program is `gnuplot`
 // from PATH, or the one named by the environment variable TOWSIM_GNUPLOT.
 #pragma once
@@ -43,7 +52,8 @@ int plot_run(const std::string& dir, std::ostream& log);
 int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& options);
 
 /// The figure names (without extension) plot_run renders for a run with or
-/// without a body, planar or 3D.
-std::vector<std::string> plot_names(bool has_body, bool three_d);
+/// without a body, planar or 3D; `single`: one output time (the output of
+/// `towsim statics --out`), where only the cable's shape and tension are drawn.
+std::vector<std::string> plot_names(bool has_body, bool three_d, bool single = false);
 
 }  // namespace towsim::io

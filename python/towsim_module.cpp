@@ -1,0 +1,238 @@
+// towsim._towsim: the C++ core of the Python package `towsim`
+// (python/towsim/__init__.py turns its plain results into Result objects and
+// exceptions). Columns and figures come from the code that writes the files
+// (io/output, io/sweep), so Python and the CLI agree by construction.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "towsim/io/commands.hpp"
+#include "towsim/io/examples.hpp"
+#include "towsim/io/output.hpp"
+#include "towsim/io/sweep.hpp"
+#include "towsim/sim/statics.hpp"
+
+namespace py = pybind11;
+using namespace towsim;
+using namespace towsim::io;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Load a scenario: kind "file" (source = path), "example" (source = name) or
+/// "text" (source = YAML, `label` names it in messages; relative track files
+/// are read from the working directory).
+LoadedScenario load(const std::string& kind, const std::string& source, const std::string& label,
+                    const std::vector<std::string>& sets) {
+  if (kind == "file") return load_scenario_file(source, sets);
+  if (kind == "example") return load_input(InputOptions{"", source, sets});
+  return load_scenario_text(source, label, "scenario", "", sets);
+}
+
+/// A NumPy array owning `v`, of the given shape (C order).
+py::array_t<double> to_array(std::vector<double>&& v, const std::vector<py::ssize_t>& shape) {
+  auto* owned = new std::vector<double>(std::move(v));
+  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+  return py::array_t<double>(shape, owned->data(), owner);
+}
+
+/// Every sample's timeseries row and nodes, in the columns of the files.
+class ArraySink : public RunRecord {
+ public:
+  ArraySink(const Model& model, bool nodes) : RunRecord(model), keep_nodes_(nodes) {}
+  void write(const Sample& s) override {
+    RunRecord::write(s);
+    series.insert(series.end(), last_row().begin(), last_row().end());
+    if (!keep_nodes_) return;
+    std::vector<double> row;
+    for (std::size_t k = 0; k < s.node_pos.size(); ++k) node_values(s, k, row);
+    joints = std::max(joints, s.node_pos.size());
+    nodes.push_back(std::move(row));
+  }
+  /// The nodes as one time x joint x component block (NaN where a sample has fewer joints).
+  std::vector<double> node_block() const {
+    const std::size_t c = node_columns().size();
+    std::vector<double> out(nodes.size() * joints * c, kNaN);
+    for (std::size_t t = 0; t < nodes.size(); ++t) std::copy(nodes[t].begin(), nodes[t].end(), out.begin() + t * joints * c);
+    return out;
+  }
+
+  std::vector<double> series;
+  std::vector<std::vector<double>> nodes;
+  std::size_t joints = 0;
+
+ private:
+  bool keep_nodes_;
+};
+
+/// Polls Python's signal handlers from the main thread while the GIL is
+/// released, at most every 50 ms: Ctrl-C sets the run's stop flag.
+class SignalPoll {
+ public:
+  explicit SignalPoll(volatile int& stop) : stop_(stop) {
+    const auto main = py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+    on_main_ = PyThread_get_thread_ident() == main;
+  }
+  void operator()() {
+    if (!on_main_) return;  // Python runs signal handlers only in the main thread
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::milliseconds(50)) return;
+    last_ = now;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      PyErr_Clear();  // re-raised by the package as towsim.Interrupted (a KeyboardInterrupt)
+      interrupted = true;
+      stop_ = 1;
+    }
+  }
+  bool interrupted = false;
+
+ private:
+  volatile int& stop_;
+  bool on_main_ = false;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+/// Now on the steady clock (CLOCK_MONOTONIC on Linux, as Python's time.monotonic()) [s].
+double monotonic_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// The summary as JSON text (the package parses it into a dict).
+std::string json_text(const nlohmann::ordered_json& j) {
+  return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
+/// towsim.run: simulate; series and nodes in memory; GIL released while integrating.
+py::dict run(const std::string& kind, const std::string& source, const std::string& label,
+             const std::vector<std::string>& sets) {
+  py::dict out;
+  const LoadedScenario sc = load(kind, source, label, sets);
+  if (!sc.ok()) {
+    out["errors"] = sc.diags.str();
+    return out;
+  }
+  const Model& model = *sc.model;
+  ArraySink sink(model, model.sim.write_nodes);
+  volatile int stop = 0;
+  SignalPoll poll(stop);
+  RunStats stats;
+  double t0 = 0, t1 = 0;  // the integration's wall-clock interval [s, CLOCK_MONOTONIC = Python's time.monotonic()]
+  {
+    py::gil_scoped_release release;
+    t0 = monotonic_seconds();
+    try {
+      stats = simulate(model, sink, [&poll](double) { poll(); }, &stop);
+    } catch (const std::exception& e) {
+      stats.status = "failed";
+      stats.message = std::string("internal error: ") + e.what();
+    }
+    t1 = monotonic_seconds();
+  }
+  const auto summary = make_summary(to_json(sc.tree), model.name, stats, sink, model.sim.write_nodes);
+  const auto columns = timeseries_columns(model);
+  const auto rows = static_cast<py::ssize_t>(sink.samples());
+  out["columns"] = columns;
+  out["series"] = to_array(std::move(sink.series), {rows, static_cast<py::ssize_t>(columns.size())});
+  out["node_columns"] = node_columns();
+  if (model.sim.write_nodes)
+    out["nodes"] = to_array(sink.node_block(), {rows, static_cast<py::ssize_t>(sink.joints),
+                                                static_cast<py::ssize_t>(node_columns().size())});
+  else
+    out["nodes"] = py::none();
+  out["summary"] = json_text(summary);
+  out["status"] = stats.status;
+  out["message"] = stats.message;
+  out["keyboard_interrupt"] = poll.interrupted;
+  out["integration_interval"] = py::make_tuple(t0, t1);
+  return out;
+}
+
+/// towsim.statics: the steady-tow equilibrium at the tow law's final speed.
+py::dict statics(const std::string& kind, const std::string& source, const std::string& label,
+                 const std::vector<std::string>& sets) {
+  py::dict out;
+  const LoadedScenario sc = load(kind, source, label, sets);
+  if (!sc.ok()) {
+    out["errors"] = sc.diags.str();
+    return out;
+  }
+  const Model& model = *sc.model;
+  if (model.tow.mode != Tow::Mode::Motion) {
+    out["errors"] = "tow.mode: statics needs mode: motion (the steady speed comes from the tow law)\n";
+    return out;
+  }
+  StaticsResult r;
+  Sample s;
+  {
+    py::gil_scoped_release release;
+    r = solve_statics(model, final_tow_velocity(model.tow));
+    s = r.sample;
+  }
+  std::vector<double> row;
+  timeseries_values(model, s, row);
+  std::vector<double> nodes;
+  for (std::size_t k = 0; k < s.node_pos.size(); ++k) node_values(s, k, nodes);
+  const auto columns = timeseries_columns(model);
+  out["columns"] = columns;
+  out["values"] = to_array(std::move(row), {static_cast<py::ssize_t>(columns.size())});
+  out["node_columns"] = node_columns();
+  out["nodes"] = to_array(std::move(nodes), {static_cast<py::ssize_t>(s.node_pos.size()),
+                                            static_cast<py::ssize_t>(node_columns().size())});
+  out["converged"] = r.converged;
+  out["iterations"] = r.iterations;
+  out["residual"] = r.residual;
+  out["message"] = r.message;
+  out["tow_velocity"] = std::vector<double>{r.tow_velocity.x(), r.tow_velocity.y(), r.tow_velocity.z()};
+  return out;
+}
+
+/// One sweep case, exactly as `towsim sweep` runs it: (status, message,
+/// [(figure, value)]). Ctrl-C in a worker process's main thread ends the case
+/// `interrupted` (the KeyboardInterrupt is cleared: the row says it).
+py::tuple run_case_py(const std::string& kind, const std::string& source, const std::string& label,
+                      const std::vector<std::string>& sets, const std::string& out_dir) {
+  CaseResult r;
+  volatile int stop = 0;
+  SignalPoll poll(stop);
+  {
+    py::gil_scoped_release release;
+    const LoadedScenario sc = load(kind, source, label, sets);
+    r = run_case(sc, out_dir, &stop, [&poll](double) { poll(); });
+  }
+  return py::make_tuple(r.status, r.message, r.figures);
+}
+
+/// The figures of a summary.json text, as the sweep tables name them.
+std::vector<Figure> figures_of(const std::string& summary) {
+  return summary_figures(nlohmann::ordered_json::parse(summary));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_towsim, m) {
+  m.doc() = "towsim C++ core (use the `towsim` package)";
+  m.def("run", &run, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"));
+  m.def("statics", &statics, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"));
+  m.def("run_case", &run_case_py, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"),
+        py::arg("out_dir") = "");
+  m.def("summary_figures", &figures_of, py::arg("summary_json"));
+  m.def("examples", [] {
+    std::vector<std::string> names;
+    for (const auto& e : examples()) names.push_back(e.name);
+    return names;
+  });
+  m.def("example_yaml", [](const std::string& name) -> py::object {
+    const Example* e = find_example(name);
+    if (e == nullptr) return py::none();
+    return py::str(e->yaml);
+  });
+}

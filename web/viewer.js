@@ -1,0 +1,228 @@
+// The 3-D view of `towsim report`: bundled with three.js by esbuild at build
+// time (web/package.json) and inlined into report.html, so the page needs no
+// network. Reads the run from <script id="towsim-data" type="application/json">.
+//
+// towsim's frame R_g is x, y horizontal and z up; three.js has y up. A point
+// (x, y, z) is drawn at (x, z, -y): a rotation, so handedness is kept.
+//
+// When the first frame is drawn the page's <html> element gets
+// data-ready="1" and data-drawn-pixels (pixels of the canvas that differ from
+// the background), which the headless-browser test reads; a script error sets
+// data-error.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+
+const root = document.documentElement;
+window.addEventListener('error', (e) => root.setAttribute('data-error', String(e.message || e)));
+
+/// towsim (x, y, z) -> three.js vector.
+const v3 = (x, y, z) => new THREE.Vector3(x, z, -y);
+
+/// Rotation body -> global, R = Rz(yaw) Ry(pitch) Rx(roll), as a three.js
+/// quaternion in the three.js frame: M R M^T with M the axis map above.
+function attitude(rollDeg, pitchDeg, yawDeg) {
+  const d = Math.PI / 180;
+  const [cr, sr, cp, sp, cy, sy] = [Math.cos(rollDeg * d), Math.sin(rollDeg * d), Math.cos(pitchDeg * d),
+    Math.sin(pitchDeg * d), Math.cos(yawDeg * d), Math.sin(yawDeg * d)];
+  const R = [
+    [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+    [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+    [-sp, cp * sr, cp * cr],
+  ];
+  const M = [[1, 0, 0], [0, 0, 1], [0, -1, 0]];
+  const A = [[0, 0, 0], [0, 0, 0], [0, 0, 0]];
+  for (let i = 0; i < 3; i++)
+    for (let j = 0; j < 3; j++)
+      for (let k = 0; k < 3; k++)
+        for (let l = 0; l < 3; l++) A[i][j] += M[i][k] * R[k][l] * M[j][l];
+  const m = new THREE.Matrix4().set(A[0][0], A[0][1], A[0][2], 0, A[1][0], A[1][1], A[1][2], 0,
+    A[2][0], A[2][1], A[2][2], 0, 0, 0, 0, 1);
+  return new THREE.Quaternion().setFromRotationMatrix(m);
+}
+
+/// Colour of a tension t in [0, tmax] on a viridis-like ramp.
+function ramp(f, out) {
+  const stops = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+  const s = Math.min(Math.max(f, 0), 1) * 4, i = Math.min(3, Math.floor(s)), g = s - i;
+  out.setRGB((stops[i][0] + g * (stops[i + 1][0] - stops[i][0])) / 255,
+    (stops[i][1] + g * (stops[i + 1][1] - stops[i][1])) / 255,
+    (stops[i][2] + g * (stops[i + 1][2] - stops[i][2])) / 255);
+  return out;
+}
+
+function main() {
+  const data = JSON.parse(document.getElementById('towsim-data').textContent);
+  const host = document.getElementById('view3d');
+  const F = data.times.length, N = data.nodes[0].length / 3;
+
+  // Bounds over every frame (nodes, body).
+  const box = new THREE.Box3();
+  for (const fr of data.nodes)
+    for (let k = 0; k < N; k++) box.expandByPoint(v3(fr[3 * k], fr[3 * k + 1], fr[3 * k + 2]));
+  if (data.body) for (const p of data.body.pos) box.expandByPoint(v3(p[0], p[1], p[2]));
+  box.expandByPoint(new THREE.Vector3(box.min.x, 0, box.min.z));  // the surface is in view
+  const size = box.getSize(new THREE.Vector3()), centre = box.getCenter(new THREE.Vector3());
+  const extent = Math.max(size.x, size.y, size.z, 1e-3);
+
+  const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  renderer.setSize(host.clientWidth, host.clientHeight);
+  renderer.setClearColor(0xeef3f8);
+  host.appendChild(renderer.domElement);
+  const scene = new THREE.Scene();
+  scene.add(new THREE.AmbientLight(0xffffff, 0.7));
+  const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+  sun.position.set(1, 2, 1.5);
+  scene.add(sun);
+
+  const camera = new THREE.PerspectiveCamera(40, host.clientWidth / host.clientHeight, extent * 1e-3, extent * 100);
+  // Far enough for the whole box (and the surface above it) to fit the view,
+  // looking from 25 degrees above the horizontal, across the tow direction.
+  const radius = 0.5 * Math.hypot(size.x, size.y, size.z);
+  const dist = (1.25 * radius) / Math.sin((0.5 * 40 * Math.PI) / 180);
+  const el = (25 * Math.PI) / 180;
+  camera.position.copy(centre).add(new THREE.Vector3(0.45 * dist * Math.cos(el), dist * Math.sin(el),
+    0.9 * dist * Math.cos(el)));
+  const controls = new OrbitControls(camera, renderer.domElement);
+  controls.target.copy(centre);
+  controls.update();
+
+  // Sea surface (z = 0) and a grid on it.
+  const span = 1.3 * Math.max(size.x, size.z, extent * 0.5);
+  const sea = new THREE.Mesh(new THREE.PlaneGeometry(span, span),
+    new THREE.MeshBasicMaterial({ color: 0x4f8fc0, transparent: true, opacity: 0.15, side: THREE.DoubleSide,
+      depthWrite: false }));
+  sea.rotation.x = -Math.PI / 2;
+  sea.position.set(centre.x, 0, centre.z);
+  scene.add(sea);
+  const grid = new THREE.GridHelper(span, 10, 0x7aa6c8, 0xa9c6dc);
+  grid.position.set(centre.x, 0, centre.z);
+  scene.add(grid);
+
+  // The tow point's path over the whole run.
+  const towPath = new THREE.BufferGeometry().setFromPoints(
+    data.nodes.map((fr) => v3(fr[0], fr[1], fr[2])));
+  scene.add(new THREE.Line(towPath, new THREE.LineBasicMaterial({ color: 0x888888 })));
+
+  // The cable: a line coloured by tension, and its joints.
+  const pos = new Float32Array(3 * N), col = new Float32Array(3 * N);
+  const cableGeom = new THREE.BufferGeometry();
+  cableGeom.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+  cableGeom.setAttribute('color', new THREE.BufferAttribute(col, 3));
+  scene.add(new THREE.Line(cableGeom, new THREE.LineBasicMaterial({ vertexColors: true })));
+  scene.add(new THREE.Points(cableGeom, new THREE.PointsMaterial({ vertexColors: true, size: 4,
+    sizeAttenuation: false })));
+  const mark = extent * 0.012;
+  const tow = new THREE.Mesh(new THREE.SphereGeometry(mark, 16, 12), new THREE.MeshLambertMaterial({ color: 0xd62728 }));
+  scene.add(tow);
+
+  // The body: its spheres (the model's load spheres), drawn at least 2% of
+  // the scene so that a small fish on a long cable stays visible.
+  let body = null, bodyScale = 1;
+  if (data.body) {
+    body = new THREE.Group();
+    const spheres = data.body.spheres.length ? data.body.spheres : [{ center: [0, 0, 0], radius: 0.05 * extent }];
+    let reach = 0;
+    for (const s of spheres) reach = Math.max(reach, Math.hypot(...s.center) + s.radius);
+    bodyScale = Math.max(1, (0.02 * extent) / Math.max(reach, 1e-9));
+    const mat = new THREE.MeshLambertMaterial({ color: 0xff7f0e });
+    for (const s of spheres) {
+      const m = new THREE.Mesh(new THREE.SphereGeometry(s.radius, 24, 16), mat);
+      m.position.copy(v3(s.center[0], s.center[1], s.center[2]));
+      body.add(m);
+    }
+    body.add(new THREE.AxesHelper(reach * 1.5));  // body axes: x red, y green, z blue (three.js frame)
+    body.scale.setScalar(bodyScale);
+    scene.add(body);
+  }
+  const tmax = Math.max(data.tension_max || 0, 1e-12);
+  const c = new THREE.Color();
+
+  // The controls.
+  const slider = document.getElementById('frame'), label = document.getElementById('frame-label');
+  const play = document.getElementById('play');
+  slider.max = String(F - 1);
+  document.getElementById('scale-note').textContent =
+    (body && bodyScale > 1 ? `Body drawn ${bodyScale.toFixed(0)} times its size. ` : '') +
+    `Cable coloured by tension, 0 to ${tmax.toPrecision(4)} N (dark blue to yellow). Drag to rotate, scroll to zoom.`;
+
+  function show(i) {
+    const fr = data.nodes[i], T = data.tension[i];
+    for (let k = 0; k < N; k++) {
+      const p = v3(fr[3 * k], fr[3 * k + 1], fr[3 * k + 2]);
+      pos[3 * k] = p.x; pos[3 * k + 1] = p.y; pos[3 * k + 2] = p.z;
+      ramp((T ? T[k] : 0) / tmax, c);
+      col[3 * k] = c.r; col[3 * k + 1] = c.g; col[3 * k + 2] = c.b;
+    }
+    cableGeom.attributes.position.needsUpdate = true;
+    cableGeom.attributes.color.needsUpdate = true;
+    cableGeom.computeBoundingSphere();
+    tow.position.copy(v3(fr[0], fr[1], fr[2]));
+    if (body) {
+      const b = data.body.pos[i], a = data.body.rpy[i];
+      body.position.copy(v3(b[0], b[1], b[2]));
+      body.quaternion.copy(attitude(a[0], a[1], a[2]));
+    }
+    label.textContent = `t = ${data.times[i]} s` + (data.info ? '  ' + data.info[i] : '');
+  }
+
+  let frame = 0, playing = false, last = 0;
+  slider.addEventListener('input', () => { frame = Number(slider.value); show(frame); });
+  play.addEventListener('click', () => {
+    playing = !playing;
+    play.textContent = playing ? 'Pause' : 'Play';
+    if (playing && frame >= F - 1) frame = 0;
+  });
+  window.addEventListener('resize', () => {
+    camera.aspect = host.clientWidth / host.clientHeight;
+    camera.updateProjectionMatrix();
+    renderer.setSize(host.clientWidth, host.clientHeight);
+  });
+  // About 20 s for the whole run.
+  const perFrame = 20000 / Math.max(F, 1);
+  function loop(now) {
+    requestAnimationFrame(loop);
+    if (playing && now - last > perFrame) {
+      last = now;
+      frame = Math.min(F - 1, frame + 1);
+      slider.value = String(frame);
+      show(frame);
+      if (frame === F - 1) { playing = false; play.textContent = 'Play'; }
+    }
+    controls.update();
+    renderer.render(scene, camera);
+  }
+  // report.html#t=20 opens at the frame nearest t = 20 s.
+  const want = /[#&]t=([-0-9.eE+]+)/.exec(window.location.hash);
+  if (want) {
+    let best = 0;
+    for (let i = 0; i < F; i++)
+      if (Math.abs(data.times[i] - Number(want[1])) < Math.abs(data.times[best] - Number(want[1]))) best = i;
+    frame = best;
+    slider.value = String(frame);
+  }
+  show(frame);
+  renderer.render(scene, camera);
+
+  // The first frame is drawn: count the pixels that are not background.
+  const gl = renderer.getContext();
+  const w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+  const px = new Uint8Array(4 * w * h);
+  gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+  let drawn = 0;
+  for (let i = 0; i < px.length; i += 4)
+    if (Math.abs(px[i] - 0xee) + Math.abs(px[i + 1] - 0xf3) + Math.abs(px[i + 2] - 0xf8) > 12) drawn++;
+  root.setAttribute('data-drawn-pixels', String(drawn));
+  root.setAttribute('data-ready', '1');
+  document.title = document.title + ' (3-D view ready)';
+  requestAnimationFrame(loop);
+}
+
+try {
+  main();
+} catch (e) {
+  root.setAttribute('data-error', String(e && e.message ? e.message : e));
+  const host = document.getElementById('view3d');
+  if (host) host.textContent = 'The 3-D view could not start: ' + (e && e.message ? e.message : e);
+  throw e;
+}
