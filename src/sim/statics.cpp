@@ -106,6 +106,13 @@ void sweep_from_bottom(SteadyProblem& p) {
   s = PhysicalState::hanging(m);
   s.r0 = m.tow.start;
   s.v0 = p.V;
+  // Bodies start facing the tow's heading: their initial attitude is taken
+  // relative to it (a fish towed along +y starts yawed 90 deg), so that any
+  // heading converges to the body flying nose first.
+  if (std::hypot(p.V.x(), p.V.y()) > 0) {
+    const Quat heading(Eigen::AngleAxisd(std::atan2(p.V.y(), p.V.x()), Vec3::UnitZ()));
+    for (auto& b : s.bodies) b.q = (heading * b.q).normalized();
+  }
   compute_kinematics(m, s, p.ws);  // depths of the hanging guess (for a current profile)
   for (auto& v : p.ws.vP) v = p.V;
   attachment_loads(m, 0.0, p.ws);

@@ -12,6 +12,7 @@
 #include "../support/physics.hpp"
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/hydro/loads.hpp"
+#include "towsim/sim/statics.hpp"
 
 namespace towsim {
 namespace {
@@ -227,6 +228,55 @@ INSTANTIATE_TEST_SUITE_P(Topologies, ChainReference,
                            return "top" + std::to_string(i.param.n_top) + "_low" + std::to_string(i.param.n_low) +
                                   (i.param.current ? "_current" : "_still");
                          });
+
+}  // namespace
+}  // namespace towsim
+
+namespace towsim {
+namespace {
+
+// Steady tow of the whole chain (sections, in-line body, attachments, end
+// body) in a sheared current: the statics solve converges and the tow force
+// equals minus the sum of every part's fluid and gravity loads (the MODEL's
+// cross-check of all formulations; nothing accelerates, so no inertia).
+// Tolerance 1e-9 of the tow force: the solve stops at angular accelerations
+// below 1e-12 rad/s^2; the balance is then exact to round-off.
+TEST(ChainStatics, TowForceBalancesEveryLoad) {
+  Model m = testing::two_part_model(6, 5);
+  // A depressor the solve can settle: a heavy sphere jointed top and bottom
+  // (the rich body of the dynamics test has a fin and no stable attitude).
+  Body& dep = m.bodies[0];
+  const double r = 0.2, mass = 150;
+  dep.mass = mass;
+  dep.inertia_cg = 0.4 * mass * r * r * Mat3::Identity();
+  dep.cg = Vec3::Zero();
+  dep.volume = 0, dep.added_mass.setZero(), dep.linear_damping.setZero(), dep.quadratic_damping.setZero();
+  dep.link_point = Vec3(0, 0, r);
+  dep.lower_link_point = Vec3(0, 0, -r);
+  dep.spheres = {{Vec3::Zero(), r, 0.5, 0.5}};
+  dep.cylinders.clear();
+  dep.surfaces.clear();
+  finalize_body(dep, m.fluid);
+  m.fluid.current_depth = {0, 40, 300};
+  m.fluid.current_velocity = {Vec3(0.3, 0.2, 0), Vec3(0.1, 0.1, 0), Vec3(0, 0, 0)};
+  const Vec3 V(2.0, 0.5, 0);
+  const StaticsResult res = solve_statics(m, V);
+  ASSERT_TRUE(res.converged) << res.message;
+  Workspace ws(m);
+  PhysicalState s = res.state;
+  compute_kinematics(m, s, ws);
+  compute_loads(m, s, 0.0, ws);
+  Vec3 sum = res.tow_force;
+  for (const Vec3& F : ws.F) sum += F;
+  for (const Vec3& F : ws.Fa) sum += F;
+  for (const BodyWork& bw : ws.body) sum += bw.Fb;
+  std::printf("[measured] chain statics: |F_R + sum of loads| / |F_R| = %.2e (%d iterations)\n",
+              sum.norm() / res.tow_force.norm(), res.iterations);
+  EXPECT_LT(sum.norm(), 1e-9 * res.tow_force.norm());
+  // The in-line body is in equilibrium between its two links and its loads.
+  const Vec3 body_sum = res.link_force[0] - res.body_force[0] + ws.body[0].Fb;
+  EXPECT_LT(body_sum.norm(), 1e-9 * res.tow_force.norm());
+}
 
 }  // namespace
 }  // namespace towsim
