@@ -129,6 +129,12 @@ void body_loads(const Fluid& fluid, const Body& b, double t, BodyWork& ws) {
   for (const Thruster& th : b.thrusters)
     add_force(ws, ws.R * th.point, interpolate(th.time, th.force, t) * (ws.R * th.direction));
   if (rho == 0) return;
+  // Waves: Froude-Krylov force rho V a_w at the centre of the displaced volume
+  // (the added mass's part is in body_inertia through rate_seen).
+  if (fluid.waves) {
+    const Vec3 cb = ws.R * b.buoyancy_center;
+    add_force(ws, cb, rho * b.displaced_volume * fluid.acceleration(ws.O + cb, t));
+  }
   for (const auto& sp : b.spheres) sphere_loads(fluid, sp, t, ws);
   for (const auto& cy : b.cylinders) cylinder_loads(fluid, cy, t, ws);
   for (const auto& ls : b.surfaces) surface_loads(fluid, ls, t, ws);

@@ -1,5 +1,6 @@
 // Loads on a cable element (MODEL.md 3; paper 2.3-2.43).
 #include <cmath>
+#include <numbers>
 
 #include "towsim/hydro/loads.hpp"
 
@@ -39,6 +40,9 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
     const Vec3 dU = fluid.rate_seen(xG, vG, t);
     F += el.added_mass * (dU - dU.dot(e) * e);
   }
+  // Waves: Froude-Krylov rho V a_w (the added mass's part is in rate_seen).
+  if (fluid.waves)
+    F += fluid.rho * std::numbers::pi / 4 * el.diameter * el.diameter * el.length * fluid.acceleration(xG, t);
   // Ideal fluid: -dP/dt velocity terms and the Munk moment (paper 2.42).
   if (model.cable.added_mass_model == AddedMassModel::IdealFluid) {
     F += el.added_mass * (edot * ue + e * edot.dot(u));
@@ -65,6 +69,8 @@ void attachment_loads(const Model& model, double t, Workspace& ws) {
     // Added mass in a non-uniform flow: the water's velocity seen by the
     // moving joint changes at a known rate (as for the elements).
     if (!fluid.uniform()) ws.Fa[k] += a.added_mass * fluid.rate_seen(ws.P[k], ws.vP[k], t);
+    // Waves: Froude-Krylov rho V a_w.
+    if (fluid.waves) ws.Fa[k] += fluid.rho * a.volume * fluid.acceleration(ws.P[k], t);
   }
 }
 

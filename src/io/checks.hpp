@@ -45,4 +45,10 @@ void check_tow(const TowSpec& t, Diagnostics& d);
 /// offsets alone, whose velocity starts the course).
 Tow build_tow(const TowSpec& t, bool include_manoeuvres = true);
 
+/// Check `waves:` and `vessel:` (src/io/compile_waves.cpp).
+void check_waves(const ScenarioSpec& s, Diagnostics& d);
+/// Build the waves (into m.fluid) and the vessel (into m.tow) from a checked
+/// spec; needs m.tow and m.fluid built.
+void attach_waves(const ScenarioSpec& s, Model& m);
+
 }  // namespace towsim::io

@@ -1,4 +1,5 @@
 #include "towsim/io/commands.hpp"
+#include "towsim/waves/vessel.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -162,7 +163,13 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     remove_run_outputs(opts.out_dir);  // no stale file of a previous run
     RunWriter writer(opts.out_dir, model, model.sim.write_nodes);
     const RunStats stats = simulate_safely(model, writer, opts, err, stop_flag);
-    const auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, model.sim.write_nodes);
+    auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, model.sim.write_nodes);
+    if (has_sea(model)) {
+      summary["statistics"] = writer.sea_statistics().json();
+      if (!writer.sea_statistics().write_spectra((std::filesystem::path(opts.out_dir) / "spectra.csv").string()))
+        throw std::runtime_error("cannot write spectra.csv");
+      summary["files"]["spectra"] = "spectra.csv";
+    }
     if (!write_summary(opts.out_dir, summary)) throw std::runtime_error("cannot write summary.json");
     // Rigid elements can push; a real cable would go slack there.
     const Extreme& comp = writer.extremes().min_axial_force;

@@ -99,6 +99,7 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   check_nonzero(spec.initial.direction, diags);
   check_initial(spec.initial, spec.tow, diags);
   check_simulation(spec.simulation, diags);
+  check_waves(spec, diags);
   if (!diags.ok()) return std::nullopt;
   Model m;
   m.name = spec.name;
@@ -107,6 +108,7 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   m.tow = build_tow(spec.tow);
   m.initial = build_initial(spec.initial);
   m.sim = build_simulation(spec.simulation);
+  attach_waves(spec, m);
   return m;
 }
 

@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "towsim/io/commands.hpp"
+#include "towsim/io/describe_sea.hpp"
 
 namespace towsim::io {
 namespace {
@@ -164,6 +165,7 @@ void describe_model(const Model& m, std::ostream& out) {
   for (const Body& b : m.bodies) describe_body(b, m.cable, m.fluid, out);
   if (!end_body(m)) out << "body: none (free cable end)\n";
   describe_tow(m.tow, out);
+  describe_sea(m, out);
   describe_run(m, out);
 }
 

@@ -1,5 +1,6 @@
 // Run outputs: the columns, the number format, the writers and summary.json.
 #include "towsim/io/output.hpp"
+#include "towsim/waves/vessel.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -184,6 +185,7 @@ std::vector<std::string> timeseries_columns(const Model& model) {
                           "_depth", "_link_tension", "_lower_link_tension"})
       c.push_back(b.name + s);
   }
+  if (has_sea(model)) c.insert(c.end(), {"wave_elevation", "tow_wave_x", "tow_wave_y", "tow_wave_z"});
   return c;
 }
 
@@ -225,6 +227,10 @@ void timeseries_values(const Model& model, const Sample& s, std::vector<double>&
     add3(bs.lower_link_force);
     v.insert(v.end(), {-bs.pos.z(), bs.link_force.norm(), bs.lower_link_force.norm()});
   }
+  if (has_sea(model)) {  // sea-state columns
+    v.push_back(s.wave_elevation);
+    add3(s.tow_wave);
+  }
   for (std::size_t i = 1; i < v.size(); ++i) v[i] = tidy(v[i]);
 }
 
@@ -241,8 +247,11 @@ void node_values(const Sample& s, std::size_t k, std::vector<double>& out) {
     out.push_back(tidy(x));  // as written
 }
 
+RunRecord::RunRecord(const Model& model) : model_(model), sea_(statistics_start(model)) {}
+
 void RunRecord::write(const Sample& s) {
   extremes_.add(model_, s);
+  if (has_sea(model_)) sea_.add(model_, s);
   ++samples_;
   timeseries_values(model_, s, last_row_);
 }

@@ -200,6 +200,14 @@ ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diag
   MapReader sim(r.get("simulation", true), "simulation", d);
   parse_simulation(sim, s.simulation);
   sim.finish();
+  MapReader waves(r.get("waves"), "waves", d);
+  s.waves.present = waves.present();
+  if (s.waves.present) parse_waves(waves, s.waves, d);
+  waves.finish();
+  MapReader vessel(r.get("vessel"), "vessel", d);
+  s.vessel.present = vessel.present();
+  if (s.vessel.present) parse_vessel(vessel, s.vessel, base_dir, d);
+  vessel.finish();
   r.finish();
   return s;
 }

@@ -13,6 +13,10 @@ void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d);
 void parse_body(MapReader& r, BodySpec& body, Diagnostics& d);
 /// tow: mode, start, motion pieces, force.
 void parse_tow(MapReader& r, TowSpec& tow, const std::string& base_dir, Diagnostics& d);
+/// waves: regular or spectrum, water depth (src/io/parse_waves.cpp).
+void parse_waves(MapReader& r, WavesSpec& w, Diagnostics& d);
+/// vessel: RAOs or a motion record, and the tow point (src/io/parse_waves.cpp).
+void parse_vessel(MapReader& r, VesselSpec& v, const std::string& base_dir, Diagnostics& d);
 /// simulation: integration and output settings.
 void parse_simulation(MapReader& r, SimulationSpec& sim);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "towsim/model/fluid.hpp"
+#include "towsim/waves/waves.hpp"
 #include "towsim/model/table.hpp"
 
 namespace towsim {
@@ -16,14 +17,20 @@ std::size_t interval(const std::vector<double>& xs, double x) {
 }
 }  // namespace
 
-Vec3 Fluid::velocity(const Vec3& x, double /*t*/) const { return current(x.z()); }
-
-Vec3 Fluid::rate_seen(const Vec3& x, const Vec3& v, double /*t*/) const {
-  // Steady and a function of z only: du/dt = 0 and (v . grad) u = U'(z) v_z.
-  return current_gradient(x.z()) * v.z();
+Vec3 Fluid::velocity(const Vec3& x, double t) const {
+  return waves ? Vec3(current(x.z()) + waves->velocity(x, t)) : current(x.z());
 }
 
-Vec3 Fluid::acceleration(const Vec3& x, double /*t*/) const {
+Vec3 Fluid::rate_seen(const Vec3& x, const Vec3& v, double t) const {
+  // Current: steady and a function of z only: du/dt = 0 and (v . grad) u = U'(z) v_z.
+  // Waves: their local du/dt (linear theory; docs/theory.md 8 "Wave loads").
+  const Vec3 r = current_gradient(x.z()) * v.z();
+  return waves ? Vec3(r + waves->acceleration(x, t)) : r;
+}
+
+Vec3 Fluid::acceleration(const Vec3& x, double t) const {
+  // Waves: the local du/dt, equal to Du/Dt to first order in the steepness.
+  if (waves) return waves->acceleration(x, t) + current_gradient(x.z()) * current(x.z()).z();
   // Du/Dt = du/dt + (u . grad) u = 0 + U'(z) U_z(z). The current is steady
   // and varies only with depth, so a water particle keeps its velocity unless
   // it moves vertically through the shear: for a horizontal current (U_z = 0

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "towsim/integrators/system.hpp"
+#include "towsim/waves/vessel.hpp"
 
 namespace towsim {
 
@@ -64,6 +65,7 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
     out.bodies.push_back({bw.O, bw.vO, roll_pitch_yaw(s.bodies[b].q) * kRad2Deg, bw.w, ws.acc.link_force[b],
                           ws.acc.lower_link_force[b]});
   }
+  if (has_sea(model)) sea_sample(model, t, out);
   return out;
 }
 

@@ -39,6 +39,8 @@ struct SteadyProblem {
       : model(m), V(v), ws(m), n(m.cable.n()), nb(static_cast<int>(m.bodies.size())) {
     model.tow.mode = Tow::Mode::Motion;
     model.tow.pieces.clear();  // a0 = 0; the velocity is set in the state
+    model.tow.vessel.reset();  // calm water: no ship motion, no waves
+    model.fluid.waves.reset();
     t1.resize(n);
     t2.resize(n);
     for (const Element& el : m.cable.elements)
@@ -224,7 +226,7 @@ StaticsResult steady_state(const Model& model) {
   if (model.tow.mode != Tow::Mode::Motion)
     throw std::runtime_error("initial: steady needs tow.mode: motion (the steady velocity comes from the tow law)");
   const TowKinematics k = tow_kinematics(model.tow, 0.0);
-  StaticsResult res = solve_statics(model, k.vel);
+  StaticsResult res = solve_statics(model, tow_law_kinematics(model.tow, 0.0).vel);  // the mean tow velocity
   if (!res.converged) throw std::runtime_error(res.message);
   res.state.r0 = k.pos;
   res.state.v0 = k.vel;

@@ -108,7 +108,7 @@ double start_time(const TowLaw& law) {
   return 0;
 }
 
-TowKinematics tow_kinematics(const Tow& tow, double t) {
+TowKinematics tow_law_kinematics(const Tow& tow, double t) {
   TowKinematics k = offsets(tow, t);
   CourseState c;
   if (!walk(tow, t, c, [](double, Event, std::size_t, const CourseState&) {})) return k;

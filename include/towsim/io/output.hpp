@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "towsim/io/sea_statistics.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim::io {
@@ -100,7 +101,7 @@ void remove_run_outputs(const std::string& dir);
 /// alone where no file is written (sweeps, Python).
 class RunRecord : public OutputSink {
  public:
-  explicit RunRecord(const Model& model) : model_(model) {}
+  explicit RunRecord(const Model& model);
   /// Account for one sample.
   void write(const Sample& s) override;
   void flush() override {}
@@ -113,9 +114,12 @@ class RunRecord : public OutputSink {
   /// The last row's values by column name (null before any row).
   nlohmann::ordered_json final_row() const;
   const Model& model() const { return model_; }
+  /// Sea-state statistics of the samples so far (a model with waves or a vessel).
+  const SeaStatistics& sea_statistics() const { return sea_; }
 
  private:
   const Model& model_;
+  SeaStatistics sea_;
   Extremes extremes_;
   long samples_ = 0;
   std::vector<double> last_row_;

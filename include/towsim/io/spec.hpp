@@ -215,6 +215,47 @@ struct SimulationSpec {
   Field<bool> write_nodes{true};
 };
 
+/// waves: a regular wave or a spectrum, optionally in finite depth.
+struct WavesSpec {
+  bool present = false;
+  Where where;
+  bool regular = false;               // `regular:` given (else `spectrum:`)
+  Where kind_where;                   // where `regular:` or `spectrum:` is
+  Field<double> height;               // regular: H [m]
+  Field<double> period;               // regular: T [s]
+  Field<double> heading_deg{180.0};   // direction of travel relative to the course [deg]
+  Field<std::string> type;            // spectrum: jonswap | pierson_moskowitz
+  Field<double> hs;                   // spectrum: significant wave height [m]
+  Field<double> tp;                   // spectrum: peak period [s]
+  Field<double> gamma{3.3};           // spectrum (jonswap): peak enhancement [-]
+  Field<long long> components{200};   // spectrum: number of harmonics [-]
+  Field<long long> seed{1};           // spectrum: phase seed [-]
+  Field<double> water_depth;          // [m]; absent = deep water
+  Field<double> statistics_start;     // [s]; absent = half the duration
+  Field<double> ramp_time{0.0};       // build-up of the waves and ship motion [s]
+};
+
+/// One RAO row: period [s], heading [deg], dof (0..5), amplitude, phase [deg].
+struct RaoRowSpec {
+  double period, heading, amplitude, phase;
+  int dof;
+  Where where;
+};
+
+/// vessel: RAOs (file or inline rows) or a measured motion record, and the sheave.
+struct VesselSpec {
+  bool present = false;
+  Where where;
+  Field<Vec3> tow_point{Vec3::Zero()};  // sheave in vessel axes from the RAO origin [m]
+  Field<std::string> rotations{"small_angle"};  // small_angle | exact
+  bool raos_given = false;
+  Where raos_where;
+  std::vector<RaoRowSpec> raos;
+  bool motions_given = false;
+  Where motions_where;
+  std::vector<RowSpec> motions;  // rows {t [s], surge, sway, heave [m], roll, pitch, yaw [deg]}
+};
+
 /// A whole scenario as written.
 struct ScenarioSpec {
   std::string name;         // `name:` key, else the file stem or example name
@@ -227,6 +268,8 @@ struct ScenarioSpec {
   TowSpec tow;
   InitialSpec initial;
   SimulationSpec simulation;
+  WavesSpec waves;
+  VesselSpec vessel;
 };
 
 }  // namespace towsim::io

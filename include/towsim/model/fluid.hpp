@@ -2,11 +2,14 @@
 // and acceleration at a point and time (docs/theory.md 3).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "towsim/model/types.hpp"
 
 namespace towsim {
+
+struct WaveField;  // towsim/waves/waves.hpp
 
 /// Water and gravity. `rho == 0` means no fluid at all (vacuum).
 ///
@@ -33,7 +36,10 @@ struct Fluid {
   Vec3 acceleration(const Vec3& x, double t) const;
   /// True when the water velocity is the same at every point and time, so
   /// that rate_seen() and acceleration() are zero.
-  bool uniform() const { return current_velocity.size() < 2; }
+  bool uniform() const { return current_velocity.size() < 2 && !waves; }
+  /// Waves (linear, long-crested; towsim/waves/waves.hpp), or none. Shared
+  /// and immutable; velocity(), rate_seen() and acceleration() include them.
+  std::shared_ptr<const WaveField> waves;
 
   /// Current U at height z [m/s, R_g].
   Vec3 current(double z) const;

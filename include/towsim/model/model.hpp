@@ -172,6 +172,7 @@ struct Simulation {
   double max_step = 1.0;        // adaptive: largest step [s]
   Formulation formulation = Formulation::Default;
   bool write_nodes = true;      // write nodes.csv
+  double statistics_start = -1; // sea-state statistics from this time; < 0: half the duration [s]
 };
 
 /// The whole compiled system: a chain of linked parts from the tow point

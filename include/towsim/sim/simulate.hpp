@@ -33,6 +33,9 @@ struct Sample {
   std::vector<double> axial;    // that force along the adjacent element (the one above; below, at the
                                 // top of a section): positive in tension, negative in compression [N]
   std::vector<BodySample> bodies;  // per Model::bodies entry
+  bool has_waves = false;       // waves or a vessel in the model
+  double wave_elevation = 0;    // at the vessel's RAO origin (else at the tow point) [m]
+  Vec3 tow_wave = Vec3::Zero(); // tow point displacement by the vessel's wave motion [m, R_g]
 };
 
 /// The sample of a physical state at time t from a workspace the dynamics

@@ -12,6 +12,7 @@
 // Adding a law: its own header and source, one entry in TowLaw, its parser.
 #pragma once
 
+#include <memory>
 #include <variant>
 #include <vector>
 
@@ -22,6 +23,9 @@
 #include "towsim/tow/turn.hpp"
 
 namespace towsim {
+
+class Vessel;  // towsim/waves/vessel.hpp
+
 
 /// One piece of an imposed tow-point motion.
 using TowLaw = std::variant<Ramp, Heave, Track, Turn, SpeedChange>;
@@ -39,10 +43,16 @@ struct Tow {
   // Force: F_R(t) tabulated (one row = constant), linear interpolation [s], [N, R_g]
   std::vector<double> force_time;
   std::vector<Vec3> force_value;
+  /// Motion mode: a vessel whose wave motion carries the tow point on top of
+  /// the pieces (which then move its RAO origin), or none (src/waves/vessel.cpp).
+  std::shared_ptr<const Vessel> vessel;
 };
 
-/// Imposed tow-point kinematics at time t (Motion mode).
+/// Imposed tow-point kinematics at time t (Motion mode): the pieces, then
+/// the vessel's wave motion when there is one (src/waves/vessel.cpp).
 TowKinematics tow_kinematics(const Tow& tow, double t);
+/// The pieces alone (the vessel's RAO origin when there is a vessel).
+TowKinematics tow_law_kinematics(const Tow& tow, double t);
 /// Imposed tow force at time t (Force mode) [N, R_g].
 Vec3 tow_force(const Tow& tow, double t);
 

@@ -1,0 +1,13 @@
+// `towsim check`: the waves and the vessel of a compiled model.
+#pragma once
+
+#include <ostream>
+
+#include "towsim/model/model.hpp"
+
+namespace towsim::io {
+
+/// "waves" and "vessel" blocks (nothing when the model has neither).
+void describe_sea(const Model& m, std::ostream& out);
+
+}  // namespace towsim::io

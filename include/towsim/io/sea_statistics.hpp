@@ -1,0 +1,56 @@
+// Sea-state statistics of a run's signals for summary.json (INTERFACE.md
+// "Ship motion from waves"): mean, standard deviation, extremes, mean
+// zero-up-crossing period and the most probable maximum over 3 hours.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "towsim/sim/simulate.hpp"
+
+namespace towsim::io {
+
+/// Duration of the most probable maximum [s] (a 3-hour storm).
+inline constexpr double kMpmDuration = 3 * 3600.0;
+
+/// Statistics of one sampled signal x(t).
+struct SignalStats {
+  long samples = 0;
+  double mean = 0, std = 0, min = 0, max = 0;  // [unit of x]
+  double zero_crossing_period = 0;  // record length / up-crossings of the mean [s]; 0 = none
+  double mpm = 0;  // mean + std sqrt(2 ln(kMpmDuration / Tz)) (Rayleigh maxima); NaN without crossings
+};
+
+/// Statistics of samples x at times t (equal length, increasing times).
+SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>& x);
+
+/// One-sided spectral density estimate [unit^2 s/rad] of x sampled at the
+/// uniform step dt, at the Fourier frequencies omega_k = 2 pi k / (N dt),
+/// k = 1..N/2, averaged over `band` adjacent ones (resolution band * 2 pi /
+/// (N dt)): S_j = 2 mean_k I(omega_k), I = dt / (2 pi N) |sum_n (x_n - mean)
+/// e^{-i omega n dt}|^2. Sum_j S_j * band * 2 pi / (N dt) = variance when band
+/// divides N/2 (Parseval). Returns (omega_j, S_j) at the band centres.
+std::vector<std::pair<double, double>> spectral_density_estimate(const std::vector<double>& x, double dt, int band);
+
+/// Collects tow tension, link force and body depth from `start` on.
+class SeaStatistics {
+ public:
+  explicit SeaStatistics(double start = 0) : start_(start) {}
+  /// Keep the sample's values when t >= start (body: the end body).
+  void add(const Model& model, const Sample& s);
+  /// {"from_time", "duration", "mpm_duration", "tow_tension": {...}, ...}.
+  nlohmann::ordered_json json() const;
+  /// spectra.csv: omega, spectral densities of wave elevation, tow tension,
+  /// link force and body depth, and sqrt(S_depth / S_eta) (the body heave per
+  /// metre of wave, blank where S_eta < 1e-3 of its peak). False on I/O error.
+  bool write_spectra(const std::string& path) const;
+
+ private:
+  double start_;  // [s]
+  std::vector<double> t_, eta_, tension_, link_, depth_;
+};
+
+}  // namespace towsim::io

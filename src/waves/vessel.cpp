@@ -1,0 +1,259 @@
+// Vessel motion from RAOs or a measured record, and the tow point it carries
+// (docs/theory.md "Ship motion").
+#include "towsim/waves/vessel.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace towsim {
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+constexpr double kRestSpeed = 1e-3;  // below this horizontal speed the course is course0 [m/s]
+
+/// cross_matrix(a) b = a x b.
+Mat3 cross_matrix(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
+/// Phase difference b - a wrapped into (-180, 180] [deg].
+double wrap180(double d) {
+  d = std::fmod(d, 360.0);
+  if (d > 180) d -= 360;
+  if (d <= -180) d += 360;
+  return d;
+}
+
+/// Bracketing interval and weight of x in increasing xs, held at the ends.
+void bracket(const std::vector<double>& xs, double x, std::size_t& i0, std::size_t& i1, double& w) {
+  if (xs.size() == 1 || x <= xs.front()) {
+    i0 = i1 = 0, w = 0;
+    return;
+  }
+  if (x >= xs.back()) {
+    i0 = i1 = xs.size() - 1, w = 0;
+    return;
+  }
+  i1 = static_cast<std::size_t>(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin());
+  i0 = i1 - 1;
+  w = (x - xs[i0]) / (xs[i1] - xs[i0]);
+}
+
+/// Natural cubic spline second derivatives of 6-channel rows (Thomas algorithm).
+std::vector<Vec6> spline6(const std::vector<double>& ts, const std::vector<Vec6>& xs) {
+  const std::size_t m = ts.size();
+  std::vector<Vec6> M(m, Vec6::Zero());
+  if (m <= 2) return M;
+  std::vector<double> c(m, 0.0);
+  std::vector<Vec6> d(m, Vec6::Zero());
+  for (std::size_t i = 1; i + 1 < m; ++i) {
+    const double h0 = ts[i] - ts[i - 1], h1 = ts[i + 1] - ts[i];
+    const Vec6 rhs = 6 * ((xs[i + 1] - xs[i]) / h1 - (xs[i] - xs[i - 1]) / h0);
+    const double diag = 2 * (h0 + h1) - h0 * c[i - 1];
+    c[i] = h1 / diag;
+    d[i] = (rhs - h0 * d[i - 1]) / diag;
+  }
+  for (std::size_t i = m - 2; i >= 1; --i) M[i] = d[i] - c[i] * M[i + 1];
+  return M;
+}
+
+}  // namespace
+
+Vessel::Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<const WaveField> waves,
+               const RaoTable& raos)
+    : sheave_(tow_point), course0_(initial_course), waves_(std::move(waves)), headings_(raos.headings) {
+  mirror_ = raos.headings.back() <= 180;
+  const std::size_t nh = raos.headings.size();
+  const auto& comps = waves_->components;
+  amp_.assign(comps.size() * nh * 6, 0.0);
+  lag_.assign(amp_.size(), 0.0);
+  for (std::size_t i = 0; i < comps.size(); ++i) {
+    // Interpolate in the component's wave period, amplitude and (shortest-arc) phase.
+    std::size_t p0, p1;
+    double w;
+    bracket(raos.periods, 2 * std::numbers::pi / comps[i].omega, p0, p1, w);
+    for (std::size_t h = 0; h < nh; ++h)
+      for (int d = 0; d < 6; ++d) {
+        const double a = (1 - w) * raos.amp(d, h, p0) + w * raos.amp(d, h, p1);
+        const double ph0 = raos.phase(d, h, p0);
+        const double ph = ph0 + w * wrap180(raos.phase(d, h, p1) - ph0);
+        const std::size_t j = (i * nh + h) * 6 + static_cast<std::size_t>(d);
+        amp_[j] = a * comps[i].amplitude * (d >= 3 ? kDeg : 1.0);  // rotations to rad
+        lag_[j] = ph * kDeg;
+      }
+  }
+}
+
+Vessel::Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<const WaveField> waves,
+               std::vector<double> time, std::vector<Vec6> motions)
+    : sheave_(tow_point), course0_(initial_course), waves_(std::move(waves)), time_(std::move(time)),
+      rec_(std::move(motions)) {
+  curv_ = spline6(time_, rec_);
+}
+
+VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
+  VesselMotion m;
+  // Course from the horizontal velocity of the RAO origin; its rate (the
+  // course's second derivative is not used, see tow_point).
+  const double vx = origin.vel.x(), vy = origin.vel.y(), vh2 = vx * vx + vy * vy;
+  m.course = course0_;
+  if (vh2 > kRestSpeed * kRestSpeed) {
+    m.course = std::atan2(vy, vx);
+    m.course_rate = (vx * origin.acc.y() - vy * origin.acc.x()) / vh2;
+  }
+  if (waves_) m.elevation = waves_->elevation(origin.pos, t);
+  if (!time_.empty()) {  // measured record: natural cubic spline, held at the ends
+    if (time_.size() == 1 || t <= time_.front()) {
+      m.x = rec_.front();
+    } else if (t >= time_.back()) {
+      m.x = rec_.back();
+    } else {
+      const std::size_t i =
+          static_cast<std::size_t>(std::upper_bound(time_.begin(), time_.end(), t) - time_.begin()) - 1;
+      const double h = time_[i + 1] - time_[i], A = (time_[i + 1] - t) / h, B = 1 - A;
+      const Vec6 &y0 = rec_[i], &y1 = rec_[i + 1], &M0 = curv_[i], &M1 = curv_[i + 1];
+      m.x = A * y0 + B * y1 + ((A * A * A - A) * M0 + (B * B * B - B) * M1) * h * h / 6;
+      m.v = (y1 - y0) / h - (3 * A * A - 1) / 6 * h * M0 + (3 * B * B - 1) / 6 * h * M1;
+      m.a = A * M0 + B * M1;
+    }
+    return m;
+  }
+  // RAO superposition at the moving origin: Theta_i = omega_i t - k_i d.x_o - eps_i,
+  // whose rate omega_i - k_i d.v_o is the encounter frequency.
+  const WaveField& wf = *waves_;
+  const Vec3& d = wf.direction;
+  const double dx = d.x() * origin.pos.x() + d.y() * origin.pos.y();
+  const double dv = d.x() * origin.vel.x() + d.y() * origin.vel.y();
+  const double da = d.x() * origin.acc.x() + d.y() * origin.acc.y();
+  // Relative heading: wave direction minus course, in [0, 360); mirrored into
+  // [0, 180] with sway, roll and yaw reversed when the table is one-sided.
+  double beta = std::fmod((std::atan2(d.y(), d.x()) - m.course) / kDeg, 360.0);
+  if (beta < 0) beta += 360;
+  // Its rate: beta' = -psi' [deg/s] (reversed when mirrored).
+  double sign[6] = {1, 1, 1, 1, 1, 1};
+  double beta_rate = -m.course_rate / kDeg;
+  if (mirror_ && beta > 180) {
+    beta = 360 - beta;
+    beta_rate = -beta_rate;
+    sign[1] = sign[3] = sign[5] = -1;
+  }
+  const std::size_t nh = headings_.size();
+  std::size_t h0, h1;
+  double w, wd = 0;  // interpolation weight in heading and its rate [1/s]
+  if (!mirror_ && nh > 1 && (beta < headings_.front() || beta > headings_.back())) {
+    // Periodic table: between the last heading and the first + 360.
+    h0 = nh - 1, h1 = 0;
+    const double span = headings_.front() + 360 - headings_.back();
+    w = (beta < headings_.front() ? beta + 360 - headings_.back() : beta - headings_.back()) / span;
+    wd = beta_rate / span;
+  } else {
+    bracket(headings_, beta, h0, h1, w);
+    if (h1 != h0) wd = beta_rate / (headings_[h1] - headings_[h0]);
+  }
+  const auto& comps = wf.components;
+  for (std::size_t i = 0; i < comps.size(); ++i) {
+    const auto& c = comps[i];
+    const double th = c.omega * t - c.k * dx - c.phase, thd = c.omega - c.k * dv, thdd = -c.k * da;
+    const double* A0 = &amp_[(i * nh + h0) * 6];
+    const double* A1 = &amp_[(i * nh + h1) * 6];
+    const double* L0 = &lag_[(i * nh + h0) * 6];
+    const double* L1 = &lag_[(i * nh + h1) * 6];
+    for (int j = 0; j < 6; ++j) {
+      // A and the lag are linear in the heading weight w (A'' = lag'' = 0
+      // within a table interval; beta'' = -psi'' is taken as 0, see tow_point).
+      const double A = sign[j] * ((1 - w) * A0[j] + w * A1[j]);
+      const double Ad = sign[j] * wd * (A1[j] - A0[j]);
+      if (A == 0 && Ad == 0) continue;
+      const double dL = std::remainder(L1[j] - L0[j], 2 * std::numbers::pi);
+      const double lag = L0[j] + w * dL, phd = thd - wd * dL;  // phase th - lag and its rate
+      const double cs = std::cos(th - lag), sn = std::sin(th - lag);
+      m.x[j] += A * cs;
+      m.v[j] += Ad * cs - A * sn * phd;
+      m.a[j] += -2 * Ad * sn * phd - A * (cs * phd * phd + sn * thdd);
+    }
+  }
+  // Build-up: r xi, (r xi)' and (r xi)''.
+  double r, rd, rdd;
+  wf.ramp(t, r, rd, rdd);
+  if (r != 1) {
+    m.a = r * m.a + 2 * rd * m.v + rdd * m.x;
+    m.v = r * m.v + rd * m.x;
+    m.x = r * m.x;
+  }
+  return m;
+}
+
+TowKinematics Vessel::tow_point(const TowKinematics& origin, double t) const {
+  const VesselMotion m = motion(origin, t);
+  // Sheave in vessel axes: s = r_s + xi + theta x r_s (small angles, linear in
+  // the motions), theta = (roll, -pitch, yaw) about (x, y, z): pitch + = bow up.
+  const auto theta = [](const Vec6& x) { return Vec3(x[3], -x[4], x[5]); };
+  Vec3 s = sheave_ + m.x.head<3>() + theta(m.x).cross(sheave_);
+  Vec3 sd = m.v.head<3>() + theta(m.v).cross(sheave_);
+  Vec3 sdd = m.a.head<3>() + theta(m.a).cross(sheave_);
+  if (exact_) {
+    // R = A B C = Rz(q2) Ry(q1) Rx(q0), q = theta; each factor E about axis e:
+    // dE/dt = [e]x E q', d2E/dt2 = ([e]x^2 q'^2 + [e]x q'') E.
+    const Vec3 q = theta(m.x), qd = theta(m.v), qdd = theta(m.a);
+    Mat3 E[3], Ed[3], Edd[3];
+    for (int i = 0; i < 3; ++i) {
+      const Mat3 S = cross_matrix(Vec3::Unit(i));
+      E[i] = Eigen::AngleAxisd(q[i], Vec3::Unit(i)).toRotationMatrix();
+      Ed[i] = S * E[i] * qd[i];
+      Edd[i] = (S * S * qd[i] * qd[i] + S * qdd[i]) * E[i];
+    }
+    const Mat3 R = E[2] * E[1] * E[0];
+    const Mat3 Rd = Ed[2] * E[1] * E[0] + E[2] * Ed[1] * E[0] + E[2] * E[1] * Ed[0];
+    const Mat3 Rdd = Edd[2] * E[1] * E[0] + E[2] * Edd[1] * E[0] + E[2] * E[1] * Edd[0] +
+                     2 * (Ed[2] * Ed[1] * E[0] + Ed[2] * E[1] * Ed[0] + E[2] * Ed[1] * Ed[0]);
+    s = m.x.head<3>() + R * sheave_;
+    sd = m.v.head<3>() + Rd * sheave_;
+    sdd = m.a.head<3>() + Rdd * sheave_;
+  }
+  // Turned to the course psi about z; with psi' the course rate (psi'' = 0:
+  // exact on straight legs and steady turns, see docs/theory.md).
+  const Mat3 Rz = Eigen::AngleAxisd(m.course, Vec3::UnitZ()).toRotationMatrix();
+  const Vec3 W(0, 0, m.course_rate);
+  const Vec3 r = Rz * s, rd = Rz * sd;
+  TowKinematics k;
+  k.pos = origin.pos + r;
+  k.vel = origin.vel + W.cross(r) + rd;
+  k.acc = origin.acc + W.cross(W.cross(r)) + 2 * W.cross(rd) + Rz * sdd;
+  return k;
+}
+
+double initial_course(const Tow& tow) {
+  for (double t : {1e-6, 1.0}) {
+    const Vec3 v = tow_law_kinematics(tow, t).vel;
+    if (std::hypot(v.x(), v.y()) > 0) return std::atan2(v.y(), v.x());
+  }
+  return 0;
+}
+
+TowKinematics tow_kinematics(const Tow& tow, double t) {
+  const TowKinematics k = tow_law_kinematics(tow, t);
+  return tow.vessel ? tow.vessel->tow_point(k, t) : k;
+}
+
+}  // namespace towsim
+
+namespace towsim {
+
+void sea_sample(const Model& model, double t, Sample& out) {
+  out.has_waves = true;
+  const Vessel* v = model.tow.vessel.get();
+  if (v == nullptr || model.tow.mode != Tow::Mode::Motion) {
+    out.wave_elevation = model.fluid.waves ? model.fluid.waves->elevation(out.tow_pos, t) : 0.0;
+    return;
+  }
+  const TowKinematics law = tow_law_kinematics(model.tow, t);
+  const VesselMotion m = v->motion(law, t);
+  out.wave_elevation = m.elevation;
+  out.tow_wave = out.tow_pos - (law.pos + Eigen::AngleAxisd(m.course, Vec3::UnitZ()) * v->sheave());
+}
+
+}  // namespace towsim

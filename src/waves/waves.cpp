@@ -1,0 +1,210 @@
+// Linear waves: dispersion, spectrum synthesis and Airy kinematics
+// (docs/theory.md "Waves").
+#include "towsim/waves/waves.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace towsim {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+constexpr double kTwoPi = 2 * std::numbers::pi;
+
+/// JONSWAP peak factor's exponent r at x = (omega_p / omega)^4.
+double peak_exponent(double x) {
+  if (x <= 0) return 0;
+  const double s = x >= 1 ? 0.07 : 0.09;  // sigma: 0.07 below the peak frequency, 0.09 above
+  const double d = std::pow(x, -0.25) - 1;  // omega / omega_p - 1
+  return std::exp(-d * d / (2 * s * s));
+}
+
+/// In x = (omega_p / omega)^4, S d(omega) = C / (4 omega_p^4) f(x) dx with
+/// f(x) = exp(-5/4 x) gamma^r(x): smooth, and the PM part integrates to 4/5.
+double shape_in_x(double x, double gamma) { return std::exp(-1.25 * x) * std::pow(gamma, peak_exponent(x)); }
+
+constexpr double kXMax = 40.0;      // exp(-1.25 * 40) = 2e-22 of the integrand: the rest is negligible
+constexpr int kXIntervals = 80000;  // trapezoid in x, step 5e-4: resolves the peak (width ~ 4 sigma ~ 0.3 in x)
+
+/// Cumulative integral E(x_j) = int_0^{x_j} f(x) dx on the uniform grid (trapezoid).
+std::vector<double> cumulative_shape(double gamma) {
+  std::vector<double> E(kXIntervals + 1, 0.0);
+  const double h = kXMax / kXIntervals;
+  double prev = shape_in_x(0.0, gamma);
+  for (int j = 1; j <= kXIntervals; ++j) {
+    const double cur = shape_in_x(j * h, gamma);
+    E[j] = E[j - 1] + 0.5 * h * (prev + cur);
+    prev = cur;
+  }
+  return E;
+}
+
+/// Height below which a component's kinematics are below kWaveCutoff of their surface value.
+double cut_height(double k, double depth) {
+  const double kh = k * depth;
+  if (!std::isfinite(depth) || kh > 20) return std::log(kWaveCutoff) / k;  // cosh ratio = e^{kz} to 1e-17
+  const double c = kWaveCutoff * std::cosh(kh);
+  if (c < 1) return -std::numeric_limits<double>::infinity();  // never that small above the seabed
+  return std::acosh(c) / k - depth;
+}
+
+/// Depth factors of the horizontal (C) and vertical (S) kinematics:
+/// cosh(k(z+h))/sinh(kh) and sinh(k(z+h))/sinh(kh); e^{kz} for deep water.
+void depth_factors(double k, double z, double depth, double& C, double& S) {
+  const double ekz = std::exp(k * z);
+  if (!std::isfinite(depth)) {
+    C = S = ekz;
+    return;
+  }
+  const double zc = std::max(z, -depth);  // at or above the seabed
+  const double a = std::exp(k * zc), b = std::exp(-k * (zc + 2 * depth)), den = 1 - std::exp(-2 * k * depth);
+  C = (a + b) / den;
+  S = (a - b) / den;
+}
+
+/// Sort components deepest cut first and fill their wavenumbers and cuts.
+void finish(WaveField& w) {
+  for (auto& c : w.components) {
+    c.k = wave_number(c.omega, w.depth, w.g);
+    c.z_cut = cut_height(c.k, w.depth);
+  }
+  std::stable_sort(w.components.begin(), w.components.end(),
+                   [](const WaveComponent& a, const WaveComponent& b) { return a.z_cut < b.z_cut; });
+}
+
+}  // namespace
+
+double wave_number(double omega, double depth, double g) {
+  const double k_deep = omega * omega / g;
+  if (!std::isfinite(depth)) return k_deep;
+  // Newton on f(k) = g k tanh(kh) - omega^2 from the guess omega^2 / (g sqrt(tanh(k_deep h))),
+  // exact in both the deep and the shallow limits.
+  double k = k_deep / std::sqrt(std::tanh(k_deep * depth));
+  for (int it = 0; it < 100; ++it) {
+    const double th = std::tanh(k * depth);
+    const double f = g * k * th - omega * omega;
+    const double df = g * th + g * k * depth * (1 - th * th);
+    const double dk = f / df;
+    k -= dk;
+    if (std::abs(dk) <= 1e-15 * k) break;
+  }
+  return k;
+}
+
+double spectral_density(double hs, double tp, double gamma, double omega) {
+  if (omega <= 0) return 0;
+  const double wp = kTwoPi / tp;
+  const double x = std::pow(wp / omega, 4);
+  // The normalising integral, kept for the last gamma asked (one per thread).
+  thread_local double last_gamma = std::numeric_limits<double>::quiet_NaN(), J = 0;
+  if (gamma != last_gamma) J = cumulative_shape(gamma).back(), last_gamma = gamma;
+  // S = C omega^-5 exp(-5/4 x) gamma^r with C = (hs^2/16) 4 omega_p^4 / J.
+  const double C = hs * hs / 16 * 4 * std::pow(wp, 4) / J;
+  return C * std::pow(omega, -5) * shape_in_x(x, gamma);
+}
+
+WaveField make_regular_wave(double height, double period, const Vec3& direction, double depth, double g) {
+  WaveField w;
+  w.g = g;
+  w.depth = depth;
+  w.direction = direction.normalized();
+  w.components.push_back(WaveComponent{0.5 * height, kTwoPi / period, 0, 0, 0});
+  finish(w);
+  return w;
+}
+
+WaveField make_irregular_sea(double hs, double tp, double gamma, int n, std::uint64_t seed, const Vec3& direction,
+                             double depth, double g) {
+  WaveField w;
+  w.g = g;
+  w.depth = depth;
+  w.direction = direction.normalized();
+  const double wp = kTwoPi / tp;
+  const std::vector<double> E = cumulative_shape(gamma);
+  const double h = kXMax / kXIntervals;
+  const double amplitude = std::sqrt(2 * hs * hs / 16 / n);  // a^2 / 2 = m0 / n
+  std::mt19937_64 gen(seed);
+  // Component j (increasing frequency) sits at the median of the j-th
+  // equal-energy bin counted from the low-frequency end, i.e. where the energy
+  // above its frequency is (n - j - 1/2) / n, which is E(x) / E(inf) in x.
+  for (int j = 0; j < n; ++j) {
+    const double target = (n - j - 0.5) / n * E.back();
+    const auto it = std::lower_bound(E.begin(), E.end(), target);
+    const std::size_t i1 = std::clamp<std::size_t>(static_cast<std::size_t>(it - E.begin()), 1, E.size() - 1);
+    const double x = h * (static_cast<double>(i1 - 1) + (target - E[i1 - 1]) / (E[i1] - E[i1 - 1]));
+    const double omega = wp * std::pow(x, -0.25);
+    const double u = static_cast<double>(gen() >> 11) * 0x1.0p-53;  // exactly 53 random bits in [0, 1)
+    w.components.push_back(WaveComponent{amplitude, omega, 0, kTwoPi * u, 0});
+  }
+  finish(w);
+  return w;
+}
+
+void WaveField::ramp(double t, double& r, double& rd, double& rdd) const {
+  r = 1, rd = 0, rdd = 0;
+  if (!(ramp_time > 0) || t >= ramp_time) return;
+  if (t <= 0) {
+    r = 0;
+    return;
+  }
+  const double s = t / ramp_time, T = ramp_time;
+  r = s * s * s * (10 - 15 * s + 6 * s * s);
+  rd = 30 * s * s * (1 - s) * (1 - s) / T;
+  rdd = 60 * s * (1 - s) * (1 - 2 * s) / (T * T);
+}
+
+double WaveField::elevation(const Vec3& x, double t) const {
+  const double s = direction.x() * x.x() + direction.y() * x.y();
+  double eta = 0;
+  for (const auto& c : components) eta += c.amplitude * std::cos(c.omega * t - c.k * s - c.phase);
+  double r, rd, rdd;
+  ramp(t, r, rd, rdd);
+  return r * eta;
+}
+
+Vec3 WaveField::velocity(const Vec3& x, double t) const {
+  if (x.z() > 0) return Vec3::Zero();
+  const double s = direction.x() * x.x() + direction.y() * x.y();
+  double uh = 0, w = 0;
+  for (const auto& c : components) {
+    if (c.z_cut > x.z()) break;  // this one and all later ones are negligible here
+    double C, S;
+    depth_factors(c.k, x.z(), depth, C, S);
+    const double th = c.omega * t - c.k * s - c.phase, aw = c.amplitude * c.omega;
+    uh += aw * C * std::cos(th);
+    w -= aw * S * std::sin(th);
+  }
+  double r, rd, rdd;
+  ramp(t, r, rd, rdd);
+  return r * Vec3(uh * direction.x(), uh * direction.y(), w);
+}
+
+Vec3 WaveField::acceleration(const Vec3& x, double t) const {
+  if (x.z() > 0) return Vec3::Zero();
+  const double s = direction.x() * x.x() + direction.y() * x.y();
+  double r, rd, rdd;
+  ramp(t, r, rd, rdd);
+  double ah = 0, az = 0, uh = 0, w = 0;
+  for (const auto& c : components) {
+    if (c.z_cut > x.z()) break;
+    double C, S;
+    depth_factors(c.k, x.z(), depth, C, S);
+    const double th = c.omega * t - c.k * s - c.phase, aw = c.amplitude * c.omega, aw2 = aw * c.omega;
+    const double cs = std::cos(th), sn = std::sin(th);
+    ah -= aw2 * C * sn;
+    az -= aw2 * S * cs;
+    if (rd != 0) uh += aw * C * cs, w -= aw * S * sn;  // d(r u)/dt = r' u + r du/dt during the build-up
+  }
+  return Vec3((r * ah + rd * uh) * direction.x(), (r * ah + rd * uh) * direction.y(), r * az + rd * w);
+}
+
+double WaveField::variance() const {
+  double v = 0;
+  for (const auto& c : components) v += 0.5 * c.amplitude * c.amplitude;
+  return v;
+}
+
+}  // namespace towsim
