@@ -9,8 +9,8 @@
 #include <memory>
 #include <type_traits>
 
-#include "towsim/io/commands.hpp"
-#include "towsim/io/plot.hpp"
+#include "commands.hpp"
+#include "plot.hpp"
 
 namespace {
 

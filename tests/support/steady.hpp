@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "towsim/dynamics/state.hpp"
-#include "towsim/io/examples.hpp"
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "towsim/model/model.hpp"
 #include "towsim/sim/simulate.hpp"
 

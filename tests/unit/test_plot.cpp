@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "towsim/io/plot.hpp"
+#include "plot.hpp"
 
 namespace fs = std::filesystem;
 using towsim::io::plot_names;

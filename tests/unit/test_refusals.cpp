@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "../support/scenario_files.hpp"
 
 namespace fs = std::filesystem;

@@ -4,8 +4,8 @@
 
 #include <cstdio>
 
-#include "towsim/io/examples.hpp"
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim {

@@ -1,4 +1,4 @@
-#include "towsim/io/examples.hpp"
+#include "towsim/scenario/examples.hpp"
 
 #include <yaml-cpp/yaml.h>
 

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "towsim/io/diagnostics.hpp"
-#include "towsim/io/spec.hpp"
-#include "towsim/io/yaml_tree.hpp"
+#include "towsim/scenario/diagnostics.hpp"
+#include "towsim/scenario/spec.hpp"
+#include "towsim/scenario/yaml_tree.hpp"
 #include "towsim/model/model.hpp"
 
 namespace towsim::io {

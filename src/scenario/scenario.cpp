@@ -1,9 +1,9 @@
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/scenario.hpp"
 
 #include <filesystem>
 
-#include "towsim/io/compile.hpp"
-#include "towsim/io/parse.hpp"
+#include "towsim/scenario/compile.hpp"
+#include "towsim/scenario/parse.hpp"
 
 namespace towsim::io {
 namespace {

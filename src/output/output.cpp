@@ -1,4 +1,4 @@
-#include "towsim/io/output.hpp"
+#include "towsim/output/output.hpp"
 
 #include <charconv>
 #include <cmath>

@@ -3,7 +3,7 @@
 #include <numbers>
 #include <ostream>
 
-#include "towsim/io/commands.hpp"
+#include "commands.hpp"
 
 namespace towsim::io {
 namespace {

@@ -1,4 +1,4 @@
-#include "towsim/io/compile.hpp"
+#include "towsim/scenario/compile.hpp"
 
 #include <cstdio>
 

@@ -1,4 +1,4 @@
-#include "towsim/io/plot.hpp"
+#include "plot.hpp"
 
 #include <spawn.h>
 #include <sys/wait.h>

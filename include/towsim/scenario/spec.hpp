@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "towsim/io/diagnostics.hpp"
+#include "towsim/scenario/diagnostics.hpp"
 #include "towsim/model/model.hpp"
 
 namespace towsim::io {

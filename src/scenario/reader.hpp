@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "towsim/io/spec.hpp"
-#include "towsim/io/yaml_tree.hpp"
+#include "towsim/scenario/spec.hpp"
+#include "towsim/scenario/yaml_tree.hpp"
 
 namespace towsim::io {
 

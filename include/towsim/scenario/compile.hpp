@@ -3,8 +3,8 @@
 
 #include <optional>
 
-#include "towsim/io/diagnostics.hpp"
-#include "towsim/io/spec.hpp"
+#include "towsim/scenario/diagnostics.hpp"
+#include "towsim/scenario/spec.hpp"
 #include "towsim/model/model.hpp"
 
 namespace towsim::io {

@@ -1,4 +1,4 @@
-#include "towsim/io/commands.hpp"
+#include "commands.hpp"
 
 #include <algorithm>
 #include <exception>
@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "towsim/io/examples.hpp"
-#include "towsim/io/output.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/output/output.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim::io {

@@ -4,7 +4,7 @@
 
 #include "parse_sections.hpp"
 #include "scalar.hpp"
-#include "towsim/io/parse.hpp"
+#include "towsim/scenario/parse.hpp"
 
 namespace towsim::io {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "towsim/io/diagnostics.hpp"
+#include "towsim/scenario/diagnostics.hpp"
 
 namespace towsim::io {
 

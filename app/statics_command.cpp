@@ -5,8 +5,8 @@
 #include <iostream>
 
 #include "towsim/dynamics/dynamics.hpp"
-#include "towsim/io/commands.hpp"
-#include "towsim/io/output.hpp"
+#include "commands.hpp"
+#include "towsim/output/output.hpp"
 #include "towsim/sim/statics.hpp"
 
 namespace towsim::io {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/scenario.hpp"
 
 namespace towsim::io {
 

@@ -1,7 +1,7 @@
 // Internal: range checks on spec fields, each reporting "must be ... (got ...)".
 #pragma once
 
-#include "towsim/io/spec.hpp"
+#include "towsim/scenario/spec.hpp"
 
 namespace towsim::io {
 

@@ -1,4 +1,4 @@
-#include "towsim/io/yaml_tree.hpp"
+#include "towsim/scenario/yaml_tree.hpp"
 
 #include <yaml-cpp/yaml.h>
 

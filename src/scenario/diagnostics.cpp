@@ -1,4 +1,4 @@
-#include "towsim/io/diagnostics.hpp"
+#include "towsim/scenario/diagnostics.hpp"
 
 #include <algorithm>
 #include <cstdio>

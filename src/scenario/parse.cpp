@@ -1,4 +1,4 @@
-#include "towsim/io/parse.hpp"
+#include "towsim/scenario/parse.hpp"
 
 #include "parse_sections.hpp"
 
