@@ -1,6 +1,6 @@
 // towsim: the command-line front end (INTERFACE.md). Argument parsing only;
 // each subcommand is registered by its own add_*_command function and runs a
-// function of towsim/io/commands.hpp. Exit statuses: see ExitStatus.
+// function of app/commands.hpp. Exit statuses: see ExitStatus.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "plot.hpp"
+#include "towsim/version.hpp"
 
 namespace {
 
@@ -76,7 +77,7 @@ void add_examples_command(CLI::App& app, int& status) {
   cmd->callback([name, &status] { status = examples_command(*name, std::cout, std::cerr); });
 }
 
-/// `towsim plot DIR`: figures of a run's outputs (src/io/plot.cpp).
+/// `towsim plot DIR`: figures of a run's outputs (app/plot.cpp).
 void add_plot_command(CLI::App& app, int& status) {
   auto dir = std::make_shared<std::string>();
   auto opts = std::make_shared<PlotOptions>();
@@ -105,6 +106,7 @@ void add_statics_command(CLI::App& app, int& status) {
 int main(int argc, char** argv) {
   CLI::App app{"towsim: simulator of underwater towed cables and towed bodies"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("towsim ") + towsim::kVersion, "Print the version and exit");
   int status = kExitOk;
   add_run_command(app, status);
   add_check_command(app, status);

@@ -20,6 +20,8 @@ foreach(lib physics scenario output)
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/towsim DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.hpp")
+install(FILES ${PROJECT_BINARY_DIR}/generated/include/towsim/version.hpp
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/towsim)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${CMAKE_INSTALL_DATADIR}/towsim/scenarios)
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/towsimConfig.cmake.in

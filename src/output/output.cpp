@@ -6,6 +6,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "towsim/version.hpp"
+
 namespace towsim::io {
 namespace {
 
@@ -166,6 +168,7 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
                                     bool has_body, bool write_nodes) {
   nlohmann::ordered_json j;
   j["model"] = model_name;
+  j["version"] = kVersion;  // of the program that wrote the file
   j["status"] = stats.status;
   j["message"] = stats.message;
   j["end_time"] = num(stats.end_time);

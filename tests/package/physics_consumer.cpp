@@ -7,10 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/state.hpp"
 #include "towsim/model/model.hpp"
+#include "towsim/version.hpp"
 
 int main() {
   using namespace towsim;
@@ -51,5 +53,8 @@ int main() {
   for (const Vec3& a : ws.acc.alpha) amax = std::max(amax, a.norm());
   std::printf("max |alpha_k| = %.1e rad/s^2\n", amax);
   if (!(amax <= kRel * m.fluid.g / (length / n))) ++failures;
+  // The header's version is the package's (towsimConfigVersion.cmake).
+  std::printf("towsim %s (package %s)\n", towsim::kVersion, PACKAGE_VERSION);
+  if (std::string(towsim::kVersion) != PACKAGE_VERSION) ++failures;
   return failures == 0 ? 0 : 1;
 }
