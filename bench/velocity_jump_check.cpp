@@ -17,6 +17,7 @@
 
 #include "baseline/cartesian.hpp"
 #include "towsim/sim/simulate.hpp"
+#include "pieces.hpp"
 
 namespace {
 
@@ -38,11 +39,11 @@ Model model(Heave kind) {
   b.spheres.push_back({Vec3(0, 0, 0), 0.25, 0.5, 0.5});
   b.spheres.push_back({Vec3(-1.5, 0, 0), 0.25, 0.5, 0.5});
   finalize_body(b, m.fluid);
-  m.tow.pieces.push_back({TowPiece::Type::Ramp, Vec3(1, 0, 0), 2.0, 15.0, 0, 0, 0, 0, true, {}, {}});
+  m.tow.pieces.push_back(bench::ramp(Vec3(1, 0, 0), 2.0, 15.0));
   if (kind == Heave::Piece) {
-    m.tow.pieces.push_back({TowPiece::Type::Heave, Vec3::UnitX(), 0, 0, 1.0, 10.0, 15.0, 0, true, {}, {}});
+    m.tow.pieces.push_back(bench::heave(1.0, 10.0, 15.0));
   } else {
-    TowPiece tr{TowPiece::Type::Track, Vec3::UnitX(), 0, 0, 0, 0, 0, 0, true, {}, {}};
+    TowPiece tr = bench::track();
     for (double t = 0; t <= 121; t += 0.25) {
       const double ph = 2 * std::numbers::pi * (t - 15) / 10;
       const double z = t <= 15 ? 0 : (kind == Heave::TrackSine ? std::sin(ph) : 1 - std::cos(ph));
