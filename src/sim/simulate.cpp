@@ -140,7 +140,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       stats.message = "interrupted by signal at t = " + std::to_string(t) + " s";
       break;
     }
-    const double out_time = std::min(T, k * dT);
+    const double out_time = std::min(T, static_cast<double>(k) * dT);
     std::string err;
     // Land on every breakpoint of the tow law up to the output time; where
     // the tow velocity jumps, give the chain its impulsive response.

@@ -41,8 +41,8 @@ int main() {
   int failures = 0;
   auto check = [&](const char* what, const Vec3& got, const Vec3& want) {
     const double err = (got - want).norm() / W;
-    std::printf("%-16s (%.6f, %.6f, %.6f) N, expected (%.6f, %.6f, %.6f) N, error %.1e of W\n", what, got.x(),
-                got.y(), got.z(), want.x(), want.y(), want.z(), err);
+    std::printf("%-16s (%.6f, %.6f, %.6f) N, expected (%.6f, %.6f, %.6f) N, error %.1e of W\n", what, got.x(), got.y(),
+                got.z(), want.x(), want.y(), want.z(), err);
     if (!(err <= kRel)) ++failures;
   };
   check("tow force F_R", ws.acc.tow_force, Vec3(0, 0, W));
