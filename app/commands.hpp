@@ -11,7 +11,7 @@
 
 namespace towsim::io {
 
-/// Exit statuses of the program (INTERFACE.md).
+/// Exit statuses of the program (docs/contract.md §U3).
 enum ExitStatus : int {
   kExitOk = 0,            // success
   kExitError = 1,         // I/O or internal error (e.g. the output directory cannot be created)

@@ -1,4 +1,4 @@
-// towsim: the command-line front end (INTERFACE.md). Argument parsing only;
+// towsim: the command-line front end (docs/contract.md §U2). Argument parsing only;
 // each subcommand is registered by its own add_*_command function and runs a
 // function of app/commands.hpp. Exit statuses: see ExitStatus.
 #include <unistd.h>

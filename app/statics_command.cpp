@@ -1,4 +1,4 @@
-// `towsim statics`: the steady-tow configuration of a scenario (issue 5).
+// `towsim statics`: the steady-tow configuration of a scenario (docs/theory.md §7).
 #include <cmath>
 #include <filesystem>
 #include <iomanip>

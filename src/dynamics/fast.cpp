@@ -1,5 +1,5 @@
 // Default formulation: O(n) articulated recursion along the chain
-// (docs/theory.md "Linear-cost recursion"; MODEL.md 8).
+// (docs/theory.md §5.2 "Default formulation: linear-cost recursion").
 //
 // For the part of the system below joint k (elements k+1..n and the body),
 // the force f_k it receives through the joint is affine in the joint's

@@ -1,4 +1,4 @@
-// Kinematics of the chain and body from a physical state (MODEL.md 2, 4).
+// Kinematics of the chain and body from a physical state (docs/theory.md §2, §4).
 #include <cmath>
 
 #include "towsim/dynamics/state.hpp"

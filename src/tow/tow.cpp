@@ -1,4 +1,4 @@
-// Imposed tow-point kinematics and tow force laws (INTERFACE.md "Tow motion pieces").
+// Imposed tow-point kinematics and tow force laws (docs/scenario.md "tow"; docs/theory.md §6.1).
 #include <algorithm>
 #include <cmath>
 #include <numbers>

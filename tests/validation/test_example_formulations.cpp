@@ -1,5 +1,5 @@
 // Whole runs of every built-in example: the default O(n) formulation and the
-// paper's dense formulation agree to the integrator's accuracy (issue 4).
+// paper's dense formulation agree to the integrator's accuracy (docs/contract.md §P8).
 #include <gtest/gtest.h>
 
 #include <cstdio>

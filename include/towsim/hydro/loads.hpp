@@ -1,4 +1,4 @@
-// Fluid and gravity loads on cable elements and on the towed body (MODEL.md 3-4).
+// Fluid and gravity loads on cable elements and on the towed body (docs/theory.md §3-4).
 #pragma once
 
 #include "towsim/dynamics/state.hpp"

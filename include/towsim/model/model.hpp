@@ -1,4 +1,4 @@
-// The immutable, compiled description of a towing system (MODEL.md 1-4).
+// The immutable, compiled description of a towing system (docs/theory.md §1-4).
 //
 // A Model is built once by `compile()` from a parsed scenario and never
 // changes during a run. Dynamics are free functions of (model, state, t,
@@ -38,13 +38,13 @@ struct Fluid {
   bool has_current() const { return !current_velocity.empty(); }
 };
 
-/// Tangential (axial) friction law on a cable element (MODEL.md 3).
+/// Tangential (axial) friction law on a cable element (docs/theory.md §3).
 enum class TangentialLaw {
   Pode,  // F_t = -1/2 rho Cd f D L |u|^2 sgn_s(u.e) e   (paper 2.43)
   Skin,  // F_t = -1/2 rho pi D L Ct |u.e| (u.e) e       (lumped-mass codes)
 };
 
-/// How the fluid's added mass acts on a cable element (MODEL.md 3).
+/// How the fluid's added mass acts on a cable element (docs/theory.md §3).
 enum class AddedMassModel {
   IdealFluid,  // -dP/dt with P = ma (I - ee^T) u, plus the Munk moment (paper 2.42)
   Morison,     // acceleration term only: -ma (I - ee^T) du/dt, -Ia alpha
@@ -110,7 +110,7 @@ struct LiftingSurface {
   std::vector<double> deflection_angle;  // [rad]
 };
 
-/// The towed rigid body (MODEL.md 4, paper section 4).
+/// The towed rigid body (docs/theory.md §4, paper section 4).
 struct Body {
   double mass;               // m_B [kg]
   Mat3 inertia_cg;           // inertia tensor about the CG, body axes [kg m^2]
@@ -133,7 +133,7 @@ struct Body {
   Vec3 buoyancy_center;   // centre of the total displaced volume, body axes [m]
 };
 
-/// One piece of an imposed tow-point motion (INTERFACE.md).
+/// One piece of an imposed tow-point motion (docs/scenario.md "tow").
 struct TowPiece {
   enum class Type { Ramp, Heave, Turn, Track } type;
   Vec3 direction = Vec3::UnitX();  // ramp: unit direction [-]
@@ -189,7 +189,7 @@ struct Initial {
 enum class Integrator { RK4, DOPRI5, CashKarp54 };
 enum class Formulation { Default, Paper };
 
-/// Time integration settings (MODEL.md 5).
+/// Time integration settings (docs/theory.md §6).
 struct Simulation {
   double duration = 100;        // [s]
   double time_step = 0.01;      // fixed step, or first step if adaptive [s]

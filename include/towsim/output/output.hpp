@@ -1,4 +1,4 @@
-// Run outputs (INTERFACE.md): timeseries.csv, nodes.csv, summary.json.
+// Run outputs (README "Output files"; docs/contract.md §U5): timeseries.csv, nodes.csv, summary.json.
 #pragma once
 
 #include <cstdio>

@@ -9,7 +9,7 @@
 
 namespace towsim {
 
-/// Everything written for one output time (INTERFACE.md output files).
+/// Everything written for one output time (README "Output files"; docs/contract.md §U5).
 struct Sample {
   double t = 0;                 // simulated time [s]
   Vec3 tow_pos, tow_vel;        // O_r = P_0 [m], [m/s], R_g
