@@ -118,10 +118,10 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     return kExitError;
   }
   try {
-    RunWriter writer(opts.out_dir, model.has_body, model.sim.write_nodes);
+    RunWriter writer(opts.out_dir, model, model.sim.write_nodes);
     const RunStats stats = simulate_safely(model, writer, opts, err, stop_flag);
     const auto summary = make_summary(to_json(sc.tree), model.name, stats, writer.extremes(), writer.samples(),
-                                      model.has_body, model.sim.write_nodes);
+                                      model, model.sim.write_nodes);
     if (!write_summary(opts.out_dir, summary)) throw std::runtime_error("cannot write summary.json");
     // Rigid elements can push; a real cable would go slack there.
     const Extreme& comp = writer.extremes().min_axial_force;

@@ -38,14 +38,12 @@ void describe_fluid(const Fluid& f, std::ostream& out) {
     line(out, i == 0 ? "current" : "", vec(f.current_velocity[i]) + " m/s at depth " + fmt_num(f.current_depth[i]) + " m");
 }
 
-void describe_cable(const Cable& c, std::ostream& out) {
-  const Element& e = c.elements.front();
-  const double total = c.total_length();
-  out << "cable: " << fmt_num(total) << " m in " << c.n() << " elements\n";
+/// The properties of one run of equal elements (e: its first element).
+void describe_elements(const Cable& c, const Element& e, int count, std::ostream& out) {
   line(out, "element length", fmt_num(e.length) + " m");
   line(out, "diameter", fmt_num(e.diameter) + " m");
   line(out, "mass in air", fmt_num(e.mass / e.length) + " kg/m, " + fmt_num(e.mass) + " kg per element, " +
-                               fmt_num(e.mass * c.n()) + " kg in all");
+                               fmt_num(e.mass * count) + " kg in all");
   line(out, "apparent weight in water", fmt_num(e.weight / e.length) + " N/m, " + fmt_num(e.weight) +
                                             " N per element (" + sinks(e.weight, e.mass * 9.81) + ")");
   line(out, "added mass (normal)", fmt_num(e.added_mass / e.length) + " kg/m, " + fmt_num(e.added_mass) +
@@ -56,15 +54,47 @@ void describe_cable(const Cable& c, std::ostream& out) {
                                    " = " + fmt_num(e.friction_factor / e.length) + " kg/m^2");
 }
 
-void describe_body(const Body& b, const Fluid& f, std::ostream& out) {
+/// Arc length from the tow point to joint k [m].
+double arc_length(const Cable& c, int k) {
+  double s = 0;
+  for (int i = 0; i < k; ++i) s += c.elements[static_cast<std::size_t>(i)].length;
+  return s;
+}
+
+void describe_cable(const Cable& c, std::ostream& out) {
+  const double total = c.total_length();
+  out << "cable: " << fmt_num(total) << " m in " << c.n() << " elements\n";
+  if (c.sections.size() <= 1) {
+    describe_elements(c, c.elements.front(), c.n(), out);
+  } else {
+    for (const Section& s : c.sections) {
+      out << "section " << s.name << ": " << fmt_num(s.length) << " m in " << s.elements << " elements, from "
+          << fmt_num(arc_length(c, s.first_element)) << " m\n";
+      describe_elements(c, c.elements[static_cast<std::size_t>(s.first_element)], s.elements, out);
+    }
+  }
+  for (const Section& s : c.sections)
+    if (s.breaking_load > 0) line(out, "breaking load (" + s.name + ")", fmt_num(s.breaking_load) + " N");
+  for (const Attachment& a : c.attachments)
+    line(out, "attachment at " + fmt_num(a.at) + " m",
+         "at joint " + std::to_string(a.joint) + " (" + fmt_num(arc_length(c, a.joint)) + " m): mass " +
+             fmt_num(a.mass) + " kg, volume " + fmt_num(a.volume) + " m^3, CdA " + fmt_num(a.drag_area) +
+             " m^2, added mass " + fmt_num(a.added_mass) + " kg");
+}
+
+void describe_body(const Body& b, const Cable& c, const Fluid& f, std::ostream& out) {
   const double weight = (b.mass - f.rho * b.displaced_volume) * f.g;
-  out << "body\n";
+  if (b.inline_body)
+    out << "in-line body " << b.name << ": at joint " << b.joint << " (" << fmt_num(arc_length(c, b.joint)) << " m)\n";
+  else
+    out << "body\n";
   line(out, "mass", fmt_num(b.mass) + " kg");
   line(out, "displaced volume", fmt_num(b.displaced_volume) + " m^3");
   line(out, "apparent weight in water", fmt_num(weight) + " N (" + sinks(weight, b.mass * f.g) + ")");
   line(out, "centre of gravity", vec(b.cg) + " m (body axes)");
   line(out, "centre of buoyancy", vec(b.buoyancy_center) + " m (body axes)");
   line(out, "link point Q", vec(b.link_point) + " m (body axes)");
+  if (b.inline_body) line(out, "lower link point Q2", vec(b.lower_link_point) + " m (body axes)");
   line(out, "load models", count(b.spheres.size(), "sphere") + ", " + count(b.cylinders.size(), "cylinder") + ", " +
                                count(b.surfaces.size(), "surface"));
 }
@@ -124,10 +154,8 @@ void describe_model(const Model& m, std::ostream& out) {
   out << "scenario " << m.name << ": valid\n";
   describe_fluid(m.fluid, out);
   describe_cable(m.cable, out);
-  if (m.has_body)
-    describe_body(m.body, m.fluid, out);
-  else
-    out << "body: none (free cable end)\n";
+  for (const Body& b : m.bodies) describe_body(b, m.cable, m.fluid, out);
+  if (!end_body(m)) out << "body: none (free cable end)\n";
   describe_tow(m.tow, out);
   describe_run(m, out);
 }

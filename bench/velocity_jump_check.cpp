@@ -30,8 +30,8 @@ Model model(Heave kind) {
   m.cable.added_mass_model = AddedMassModel::Morison;
   for (int i = 0; i < 5; ++i)
     m.cable.elements.push_back(make_element(20.0, 1.5, 0.019, 1.8, 0.0, TangentialLaw::Pode, 1.0, m.fluid));
-  m.has_body = true;
-  Body& b = m.body;
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
   b.mass = 134.1721862471;
   b.inertia_cg = Vec3(3.354304656, 78.82615942, 78.82615942).asDiagonal();
   b.cg = Vec3(-0.75, 0, 0);

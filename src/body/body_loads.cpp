@@ -17,34 +17,34 @@ Vec6 rotate6(const Mat3& R, const Vec6& v) {
 }
 
 /// Add a force F applied at point c (relative to O_t, R_g) to the body loads.
-void add_force(Workspace& ws, const Vec3& c, const Vec3& F) {
+void add_force(BodyWork& ws, const Vec3& c, const Vec3& F) {
   ws.Fb += F;
   ws.Mb += c.cross(F);
 }
 
 /// Drag of a sphere load.
-void sphere_loads(const Model& m, const SphereLoad& sp, Workspace& ws) {
+void sphere_loads(const Fluid& fluid, const SphereLoad& sp, BodyWork& ws) {
   const Vec3 c = ws.R * sp.center;
-  const Vec3 ur = ws.vO + ws.wB.cross(c) - m.fluid.current(ws.O.z() + c.z());
+  const Vec3 ur = ws.vO + ws.w.cross(c) - fluid.current(ws.O.z() + c.z());
   const double area = std::numbers::pi * sp.radius * sp.radius;
-  add_force(ws, c, -0.5 * m.fluid.rho * sp.drag * area * ur.norm() * ur);
+  add_force(ws, c, -0.5 * fluid.rho * sp.drag * area * ur.norm() * ur);
 }
 
 /// Normal drag and axial skin friction of a slender cylinder load.
-void cylinder_loads(const Model& m, const CylinderLoad& cy, Workspace& ws) {
+void cylinder_loads(const Fluid& fluid, const CylinderLoad& cy, BodyWork& ws) {
   const Vec3 c = ws.R * cy.center;
   const Vec3 a = ws.R * cy.axis;
-  const Vec3 u = ws.vO + ws.wB.cross(c) - m.fluid.current(ws.O.z() + c.z());
+  const Vec3 u = ws.vO + ws.w.cross(c) - fluid.current(ws.O.z() + c.z());
   const double ua = u.dot(a);
   const Vec3 un = u - ua * a;
-  const double rho = m.fluid.rho;
+  const double rho = fluid.rho;
   Vec3 F = -0.5 * rho * cy.normal_drag * cy.diameter * cy.length * un.norm() * un;
   F -= 0.5 * rho * std::numbers::pi * cy.diameter * cy.length * cy.axial_drag * std::abs(ua) * ua * a;
   add_force(ws, c, F);
 }
 
 /// Lift and drag of a lifting surface from its local angle of attack.
-void surface_loads(const Model& m, const LiftingSurface& ls, double t, Workspace& ws) {
+void surface_loads(const Fluid& fluid, const LiftingSurface& ls, double t, BodyWork& ws) {
   const Vec3 c = ws.R * ls.center;
   const Vec3 span = ws.R * ls.chord.cross(ls.normal);
   // Deflection d: chord and normal turn by +d about the span axis
@@ -53,7 +53,7 @@ void surface_loads(const Model& m, const LiftingSurface& ls, double t, Workspace
   const double d = surface_deflection(ls, t);
   const Vec3 chord = ws.R * (std::cos(d) * ls.chord + std::sin(d) * ls.normal);
   const Vec3 normal = ws.R * (-std::sin(d) * ls.chord + std::cos(d) * ls.normal);
-  const Vec3 u = ws.vO + ws.wB.cross(c) - m.fluid.current(ws.O.z() + c.z());
+  const Vec3 u = ws.vO + ws.w.cross(c) - fluid.current(ws.O.z() + c.z());
   const Vec3 up = u - u.dot(span) * span;  // velocity in the surface's plane
   const double V = up.norm();
   if (V < 1e-12) return;
@@ -63,7 +63,7 @@ void surface_loads(const Model& m, const LiftingSurface& ls, double t, Workspace
   double cd = ls.drag0 + ls.induced_drag * cl * cl;
   const double sa = std::abs(std::sin(alpha));
   if (std::abs(alpha) > as) cd += 2 * (sa * sa - std::sin(as) * std::sin(as));
-  const double qA = 0.5 * m.fluid.rho * V * V * ls.area;
+  const double qA = 0.5 * fluid.rho * V * V * ls.area;
   const Vec3 lift_dir = span.cross(up) / V;
   add_force(ws, c, qA * (cl * lift_dir - cd * up / V));
 }
@@ -88,14 +88,13 @@ double surface_deflection(const LiftingSurface& ls, double t) {
   return interpolate(ls.deflection_time, ls.deflection_angle, t);
 }
 
-void body_inertia(const Model& model, const PhysicalState& s, Workspace& ws) {
-  const Body& b = model.body;
+void body_inertia(const Fluid& fluid, const Body& b, BodyWork& ws) {
   const Mat3& R = ws.R;
   // Body-frame velocities, absolute and relative to the water at O_t.
   const Vec3 vb = R.transpose() * ws.vO;
-  const Vec3 wb = R.transpose() * s.wb;
-  const Vec3 vr = R.transpose() * (ws.vO - model.fluid.current(ws.O.z()));
-  const Vec3 dU = R.transpose() * (model.fluid.current_gradient(ws.O.z()) * ws.vO.z());
+  const Vec3 wb = R.transpose() * ws.w;
+  const Vec3 vr = R.transpose() * (ws.vO - fluid.current(ws.O.z()));
+  const Vec3 dU = R.transpose() * (fluid.current_gradient(ws.O.z()) * ws.vO.z());
   Vec6 nu, nur;
   nu << vb, wb;
   nur << vr, wb;
@@ -118,22 +117,21 @@ void body_inertia(const Model& model, const PhysicalState& s, Workspace& ws) {
   ws.hw = rotate6(R, h);
 }
 
-void body_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
-  const Body& b = model.body;
-  const double rho = model.fluid.rho, g = model.fluid.g;
+void body_loads(const Fluid& fluid, const Body& b, double t, BodyWork& ws) {
+  const double rho = fluid.rho, g = fluid.g;
   ws.Fb.setZero();
   ws.Mb.setZero();
   // Gravity at the CG, buoyancy at the centre of the displaced volume.
   add_force(ws, ws.R * b.cg, Vec3(0, 0, -b.mass * g));
   add_force(ws, ws.R * b.buoyancy_center, Vec3(0, 0, rho * g * b.displaced_volume));
   if (rho == 0) return;
-  for (const auto& sp : b.spheres) sphere_loads(model, sp, ws);
-  for (const auto& cy : b.cylinders) cylinder_loads(model, cy, ws);
-  for (const auto& ls : b.surfaces) surface_loads(model, ls, t, ws);
+  for (const auto& sp : b.spheres) sphere_loads(fluid, sp, ws);
+  for (const auto& cy : b.cylinders) cylinder_loads(fluid, cy, ws);
+  for (const auto& ls : b.surfaces) surface_loads(fluid, ls, t, ws);
   // Generic damping on the body-frame velocity relative to the water.
   if (!b.linear_damping.isZero() || !b.quadratic_damping.isZero()) {
     Vec6 nur;
-    nur << ws.R.transpose() * (ws.vO - model.fluid.current(ws.O.z())), ws.R.transpose() * s.wb;
+    nur << ws.R.transpose() * (ws.vO - fluid.current(ws.O.z())), ws.R.transpose() * ws.w;
     const Vec6 tau = -b.linear_damping * nur - b.quadratic_damping * nur.cwiseAbs().cwiseProduct(nur);
     ws.Fb += ws.R * tau.head<3>();
     ws.Mb += ws.R * tau.tail<3>();

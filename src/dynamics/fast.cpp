@@ -1,11 +1,14 @@
-// Default formulation: O(n) articulated recursion along the chain
-// (docs/theory.md §5.2 "Default formulation: linear-cost recursion").
+// Default formulation: O(n) articulated recursion along the chain of parts
+// (docs/theory.md §5.2 "Linear-cost recursion", §5.3 "Bodies in the chain").
 //
-// For the part of the system below joint k (elements k+1..n and the body),
-// the force f_k it receives through the joint is affine in the joint's
-// acceleration: f_k = K_k a_{P_k} + b_k. A backward pass builds (K_k, b_k)
-// from the body up; a forward pass then gives each element's angular
-// acceleration from the acceleration of the joint above it.
+// For the part of the system below joint k (everything hanging from it:
+// elements, attachments, bodies), the force f_k it receives through the
+// joint is affine in the joint's acceleration: f_k = K_k a_{P_k} + b_k. A
+// backward pass builds (K_k, b_k) from the bottom of the chain up; a forward
+// pass then gives each element's and body's angular acceleration from the
+// acceleration of the joint above it.
+#include <stdexcept>
+
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/hydro/loads.hpp"
 
@@ -13,66 +16,117 @@ namespace towsim {
 
 namespace {
 
-/// Body at the end of the chain: its (K_n, b_n) for the link force
-/// F_L = K_n a_Q + b_n, after eliminating its angular acceleration.
-void body_articulated(const Model& model, Workspace& ws) {
-  const std::size_t n = model.cable.elements.size();
-  const Vec3 r = ws.rQ;  // Q - O_t [m, R_g]
+/// Index helper: body b of the model as a size_t.
+inline std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+
+/// Body hanging at Q: its (KQ, bQ) for the link force F_L = KQ a_Q + bQ,
+/// after eliminating its angular acceleration. An in-line body first takes
+/// in the articulated cable below it, (K2, b2) seen at its lower link Q2:
+/// with a_Q2 = J2 [a_O; alpha] + c2, J2 = [I, -[r2]x], the cable below adds
+/// J2^T K2 J2 to its inertia and J2^T (K2 c2 + b2) to its bias.
+void body_articulated(const Body& body, BodyWork& bw, const Mat3* K2, const Vec3* b2) {
+  bw.Me = bw.Mw;
+  bw.he = bw.hw;
+  if (body.inline_body) {
+    Eigen::Matrix<double, 6, 3> J2t;
+    J2t << Mat3::Identity(), skew(bw.rQ2);
+    const Vec3 c2 = bw.w.cross(bw.w.cross(bw.rQ2));
+    bw.Me += J2t * *K2 * J2t.transpose();
+    bw.he += J2t * (*K2 * c2 + *b2);
+  }
+  const Vec3 r = bw.rQ;  // Q - O_t [m, R_g]
   const Mat3 Rx = skew(r);
-  const Mat3 Mll = ws.Mw.topLeftCorner<3, 3>(), Mla = ws.Mw.topRightCorner<3, 3>();
-  const Mat3 Mal = ws.Mw.bottomLeftCorner<3, 3>(), Maa = ws.Mw.bottomRightCorner<3, 3>();
-  const Vec3 hl = ws.hw.head<3>(), ha = ws.hw.tail<3>();
+  const Mat3 Mll = bw.Me.topLeftCorner<3, 3>(), Mla = bw.Me.topRightCorner<3, 3>();
+  const Mat3 Mal = bw.Me.bottomLeftCorner<3, 3>(), Maa = bw.Me.bottomRightCorner<3, 3>();
+  const Vec3 hl = bw.he.head<3>(), ha = bw.he.tail<3>();
   // a_O = a_Q + [r]x alpha + w, with w the centripetal part.
-  ws.wcent = ws.wB.cross(ws.wB.cross(-r));
-  ws.CB = Mal - Rx * Mll;
-  const Mat3 DB = ws.CB * Rx + Maa - Rx * Mla;  // inertia about Q
-  ws.PhiB = DB.inverse();
-  ws.rhsB = ws.Mb - r.cross(ws.Fb) - ha + r.cross(hl);
-  ws.K[n] = Mll - ws.CB.transpose() * ws.PhiB * ws.CB;
-  ws.b[n] = Mll * ws.wcent + ws.CB.transpose() * ws.PhiB * (ws.rhsB - ws.CB * ws.wcent) + hl - ws.Fb;
+  bw.wcent = bw.w.cross(bw.w.cross(-r));
+  bw.C = Mal - Rx * Mll;
+  const Mat3 D = bw.C * Rx + Maa - Rx * Mla;  // inertia about Q
+  bw.Phi = D.inverse();
+  bw.rhs = bw.Mb - r.cross(bw.Fb) - ha + r.cross(hl);
+  bw.KQ = Mll - bw.C.transpose() * bw.Phi * bw.C;
+  bw.bQ = Mll * bw.wcent + bw.C.transpose() * bw.Phi * (bw.rhs - bw.C * bw.wcent) + hl - bw.Fb;
 }
 
-/// Backward pass: articulated inertia K_{k-1} and bias b_{k-1} seen at the top
-/// joint of element k, from those at its bottom joint. The rotation equation
-/// lives in the plane normal to e_k: it is solved in a tangent basis T, where
-/// the element's own inertia is isotropic (T^T Mt T = (m + ma) I, Mt e = m e).
+/// One element's backward step: articulated inertia K_{k-1} and bias b_{k-1}
+/// seen at the top joint of element k, from (Kk, bk) at its bottom joint.
+/// The rotation equation lives in the plane normal to e_k: it is solved in a
+/// tangent basis T, where the element's own inertia is isotropic
+/// (T^T Mt T = (m + ma) I, Mt e = m e).
+void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat3& Kk, const Vec3& bk,
+                      std::size_t k, Workspace& ws) {
+  const double L = el.length, m = el.mass, mn = el.mass + el.added_mass;
+  // Tangent basis normal to e.
+  Eigen::Index i;
+  e.cwiseAbs().minCoeff(&i);
+  const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
+  auto& T = ws.T[k];
+  T << t1, e.cross(t1);
+  ws.c[k] = -w.squaredNorm() * e;  // Mt c = m c
+  const Vec3& c = ws.c[k];
+  // [T^T (L^2/4 Mt + L^2 K) T + Ir] z = T^T r0 - (G T)^T a_top, beta = T z.
+  const Eigen::Matrix<double, 3, 2> KT = Kk * T;
+  ws.GT[k] = 0.5 * L * mn * T + L * KT;
+  Eigen::Matrix2d D = L * L * (T.transpose() * KT);
+  D.diagonal().array() += 0.25 * L * L * mn + element_rot_inertia(el);
+  ws.Phi[k] = D.inverse();
+  const Vec3 Kc = Kk * c;
+  const Vec3 r0 = 0.5 * L * (ws.F[k] - 0.5 * L * m * c) - L * (L * Kc + bk) - e.cross(ws.Mom[k]);
+  ws.Tr0[k] = T.transpose() * r0;
+  // Force through the top joint, affine in its acceleration.
+  const Eigen::Matrix<double, 3, 2> H = ws.GT[k] * ws.Phi[k];
+  ws.K[k] = Kk - H * ws.GT[k].transpose();
+  ws.K[k] = 0.5 * (ws.K[k] + ws.K[k].transpose()).eval();  // symmetric in exact arithmetic
+  ws.K[k].diagonal().array() += mn;
+  ws.K[k] -= el.added_mass * e * e.transpose();
+  ws.b[k] = H * ws.Tr0[k] + 0.5 * L * m * c + L * Kc + bk - ws.F[k];
+}
+
+/// Backward pass, from the bottom of the chain up: at each joint, the part
+/// below is the element under it plus any attachment there, or a body (which
+/// carries the cable hanging from its lower link, if any).
 void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
   const auto& els = model.cable.elements;
-  for (std::size_t k = els.size(); k-- > 0;) {
-    const Element& el = els[k];
-    const double L = el.length, m = el.mass, mn = el.mass + el.added_mass;
-    const Vec3& e = s.e[k];
-    const Mat3& Kk = ws.K[k + 1];
-    const Vec3& bk = ws.b[k + 1];
-    // Tangent basis normal to e.
-    Eigen::Index i;
-    e.cwiseAbs().minCoeff(&i);
-    const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
-    auto& T = ws.T[k];
-    T << t1, e.cross(t1);
-    ws.c[k] = -s.w[k].squaredNorm() * e;  // Mt c = m c
-    const Vec3& c = ws.c[k];
-    // [T^T (L^2/4 Mt + L^2 K) T + Ir] z = T^T r0 - (G T)^T a_top, beta = T z.
-    const Eigen::Matrix<double, 3, 2> KT = Kk * T;
-    ws.GT[k] = 0.5 * L * mn * T + L * KT;
-    Eigen::Matrix2d D = L * L * (T.transpose() * KT);
-    D.diagonal().array() += 0.25 * L * L * mn + element_rot_inertia(el);
-    ws.Dinv[k] = D.inverse();
-    const Vec3 Kc = Kk * c;
-    const Vec3 r0 = 0.5 * L * (ws.F[k] - 0.5 * L * m * c) - L * (L * Kc + bk) - e.cross(ws.Mom[k]);
-    ws.y0[k] = T.transpose() * r0;
-    // Force through the top joint, affine in its acceleration.
-    const Eigen::Matrix<double, 3, 2> H = ws.GT[k] * ws.Dinv[k];
-    ws.K[k] = Kk - H * ws.GT[k].transpose();
-    ws.K[k] = 0.5 * (ws.K[k] + ws.K[k].transpose()).eval();  // symmetric in exact arithmetic
-    ws.K[k].diagonal().array() += mn;
-    ws.K[k] -= el.added_mass * e * e.transpose();
-    ws.b[k] = H * ws.y0[k] + 0.5 * L * m * c + L * Kc + bk - ws.F[k];
+  const std::size_t n = els.size();
+  // Nothing hangs below the cable's end but its attachments.
+  ws.K[n] = ws.Ma[n];
+  ws.b[n] = -ws.Fa[n];
+  for (std::size_t k = n; k-- > 0;) {
+    // What the bottom joint of element k+1 carries: a body, or joint k+1.
+    const int bi = ws.body_at[k + 1];
+    const Mat3* Kk = &ws.K[k + 1];
+    const Vec3* bk = &ws.b[k + 1];
+    if (bi >= 0) {
+      BodyWork& bw = ws.body[idx(bi)];
+      body_articulated(model.bodies[idx(bi)], bw, Kk, bk);
+      Kk = &bw.KQ;
+      bk = &bw.bQ;
+    }
+    element_backward(els[k], s.e[k], s.w[k], *Kk, *bk, k, ws);
+    // An attachment at joint k moves with it: its inertia and loads add on.
+    ws.K[k] += ws.Ma[k];
+    ws.b[k] -= ws.Fa[k];
   }
 }
 
-/// Forward pass: tow-point acceleration or tow force, then each element's
-/// angular acceleration and joint force, then the body's.
+/// A body's forward step from the acceleration a of its link point Q:
+/// its angular acceleration, link force and, for an in-line body, the
+/// acceleration of its lower link Q2 (returned in a) and the force there.
+void body_forward(const Body& body, const BodyWork& bw, const Mat3& K2, const Vec3& b2, std::size_t b,
+                  Vec3& a, Accelerations& acc) {
+  acc.alpha_b[b] = bw.Phi * (bw.rhs - bw.C * (a + bw.wcent));
+  acc.link_force[b] = bw.KQ * a + bw.bQ;
+  acc.lower_link_force[b].setZero();
+  if (!body.inline_body) return;
+  const Vec3& al = acc.alpha_b[b];
+  const Vec3 aO = a + bw.rQ.cross(al) + bw.wcent;
+  a = aO + al.cross(bw.rQ2) + bw.w.cross(bw.w.cross(bw.rQ2));
+  acc.lower_link_force[b] = K2 * a + b2;
+}
+
+/// Forward pass: tow-point acceleration or tow force, then down the chain
+/// each element's angular acceleration and joint force, and each body's.
 void forward_pass(const Model& model, const PhysicalState& s, double t, Workspace& ws,
                   const Vec3* imposed_a0 = nullptr) {
   const auto& els = model.cable.elements;
@@ -87,13 +141,25 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   acc.joint_force[0] = acc.tow_force;
   Vec3 a = acc.a0;
   for (std::size_t k = 0; k < els.size(); ++k) {
-    const Vec3 beta = ws.T[k] * (ws.Dinv[k] * (ws.y0[k] - ws.GT[k].transpose() * a));  // alpha x e
+    const Vec3 beta = ws.T[k] * (ws.Phi[k] * (ws.Tr0[k] - ws.GT[k].transpose() * a));  // alpha x e
     acc.alpha[k] = s.e[k].cross(beta);
     a += els[k].length * (beta + ws.c[k]);
-    acc.joint_force[k + 1] = ws.K[k + 1] * a + ws.b[k + 1];
+    const int bi = ws.body_at[k + 1];
+    if (bi < 0) {
+      acc.joint_force[k + 1] = ws.K[k + 1] * a + ws.b[k + 1];
+      continue;
+    }
+    const Body& body = model.bodies[idx(bi)];
+    body_forward(body, ws.body[idx(bi)], ws.K[k + 1], ws.b[k + 1], idx(bi), a, acc);
+    acc.joint_force[k + 1] = body.inline_body ? acc.lower_link_force[idx(bi)] : acc.link_force[idx(bi)];
   }
-  acc.link_force = acc.joint_force[els.size()];
-  if (model.has_body) acc.alpha_b = ws.PhiB * (ws.rhsB - ws.CB * (a + ws.wcent));
+}
+
+/// The dynamics' entry check (Pinocchio's model.check(data)).
+void check_fits(const Model& model, const PhysicalState& s, const Workspace& ws) {
+  if (!ws.fits(model) || s.e.size() != model.cable.elements.size() || s.w.size() != s.e.size() ||
+      s.bodies.size() != model.bodies.size())
+    throw std::logic_error("towsim: workspace or state does not fit the model");
 }
 
 }  // namespace
@@ -104,44 +170,34 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
     element_loads(model, els[k], s.e[k], ws.edot[k], ws.vG[k], ws.G[k].z(), ws.F[k], ws.Mom[k]);
     ws.Mt[k] = element_mass(els[k], s.e[k]);
   }
-  if (model.has_body) {
-    body_inertia(model, s, ws);
-    body_loads(model, s, t, ws);
+  attachment_loads(model, ws);
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    body_inertia(model.fluid, model.bodies[b], ws.body[b]);
+    body_loads(model.fluid, model.bodies[b], t, ws.body[b]);
   }
 }
 
 void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& dv, Workspace& ws) {
+  check_fits(model, s, ws);
   // Same recursion at zero velocity with zero finite loads: only inertia and
   // the joint impulses remain; "accelerations" are then velocity jumps.
   PhysicalState s0 = s;
   s0.v0.setZero();
   for (auto& w : s0.w) w.setZero();
-  s0.wb.setZero();
+  for (auto& bs : s0.bodies) bs.w.setZero();
   compute_kinematics(model, s0, ws);
   compute_loads(model, s0, 0.0, ws);
   for (std::size_t k = 0; k < ws.F.size(); ++k) ws.F[k].setZero(), ws.Mom[k].setZero();
-  const std::size_t n = model.cable.elements.size();
-  if (model.has_body) {
-    ws.Fb.setZero(), ws.Mb.setZero(), ws.hw.setZero();
-    body_articulated(model, ws);
-  } else {
-    ws.K[n].setZero();
-    ws.b[n].setZero();
-  }
+  for (auto& f : ws.Fa) f.setZero();
+  for (auto& bw : ws.body) bw.Fb.setZero(), bw.Mb.setZero(), bw.hw.setZero();
   backward_pass(model, s0, ws);
   forward_pass(model, s0, 0.0, ws, &dv);
 }
 
 void forward_dynamics(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
+  check_fits(model, s, ws);
   compute_kinematics(model, s, ws);
   compute_loads(model, s, t, ws);
-  const std::size_t n = model.cable.elements.size();
-  if (model.has_body) {
-    body_articulated(model, ws);
-  } else {
-    ws.K[n].setZero();
-    ws.b[n].setZero();
-  }
   backward_pass(model, s, ws);
   forward_pass(model, s, t, ws);
 }

@@ -1,4 +1,5 @@
-// Kinematics of the chain and body from a physical state (docs/theory.md §2, §4).
+// Kinematics of the chain and its bodies from a physical state (docs/theory.md §2, §4).
+#include <algorithm>
 #include <cmath>
 
 #include "towsim/dynamics/state.hpp"
@@ -11,37 +12,68 @@ Mat3 skew(const Vec3& a) {
   return s;
 }
 
-PhysicalState PhysicalState::hanging(int n) {
+PhysicalState PhysicalState::hanging(const Model& model) {
   PhysicalState s;
-  s.e.assign(n, -Vec3::UnitZ());
-  s.w.assign(n, Vec3::Zero());
+  s.e.assign(model.cable.elements.size(), -Vec3::UnitZ());
+  s.w.assign(model.cable.elements.size(), Vec3::Zero());
+  s.bodies.resize(model.bodies.size());
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) s.bodies[b].q = model.bodies[b].initial_attitude;
   return s;
 }
 
 Workspace::Workspace(const Model& model) {
   const std::size_t n = model.cable.elements.size();
-  P.resize(n + 1);
-  vP.resize(n + 1);
-  G.resize(n);
-  vG.resize(n);
-  edot.resize(n);
-  F.resize(n);
-  Mom.resize(n);
+  for (auto* v : {&P, &vP, &b, &Fa}) v->resize(n + 1);
+  for (auto* v : {&G, &vG, &edot, &F, &Mom, &c}) v->resize(n);
   Mt.resize(n);
+  Ma.resize(n + 1);
   K.resize(n + 1);
-  b.resize(n + 1);
   T.resize(n);
   GT.resize(n);
-  Dinv.resize(n);
-  y0.resize(n);
-  c.resize(n);
+  Phi.resize(n);
+  Tr0.resize(n);
+  body.resize(model.bodies.size());
+  body_at.assign(n + 1, -1);
+  for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    body_at[static_cast<std::size_t>(body_joint(model, model.bodies[i]))] = static_cast<int>(i);
   acc.alpha.resize(n);
   acc.joint_force.resize(n + 1);
+  acc.alpha_b.resize(model.bodies.size());
+  acc.link_force.resize(model.bodies.size());
+  acc.lower_link_force.resize(model.bodies.size());
 }
+
+bool Workspace::fits(const Model& model) const {
+  const std::size_t n = model.cable.elements.size();
+  return P.size() == n + 1 && G.size() == n && K.size() == n + 1 && Phi.size() == n &&
+         body.size() == model.bodies.size() && acc.alpha.size() == n &&
+         acc.link_force.size() == model.bodies.size() && body_at.size() == n + 1 &&
+         std::all_of(model.bodies.begin(), model.bodies.end(), [&](const Body& b) {
+           const int k = body_joint(model, b);
+           return k >= 1 && k <= static_cast<int>(n) && body.size() > static_cast<std::size_t>(body_at[static_cast<std::size_t>(k)]) &&
+                  body_at[static_cast<std::size_t>(k)] >= 0;
+         });
+}
+
+namespace {
+/// Body b hangs at joint k from Q = (P, vP): its origin, attitude and, for an
+/// in-line body, the lower link Q2 from which the next element hangs.
+void body_kinematics(const Body& body, const BodyState& bs, const Vec3& Q, const Vec3& vQ, BodyWork& bw) {
+  bw.R = bs.q.toRotationMatrix();
+  bw.w = bs.w;
+  bw.Q = Q;
+  bw.vQ = vQ;
+  bw.rQ = bw.R * body.link_point;
+  bw.O = Q - bw.rQ;
+  bw.vO = vQ - bs.w.cross(bw.rQ);
+  bw.rQ2 = bw.R * body.lower_link_point;
+}
+}  // namespace
 
 void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& ws) {
   const auto& els = model.cable.elements;
-  // Joints and centres down the chain: P_k = P_{k-1} + L_k e_k.
+  // Joints and centres down the chain: P_k = P_{k-1} + L_k e_k; at a body,
+  // the chain goes on from its lower link Q2 (in-line) or ends (end body).
   ws.P[0] = s.r0;
   ws.vP[0] = s.v0;
   for (std::size_t i = 0; i < els.size(); ++i) {
@@ -51,15 +83,14 @@ void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& w
     ws.vG[i] = ws.vP[i] + 0.5 * L * ws.edot[i];
     ws.P[i + 1] = ws.P[i] + L * s.e[i];
     ws.vP[i + 1] = ws.vP[i] + L * ws.edot[i];
-  }
-  // Body: hangs from the last joint at its link point Q.
-  if (model.has_body) {
-    const std::size_t n = els.size();
-    ws.R = s.q.toRotationMatrix();
-    ws.rQ = ws.R * model.body.link_point;
-    ws.O = ws.P[n] - ws.rQ;
-    ws.wB = s.wb;
-    ws.vO = ws.vP[n] - s.wb.cross(ws.rQ);
+    const int b = ws.body_at[i + 1];
+    if (b < 0) continue;
+    BodyWork& bw = ws.body[static_cast<std::size_t>(b)];
+    body_kinematics(model.bodies[static_cast<std::size_t>(b)], s.bodies[static_cast<std::size_t>(b)], ws.P[i + 1],
+                    ws.vP[i + 1], bw);
+    if (!model.bodies[static_cast<std::size_t>(b)].inline_body) continue;
+    ws.P[i + 1] = bw.O + bw.rQ2;
+    ws.vP[i + 1] = bw.vO + bw.w.cross(bw.rQ2);
   }
 }
 

@@ -3,6 +3,7 @@
 #include "towsim/dynamics/paper.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/hydro/loads.hpp"
@@ -90,9 +91,13 @@ Eigen::VectorXd solve_refined(const Eigen::MatrixXd& A, const Eigen::VectorXd& b
 
 }  // namespace
 
-int paper_angle_count(const Model& model) { return 2 * model.cable.n() + (model.has_body ? 3 : 0); }
+int paper_angle_count(const Model& model) { return 2 * model.cable.n() + 3 * static_cast<int>(model.bodies.size()); }
 
 PaperWorkspace::PaperWorkspace(const Model& model) : ws(model) {
+  // The paper's form covers one cable and at most one body at its end.
+  if (!model.cable.attachments.empty() || model.bodies.size() > 1 ||
+      (!model.bodies.empty() && model.bodies[0].inline_body))
+    throw std::invalid_argument("the paper formulation has no attachments and at most one body, at the end");
   const int N = 3 + paper_angle_count(model);
   const std::size_t n = model.cable.elements.size();
   M.resize(N, N);
@@ -106,6 +111,9 @@ PaperWorkspace::PaperWorkspace(const Model& model) : ws(model) {
   Ep.resize(n);
   evp.resize(n);
   acc.alpha.resize(n);
+  acc.alpha_b.resize(model.bodies.size());
+  acc.link_force.resize(model.bodies.size());
+  acc.lower_link_force.resize(model.bodies.size());
 }
 
 PaperState to_paper(const Model& model, const PhysicalState& s, const Vec3& pole) {
@@ -121,12 +129,13 @@ PaperState to_paper(const Model& model, const PhysicalState& s, const Vec3& pole
     element_angles(p.chart[k], s.e[k], s.w[k].cross(s.e[k]), p.q[2 * k], p.q[2 * k + 1], p.qd[2 * k],
                    p.qd[2 * k + 1]);
   }
-  if (model.has_body) {
+  if (!model.bodies.empty()) {
+    const BodyState& bs = s.bodies[0];
     Vec3 ang, rate;
-    body_angles(p.body_chart, s.q, s.wb, ang, rate);
+    body_angles(p.body_chart, bs.q, bs.w, ang, rate);
     if (std::abs(std::cos(ang.y())) < kBodySwitch) {
-      p.body_chart = s.q.toRotationMatrix();
-      body_angles(p.body_chart, s.q, s.wb, ang, rate);
+      p.body_chart = bs.q.toRotationMatrix();
+      body_angles(p.body_chart, bs.q, bs.w, ang, rate);
     }
     p.q.tail<3>() = ang;
     p.qd.tail<3>() = rate;
@@ -141,9 +150,9 @@ PaperState to_paper_in_charts(const Model& model, const PhysicalState& s, const 
   for (int k = 0; k < model.cable.n(); ++k)
     element_angles(p.chart[k], s.e[k], s.w[k].cross(s.e[k]), p.q[2 * k], p.q[2 * k + 1], p.qd[2 * k],
                    p.qd[2 * k + 1]);
-  if (model.has_body) {
+  if (!model.bodies.empty()) {
     Vec3 ang, rate;
-    body_angles(p.body_chart, s.q, s.wb, ang, rate);
+    body_angles(p.body_chart, s.bodies[0].q, s.bodies[0].w, ang, rate);
     p.q.tail<3>() = ang;
     p.qd.tail<3>() = rate;
   }
@@ -152,7 +161,7 @@ PaperState to_paper_in_charts(const Model& model, const PhysicalState& s, const 
 
 PhysicalState from_paper(const Model& model, const PaperState& p) {
   const int n = model.cable.n();
-  PhysicalState s = PhysicalState::hanging(n);
+  PhysicalState s = PhysicalState::hanging(model);
   s.r0 = p.r0;
   s.v0 = p.v0;
   for (int k = 0; k < n; ++k) {
@@ -161,10 +170,10 @@ PhysicalState from_paper(const Model& model, const PaperState& p) {
     s.e[k] = e;
     s.w[k] = e.cross(Et * p.qd[2 * k] + Ep * p.qd[2 * k + 1]);
   }
-  if (model.has_body) {
+  if (!model.bodies.empty()) {
     const Vec3 ang = p.q.tail<3>();
-    s.q = Quat(p.body_chart * quat_from_rpy(ang.z(), ang.y(), ang.x()).toRotationMatrix());
-    s.wb = body_axes(p.body_chart, ang.x(), ang.y()) * p.qd.tail<3>();
+    s.bodies[0].q = Quat(p.body_chart * quat_from_rpy(ang.z(), ang.y(), ang.x()).toRotationMatrix());
+    s.bodies[0].w = body_axes(p.body_chart, ang.x(), ang.y()) * p.qd.tail<3>();
   }
   return s;
 }
@@ -180,10 +189,10 @@ int rechart(const Model& model, PaperState& p) {
                    p.qd[2 * k + 1]);
     ++changed;
   }
-  if (model.has_body && std::abs(std::cos(p.q[2 * n + 1])) < kBodySwitch) {
-    p.body_chart = s.q.toRotationMatrix();
+  if (!model.bodies.empty() && std::abs(std::cos(p.q[2 * n + 1])) < kBodySwitch) {
+    p.body_chart = s.bodies[0].q.toRotationMatrix();
     Vec3 ang, rate;
-    body_angles(p.body_chart, s.q, s.wb, ang, rate);
+    body_angles(p.body_chart, s.bodies[0].q, s.bodies[0].w, ang, rate);
     p.q.tail<3>() = ang;
     p.qd.tail<3>() = rate;
     ++changed;
@@ -232,23 +241,24 @@ void paper_dynamics(const Model& model, const PaperState& p, double t, PaperWork
     aP += L * pw.evp[k];
   }
   Vec3 aO = Vec3::Zero(), ab = Vec3::Zero();
-  if (model.has_body) {
+  if (!model.bodies.empty()) {
+    const BodyWork& bw = ws.body[0];
     // Body: v_O = v_Q + [r]x omega, omega = A (yaw, pitch, roll)'.
     const Vec3 ang = p.q.tail<3>(), rate = p.qd.tail<3>();
     const Mat3 A = body_axes(p.body_chart, ang.x(), ang.y());
     const Vec3 w1 = rate.x() * A.col(0), w2 = w1 + rate.y() * A.col(1);
     ab = rate.y() * w1.cross(A.col(1)) + rate.z() * w2.cross(A.col(2));
-    const Vec3 r = ws.rQ, w = s.wb;
+    const Vec3 r = bw.rQ, w = bw.w;
     aO = aP + ab.cross(-r) + w.cross(w.cross(-r));
     pw.J6.setZero();
     pw.J6.topRows<3>() = pw.JP;
     pw.J6.block<3, 3>(0, N - 3) += skew(r) * A;
     pw.J6.block<3, 3>(3, N - 3) = A;
     Vec6 load, avp;
-    load << ws.Fb, ws.Mb;
+    load << bw.Fb, bw.Mb;
     avp << aO, ab;
-    pw.M.noalias() += pw.J6.transpose() * ws.Mw * pw.J6;
-    pw.S.noalias() += pw.J6.transpose() * (load - ws.hw - ws.Mw * avp);
+    pw.M.noalias() += pw.J6.transpose() * bw.Mw * pw.J6;
+    pw.S.noalias() += pw.J6.transpose() * (load - bw.hw - bw.Mw * avp);
   }
 
   // Solve: tow motion imposed -> F_R unknown (paper section 3); else F_R given.
@@ -272,13 +282,14 @@ void paper_dynamics(const Model& model, const PaperState& p, double t, PaperWork
     const Vec3 edd = pw.Et[k] * pw.qdd[2 * k] + pw.Ep[k] * pw.qdd[2 * k + 1] + pw.evp[k];
     acc.alpha[k] = s.e[k].cross(edd);
   }
-  acc.link_force.setZero();
-  if (model.has_body) {
+  if (!model.bodies.empty()) {
+    const BodyWork& bw = ws.body[0];
     Vec6 a6 = pw.J6.rightCols(na) * pw.qdd + pw.J6.leftCols<3>() * acc.a0;
     a6.head<3>() += aO;
     a6.tail<3>() += ab;
-    acc.alpha_b = a6.tail<3>();
-    acc.link_force = ws.Mw.topRows<3>() * a6 + ws.hw.head<3>() - ws.Fb;
+    acc.alpha_b[0] = a6.tail<3>();
+    acc.link_force[0] = bw.Mw.topRows<3>() * a6 + bw.hw.head<3>() - bw.Fb;
+    acc.lower_link_force[0].setZero();
   }
 }
 

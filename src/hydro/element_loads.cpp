@@ -47,3 +47,25 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
 }
 
 }  // namespace towsim
+
+namespace towsim {
+
+void attachment_loads(const Model& model, Workspace& ws) {
+  const Fluid& fluid = model.fluid;
+  for (std::size_t k = 0; k < ws.Ma.size(); ++k) ws.Ma[k].setZero(), ws.Fa[k].setZero();
+  for (const Attachment& a : model.cable.attachments) {
+    const auto k = static_cast<std::size_t>(a.joint);
+    // Inertia: own mass plus isotropic added mass, moving with the joint.
+    ws.Ma[k].diagonal().array() += a.mass + a.added_mass;
+    // Apparent weight, then drag on the velocity relative to the water.
+    ws.Fa[k].z() -= (a.mass - fluid.rho * a.volume) * fluid.g;
+    if (fluid.rho == 0) continue;
+    const Vec3 u = ws.vP[k] - fluid.current(ws.P[k].z());
+    ws.Fa[k] -= 0.5 * fluid.rho * a.drag_area * u.norm() * u;
+    // Added mass in a sheared current: the water's velocity at the moving
+    // joint changes at U'(z) zdot, known here (as for the elements).
+    if (fluid.current_velocity.size() > 1) ws.Fa[k] += a.added_mass * fluid.current_gradient(ws.P[k].z()) * ws.vP[k].z();
+  }
+}
+
+}  // namespace towsim

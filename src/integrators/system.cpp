@@ -33,19 +33,19 @@ Vec3 tow_jump(const Model& m, double t) {
 PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws) {
   tow_velocity_jump(m, s, dv, ws);
   for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
-  s.wb += ws.acc.alpha_b;
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws.acc.alpha_b[b];
   const double d = 1e-9 * std::max(1.0, std::abs(t));
   s.r0 = tow_kinematics(m.tow, t).pos;
   s.v0 = tow_kinematics(m.tow, t + d).vel;
   return s;
 }
 
-/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, quaternion (w,x,y,z), w_body].
+/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body].
 class DefaultSystem final : public System {
  public:
-  explicit DefaultSystem(const Model& m) : model_(m), ws_(m), s_(PhysicalState::hanging(m.cable.n())) {
+  explicit DefaultSystem(const Model& m) : model_(m), ws_(m), s_(PhysicalState::hanging(m)) {
     n_ = m.cable.n();
-    size_ = 6 + 6 * n_ + (m.has_body ? 7 : 0);
+    size_ = body_offset(m.bodies.size());
   }
 
   StateVector initial(const PhysicalState& s, double) override {
@@ -56,10 +56,11 @@ class DefaultSystem final : public System {
       set3(y, 6 + 3 * k, s.e[k]);
       set3(y, 6 + 3 * n_ + 3 * k, s.w[k]);
     }
-    if (model_.has_body) {
-      const std::size_t o = 6 + 6 * n_;
-      y[o] = s.q.w(), y[o + 1] = s.q.x(), y[o + 2] = s.q.y(), y[o + 3] = s.q.z();
-      set3(y, o + 4, s.wb);
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+      const std::size_t o = body_offset(b);
+      const Quat& q = s.bodies[b].q;
+      y[o] = q.w(), y[o + 1] = q.x(), y[o + 2] = q.y(), y[o + 3] = q.z();
+      set3(y, o + 4, s.bodies[b].w);
     }
     return y;
   }
@@ -84,11 +85,12 @@ class DefaultSystem final : public System {
       set3(dy, 6 + 3 * k, s_.w[k].cross(s_.e[k]));
       set3(dy, 6 + 3 * n_ + 3 * k, ws_.acc.alpha[k]);
     }
-    if (model_.has_body) {
-      const std::size_t o = 6 + 6 * n_;
-      const Quat dq = Quat(0, s_.wb.x(), s_.wb.y(), s_.wb.z()) * s_.q;
+    for (std::size_t b = 0; b < s_.bodies.size(); ++b) {
+      const std::size_t o = body_offset(b);
+      const BodyState& bs = s_.bodies[b];
+      const Quat dq = Quat(0, bs.w.x(), bs.w.y(), bs.w.z()) * bs.q;
       dy[o] = 0.5 * dq.w(), dy[o + 1] = 0.5 * dq.x(), dy[o + 2] = 0.5 * dq.y(), dy[o + 3] = 0.5 * dq.z();
-      set3(dy, o + 4, ws_.acc.alpha_b);
+      set3(dy, o + 4, ws_.acc.alpha_b[b]);
     }
   }
 
@@ -103,9 +105,8 @@ class DefaultSystem final : public System {
       e.normalize();
       w -= w.dot(e) * e;
     }
-    if (model_.has_body) {
-      const std::size_t o = 6 + 6 * n_;
-      Eigen::Map<Eigen::Vector4d> q(&y[o]);
+    for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
+      Eigen::Map<Eigen::Vector4d> q(&y[body_offset(b)]);
       q.normalize();
     }
   }
@@ -127,8 +128,9 @@ class DefaultSystem final : public System {
 
   std::string describe(std::size_t i) const override {
     if (i < 6) return "tow point";
-    if (i < static_cast<std::size_t>(6 + 6 * n_)) return "element " + std::to_string((i - 6) % (3 * n_) / 3 + 1);
-    return "body";
+    if (i < body_offset(0)) return "element " + std::to_string((i - 6) % (3 * n_) / 3 + 1);
+    const std::size_t b = std::min((i - body_offset(0)) / 7, model_.bodies.size() - 1);
+    return "body " + model_.bodies[b].name;
   }
 
  private:
@@ -139,12 +141,14 @@ class DefaultSystem final : public System {
       s.e[k] = CMap3(&y[6 + 3 * k]);
       s.w[k] = CMap3(&y[6 + 3 * n_ + 3 * k]);
     }
-    if (model_.has_body) {
-      const std::size_t o = 6 + 6 * n_;
-      s.q = Quat(y[o], y[o + 1], y[o + 2], y[o + 3]).normalized();
-      s.wb = CMap3(&y[o + 4]);
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+      const std::size_t o = body_offset(b);
+      s.bodies[b].q = Quat(y[o], y[o + 1], y[o + 2], y[o + 3]).normalized();
+      s.bodies[b].w = CMap3(&y[o + 4]);
     }
   }
+  /// Offset of body b's block in the flat state (b = count: the state's size).
+  std::size_t body_offset(std::size_t b) const { return 6 + 6 * static_cast<std::size_t>(n_) + 7 * b; }
 
   const Model& model_;
   Workspace ws_;
@@ -203,7 +207,7 @@ class PaperSystem final : public System {
     eval_ws_.acc.tow_force = pw_.acc.tow_force;
     eval_ws_.acc.link_force = pw_.acc.link_force;
     eval_ws_.acc.joint_force.front() = pw_.acc.tow_force;
-    if (model_.has_body) eval_ws_.acc.joint_force.back() = pw_.acc.link_force;
+    if (!model_.bodies.empty()) eval_ws_.acc.joint_force.back() = pw_.acc.link_force[0];
     return eval_ws_;
   }
 

@@ -101,4 +101,11 @@ void finalize_body(Body& body, const Fluid& fluid) {
   body.buoyancy_center = volume > 0 ? Vec3(moment / volume) : body.cg;
 }
 
+const Body* end_body(const Model& model) {
+  if (model.bodies.empty() || model.bodies.back().inline_body) return nullptr;
+  return &model.bodies.back();
+}
+
+int body_joint(const Model& model, const Body& body) { return body.joint < 0 ? model.cable.n() : body.joint; }
+
 }  // namespace towsim

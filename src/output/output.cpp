@@ -50,28 +50,42 @@ nlohmann::ordered_json num(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
 }
 
-/// One timeseries.csv row (with its newline), columns as timeseries_header().
-void timeseries_row(const Sample& s, bool has_body, std::string& out) {
+/// One timeseries.csv row (with its newline), columns as timeseries_header():
+/// the end body's columns where they always were, in-line bodies' at the end.
+void timeseries_row(const Model& model, const Sample& s, std::string& out) {
   const Vec3 end = s.node_pos.empty() ? Vec3::Constant(std::nan("")) : s.node_pos.back();
+  const BodySample* eb = end_body(model) ? &s.bodies.back() : nullptr;
   put(out, s.t);
   put3(out, s.tow_pos);
   put3(out, s.tow_force);
   put3(out, end);
-  if (has_body) {
-    put3(out, s.body_pos);
-    put3(out, s.body_rpy_deg);
-    put3(out, s.link_force);
+  if (eb) {
+    put3(out, eb->pos);
+    put3(out, eb->rpy_deg);
+    put3(out, eb->link_force);
   }
   out += ',';
   put(out, s.tow_force.norm());
   out += ',';
   put(out, -end.z());
   put3(out, s.tow_vel);
-  if (has_body) {
+  if (eb) {
     out += ',';
-    put(out, -s.body_pos.z());
+    put(out, -eb->pos.z());
     out += ',';
-    put(out, s.link_force.norm());
+    put(out, eb->link_force.norm());
+  }
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    if (!model.bodies[b].inline_body) continue;
+    const BodySample& bs = s.bodies[b];
+    put3(out, bs.pos);
+    put3(out, bs.rpy_deg);
+    put3(out, bs.link_force);
+    put3(out, bs.lower_link_force);
+    for (double v : {-bs.pos.z(), bs.link_force.norm(), bs.lower_link_force.norm()}) {
+      out += ',';
+      put(out, v);
+    }
   }
   out += '\n';
 }
@@ -108,33 +122,46 @@ void Extreme::min(double v, double t) {
   }
 }
 
-void Extremes::add(const Sample& s) {
+void Extremes::add(const Model& model, const Sample& s) {
   max_tow_tension.max(s.tow_force.norm(), s.t);
   for (double T : s.tension) max_cable_tension.max(T, s.t);
   for (double A : s.axial) min_axial_force.min(A, s.t);
   if (!s.node_pos.empty()) max_end_depth.max(-s.node_pos.back().z(), s.t);
-  if (!s.has_body) return;
-  max_link_force.max(s.link_force.norm(), s.t);
-  max_body_depth.max(-s.body_pos.z(), s.t);
-  for (int i = 0; i < 3; ++i) {
-    min_body_deg[i].min(s.body_rpy_deg[i], s.t);
-    max_body_deg[i].max(s.body_rpy_deg[i], s.t);
+  inline_bodies.resize(model.bodies.size());
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodySample& bs = s.bodies[b];
+    BodyExtremes& e = model.bodies[b].inline_body ? inline_bodies[b] : end_body_extremes;
+    e.max_link_force.max(bs.link_force.norm(), s.t);
+    e.max_lower_link_force.max(bs.lower_link_force.norm(), s.t);
+    e.max_depth.max(-bs.pos.z(), s.t);
+    for (int i = 0; i < 3; ++i) {
+      e.min_deg[i].min(bs.rpy_deg[i], s.t);
+      e.max_deg[i].max(bs.rpy_deg[i], s.t);
+    }
   }
 }
 
-std::string timeseries_header(bool has_body) {
+std::string timeseries_header(const Model& model) {
+  const bool has_body = end_body(model) != nullptr;
   std::string h = "time,tow_x,tow_y,tow_z,tow_force_x,tow_force_y,tow_force_z,end_x,end_y,end_z";
   if (has_body)
     h += ",body_x,body_y,body_z,body_roll_deg,body_pitch_deg,body_yaw_deg,"
          "link_force_x,link_force_y,link_force_z";
   h += ",tow_tension,end_depth,tow_vx,tow_vy,tow_vz";
   if (has_body) h += ",body_depth,link_tension";
+  for (const Body& b : model.bodies) {
+    if (!b.inline_body) continue;
+    for (const char* c : {"_x", "_y", "_z", "_roll_deg", "_pitch_deg", "_yaw_deg", "_link_force_x", "_link_force_y",
+                          "_link_force_z", "_lower_link_force_x", "_lower_link_force_y", "_lower_link_force_z",
+                          "_depth", "_link_tension", "_lower_link_tension"})
+      h += "," + b.name + c;
+  }
   return h;
 }
 
-RunWriter::RunWriter(const std::string& dir, bool has_body, bool write_nodes) : has_body_(has_body) {
+RunWriter::RunWriter(const std::string& dir, const Model& model, bool write_nodes) : model_(model) {
   series_ = open_file(dir, "timeseries.csv");
-  write_all(series_, timeseries_header(has_body) + "\n");
+  write_all(series_, timeseries_header(model) + "\n");
   if (write_nodes) {
     nodes_ = open_file(dir, "nodes.csv");
     write_all(nodes_, "time,node,x,y,z,vx,vy,vz,tension,axial_force\n");
@@ -147,10 +174,10 @@ RunWriter::~RunWriter() {
 }
 
 void RunWriter::write(const Sample& s) {
-  extremes_.add(s);
+  extremes_.add(model_, s);
   ++samples_;
   buf_.clear();
-  timeseries_row(s, has_body_, buf_);
+  timeseries_row(model_, s, buf_);
   write_all(series_, buf_);
   if (nodes_ == nullptr) return;
   buf_.clear();
@@ -165,7 +192,7 @@ void RunWriter::flush() {
 
 nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,
                                     const RunStats& stats, const Extremes& ex, long samples,
-                                    bool has_body, bool write_nodes) {
+                                    const Model& model, bool write_nodes) {
   nlohmann::ordered_json j;
   j["model"] = model_name;
   j["version"] = kVersion;  // of the program that wrote the file
@@ -185,12 +212,18 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   e["max_cable_tension"] = json_of(ex.max_cable_tension);
   e["max_end_depth"] = json_of(ex.max_end_depth);
   e["min_axial_force"] = json_of(ex.min_axial_force);  // < 0: compression (a real cable would go slack)
-  if (has_body) {
-    e["max_link_force"] = json_of(ex.max_link_force);
-    e["max_body_depth"] = json_of(ex.max_body_depth);
-    const char* names[3] = {"body_roll_deg", "body_pitch_deg", "body_yaw_deg"};
+  // The end body under today's names, in-line bodies under their own.
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const Body& body = model.bodies[b];
+    const BodyExtremes& be = body.inline_body ? ex.inline_bodies[b] : ex.end_body_extremes;
+    const std::string p = body.inline_body ? body.name + "_" : "";
+    e["max_" + p + "link_force"] = json_of(be.max_link_force);
+    if (body.inline_body) e["max_" + p + "lower_link_force"] = json_of(be.max_lower_link_force);
+    const std::string name = body.inline_body ? body.name : "body";  // the end body keeps today's names
+    e["max_" + name + "_depth"] = json_of(be.max_depth);
+    const char* names[3] = {"_roll_deg", "_pitch_deg", "_yaw_deg"};
     for (int i = 0; i < 3; ++i)
-      e[names[i]] = {{"min", json_of(ex.min_body_deg[i])}, {"max", json_of(ex.max_body_deg[i])}};
+      e[name + names[i]] = {{"min", json_of(be.min_deg[i])}, {"max", json_of(be.max_deg[i])}};
   }
   j["extremes"] = e;
   j["scenario"] = scenario;

@@ -32,6 +32,13 @@ void check_body(const BodySpec& b, Diagnostics& d);
 /// Build the Body from a checked spec (finalize_body included).
 Body build_body(const BodySpec& b, const Fluid& fluid);
 
+/// Check the cable (single-section form or sections with in-line bodies,
+/// attachments) and the rules that tie it to the end body and simulation.
+void check_cable(const CableSpec& c, const BodySpec& end_body, const SimulationSpec& sim, Diagnostics& d);
+/// Build the chain: cable elements by section, in-line bodies, the end body,
+/// attachments at their joints (model.fluid must be set).
+void build_chain(const CableSpec& c, const BodySpec& end_body, Model& model);
+
 /// Check the tow's values; needs no tow errors so far for the turn-speed check.
 void check_tow(const TowSpec& t, Diagnostics& d);
 /// Build the Tow from a checked spec.

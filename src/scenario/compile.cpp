@@ -7,7 +7,6 @@
 namespace towsim::io {
 namespace {
 
-constexpr long long kMaxElements = 100000;  // cable.elements
 constexpr double kMaxSteps = 1e12;          // duration / time_step
 constexpr double kMaxSamples = 1e9;         // duration / output_interval
 
@@ -18,18 +17,6 @@ void check_environment(const EnvironmentSpec& e, Diagnostics& d) {
     if (row.values[0] < 0)
       d.error(row.where.loc, row.where.path, "depth must be >= 0 (got " + fmt_num(row.values[0]) + ")");
   check_increasing(e.current, "depths", d);
-}
-
-void check_cable(const CableSpec& c, Diagnostics& d) {
-  check_positive(c.length, d);
-  check_at_least(c.elements, 1, d);
-  check_at_most(c.elements, kMaxElements, d);
-  check_positive(c.mass_per_length, d);
-  check_positive(c.diameter, d);
-  check_non_negative(c.normal_drag, d);
-  check_non_negative(c.tangential_coef, d);
-  check_non_negative(c.added_mass, d);
-  check_positive(c.sign_smoothing_speed, d);
 }
 
 /// Report `step` when duration / step exceeds `most` (counts that would
@@ -69,21 +56,6 @@ Fluid build_fluid(const EnvironmentSpec& e) {
   return f;
 }
 
-Cable build_cable(const CableSpec& c, const Fluid& fluid) {
-  Cable cable;
-  cable.tangential_law = c.tangential_law.value == "skin" ? TangentialLaw::Skin : TangentialLaw::Pode;
-  cable.added_mass_model =
-      c.added_mass_model.value == "morison" ? AddedMassModel::Morison : AddedMassModel::IdealFluid;
-  cable.sign_smoothing_speed = c.sign_smoothing_speed.value;
-  const long long n = c.elements.value;
-  const double le = c.length.value / static_cast<double>(n);
-  for (long long i = 0; i < n; ++i)
-    cable.elements.push_back(make_element(le, c.mass_per_length.value, c.diameter.value,
-                                          c.normal_drag.value, c.tangential_coef.value,
-                                          cable.tangential_law, c.added_mass.value, fluid));
-  return cable;
-}
-
 Initial build_initial(const InitialSpec& s) {
   Initial init;
   if (s.kind.value == "steady") init.kind = Initial::Kind::Steady;
@@ -113,7 +85,7 @@ Simulation build_simulation(const SimulationSpec& s) {
 
 std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   check_environment(spec.environment, diags);
-  check_cable(spec.cable, diags);
+  check_cable(spec.cable, spec.body, spec.simulation, diags);
   if (spec.body.present) check_body(spec.body, diags);
   check_tow(spec.tow, diags);
   check_nonzero(spec.initial.direction, diags);
@@ -122,9 +94,7 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   Model m;
   m.name = spec.name;
   m.fluid = build_fluid(spec.environment);
-  m.cable = build_cable(spec.cable, m.fluid);
-  m.has_body = spec.body.present;
-  if (m.has_body) m.body = build_body(spec.body, m.fluid);
+  build_chain(spec.cable, spec.body, m);
   m.tow = build_tow(spec.tow);
   m.initial = build_initial(spec.initial);
   m.sim = build_simulation(spec.simulation);

@@ -85,6 +85,8 @@ void check_body(const BodySpec& b, Diagnostics& d) {
 
 Body build_body(const BodySpec& b, const Fluid& fluid) {
   Body body;
+  if (b.name.given) body.name = b.name.value;
+  body.lower_link_point = b.lower_link_point.value;
   body.mass = b.mass.value;
   body.inertia_cg = b.inertia.value;
   body.cg = b.center_of_gravity.value;

@@ -62,27 +62,83 @@ void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
   if (convert(*c, path, d, u)) env.current.push_back(RowSpec{{0.0, u.x(), u.y(), u.z()}, env.current_where});
 }
 
+namespace {
+
+/// tangential_drag: {law: pode, f: ...} or {law: skin, ct: ...}.
+void parse_tangential(MapReader& r, Field<std::string>& law, Field<double>& coef, Diagnostics& d) {
+  const YNode* t = r.get("tangential_drag");
+  if (t == nullptr) return;
+  MapReader tr(t, r.sub("tangential_drag"), d);
+  tr.choice("law", law, {"pode", "skin"});
+  coef.value = law.value == "skin" ? 0.008 : 0.0;
+  coef.given = law.given;  // the law's default coefficient goes with it
+  if (law.value == "skin")
+    tr.read("ct", coef);
+  else
+    tr.read("f", coef);
+  tr.finish();
+}
+
+/// One cable.sections item that is a section (not a body).
+void parse_section(MapReader& r, SectionSpec& sec, Diagnostics& d) {
+  sec.where = r.where();
+  r.read("name", sec.name);
+  r.read("length", sec.length, true);
+  r.read("elements", sec.elements, true);
+  r.read("mass_per_length", sec.mass_per_length);
+  r.read("diameter", sec.diameter);
+  r.read("normal_drag", sec.normal_drag);
+  parse_tangential(r, sec.tangential_law, sec.tangential_coef, d);
+  r.read("added_mass", sec.added_mass);
+  r.read("axial_stiffness", sec.axial_stiffness);
+  r.read("breaking_load", sec.breaking_load);
+}
+
+void parse_attachment(MapReader& r, AttachmentSpec& a) {
+  a.where = r.where();
+  r.read("at", a.at, true);
+  r.read("mass", a.mass);
+  r.read("volume", a.volume);
+  r.read("drag_area", a.drag_area);
+  r.read("added_mass", a.added_mass);
+}
+
+}  // namespace
+
 void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {
   cable.where = r.where();
-  r.read("length", cable.length, true);
-  r.read("elements", cable.elements, true);
-  r.read("mass_per_length", cable.mass_per_length, true);
-  r.read("diameter", cable.diameter, true);
+  const bool sectioned = r.has("sections");
+  r.read("length", cable.length, !sectioned);
+  r.read("elements", cable.elements, !sectioned);
+  r.read("mass_per_length", cable.mass_per_length, !sectioned);
+  r.read("diameter", cable.diameter, !sectioned);
   r.read("normal_drag", cable.normal_drag);
-  if (const YNode* t = r.get("tangential_drag")) {
-    MapReader tr(t, r.sub("tangential_drag"), d);
-    tr.choice("law", cable.tangential_law, {"pode", "skin"});
-    if (cable.tangential_law.value == "skin") {
-      cable.tangential_coef.value = 0.008;
-      tr.read("ct", cable.tangential_coef);
-    } else {
-      tr.read("f", cable.tangential_coef);
-    }
-    tr.finish();
-  }
+  parse_tangential(r, cable.tangential_law, cable.tangential_coef, d);
   r.read("added_mass", cable.added_mass);
   r.choice("added_mass_model", cable.added_mass_model, {"ideal_fluid", "morison"});
   r.read("sign_smoothing_speed", cable.sign_smoothing_speed);
+  r.read("breaking_load", cable.breaking_load);
+  if (const YNode* n = r.get("sections")) cable.sections_where = r.where(*n, "sections");  // after the single form's keys
+  // Sections top to bottom; an item {body: {...}} is an in-line body.
+  r.list("sections", [&](MapReader& item, std::size_t) {
+    cable.item_where.push_back(item.where());
+    if (const YNode* b = item.get("body")) {
+      cable.item_body.push_back(static_cast<int>(cable.inline_bodies.size()));
+      cable.inline_bodies.emplace_back();
+      MapReader br(b, item.sub("body"), d);
+      cable.inline_bodies.back().present = br.present();
+      if (br.present()) parse_body(br, cable.inline_bodies.back(), d);
+      br.finish();
+      return;
+    }
+    cable.item_body.push_back(-1);
+    cable.sections.emplace_back();
+    parse_section(item, cable.sections.back(), d);
+  });
+  r.list("attachments", [&](MapReader& item, std::size_t) {
+    cable.attachments.emplace_back();
+    parse_attachment(item, cable.attachments.back());
+  });
 }
 
 void parse_simulation(MapReader& r, SimulationSpec& sim) {

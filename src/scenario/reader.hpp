@@ -45,6 +45,11 @@ class MapReader {
   std::string sub(const std::string& key) const { return join_path(path_, key); }
   /// Mark `key` as known; its non-null value or nullptr (reported if required).
   const YNode* get(const std::string& key, bool required = false);
+  /// True when `key` has a non-null value (does not mark it known).
+  bool has(const std::string& key) const {
+    const YNode* v = node_ == nullptr ? nullptr : node_->find(key);
+    return v != nullptr && !v->is_null();
+  }
   /// Where `key`'s value is.
   Where where(const YNode& value, const std::string& key) const { return {value.loc, sub(key)}; }
   /// Where this mapping is.

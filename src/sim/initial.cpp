@@ -6,7 +6,7 @@ namespace towsim {
 
 PhysicalState initial_state(const Model& model) {
   if (model.initial.kind == Initial::Kind::Steady) return steady_state(model).state;
-  PhysicalState s = PhysicalState::hanging(model.cable.n());
+  PhysicalState s = PhysicalState::hanging(model);
   if (model.initial.kind == Initial::Kind::Direction) s.e.assign(model.cable.n(), model.initial.direction.normalized());
   if (model.tow.mode == Tow::Mode::Motion) {
     // At rest: a tow already moving at t = 0 is a velocity jump, which the
@@ -16,7 +16,6 @@ PhysicalState initial_state(const Model& model) {
   } else {
     s.r0 = model.tow.start;
   }
-  if (model.has_body) s.q = model.body.initial_attitude;
   return s;
 }
 

@@ -17,38 +17,57 @@ namespace {
 constexpr double kRad2Deg = 180.0 / M_PI;
 constexpr double kMaxRate = 1e4;  // an angular velocity beyond this [rad/s] means divergence
 
-/// Build the output sample of state y at time t.
-Sample make_sample(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats) {
+/// Output sample of state y at time t; tracks the element length drift.
+Sample sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats) {
   const Workspace& ws = sys.evaluate(y, t);
-  const PhysicalState s = sys.physical(y);
+  const Sample out = make_sample(model, sys.physical(y), ws, t);
+  for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
+    const int b = ws.body_at[k + 1];
+    const Vec3& bottom = b >= 0 ? ws.body[static_cast<std::size_t>(b)].Q : ws.P[k + 1];
+    const double L = model.cable.elements[k].length;
+    stats.max_element_drift = std::max(stats.max_element_drift, std::abs((bottom - ws.P[k]).norm() / L - 1));
+  }
+  return out;
+}
+
+}  // namespace
+
+Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, double t) {
   Sample out;
   out.t = t;
   out.tow_pos = ws.P.front();
   out.tow_vel = ws.vP.front();
   out.tow_force = ws.acc.tow_force;
-  out.node_pos = ws.P;
-  out.node_vel = ws.vP;
-  out.tension.resize(ws.acc.joint_force.size());
-  out.axial.resize(out.tension.size());
-  for (std::size_t k = 0; k < out.tension.size(); ++k) {
-    out.tension[k] = ws.acc.joint_force[k].norm();
-    // f_k acts on the part below joint k; tension pulls it back along -e.
-    out.axial[k] = -ws.acc.joint_force[k].dot(s.e[k == 0 ? 0 : k - 1]);
+  // A node: position, velocity, force through it onto the part below, and
+  // that force along the adjacent element e (tension pulls the part below
+  // back along -e).
+  auto node = [&out](const Vec3& p, const Vec3& v, const Vec3& f, const Vec3& e) {
+    out.node_pos.push_back(p);
+    out.node_vel.push_back(v);
+    out.tension.push_back(f.norm());
+    out.axial.push_back(-f.dot(e));
+  };
+  const std::size_t n = model.cable.elements.size();
+  for (std::size_t k = 0; k <= n; ++k) {
+    const int b = k == 0 ? -1 : ws.body_at[k];
+    const Vec3& e_above = s.e[k == 0 ? 0 : k - 1];
+    if (b >= 0 && model.bodies[static_cast<std::size_t>(b)].inline_body) {
+      const BodyWork& bw = ws.body[static_cast<std::size_t>(b)];
+      node(bw.Q, bw.vQ, ws.acc.link_force[static_cast<std::size_t>(b)], e_above);
+      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], s.e[k]);
+    } else {
+      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], e_above);
+    }
   }
-  for (std::size_t k = 1; k < ws.P.size(); ++k) {
-    const double L = model.cable.elements[k - 1].length;
-    stats.max_element_drift = std::max(stats.max_element_drift, std::abs((ws.P[k] - ws.P[k - 1]).norm() / L - 1));
-  }
-  out.has_body = model.has_body;
-  if (model.has_body) {
-    out.body_pos = ws.O;
-    out.body_vel = ws.vO;
-    out.body_rpy_deg = roll_pitch_yaw(s.q) * kRad2Deg;
-    out.body_omega = s.wb;
-    out.link_force = ws.acc.link_force;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyWork& bw = ws.body[b];
+    out.bodies.push_back({bw.O, bw.vO, roll_pitch_yaw(s.bodies[b].q) * kRad2Deg, bw.w, ws.acc.link_force[b],
+                          ws.acc.lower_link_force[b]});
   }
   return out;
 }
+
+namespace {
 
 /// Empty if y is sound; else what went wrong and where.
 std::string check_state(const Model& model, const System& sys, const StateVector& y) {
@@ -59,8 +78,10 @@ std::string check_state(const Model& model, const System& sys, const StateVector
     if (s.w[k].norm() > kMaxRate)
       return "element " + std::to_string(k + 1) + ": angular velocity diverged (" + std::to_string(s.w[k].norm()) +
              " rad/s); reduce simulation.time_step or use an adaptive integrator";
-  if (model.has_body && s.wb.norm() > kMaxRate)
-    return "body: angular velocity diverged; reduce simulation.time_step or use an adaptive integrator";
+  for (std::size_t b = 0; b < s.bodies.size(); ++b)
+    if (s.bodies[b].w.norm() > kMaxRate)
+      return "body " + model.bodies[b].name +
+             ": angular velocity diverged; reduce simulation.time_step or use an adaptive integrator";
   return {};
 }
 
@@ -122,7 +143,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   if (model.initial.kind != Initial::Kind::Steady) sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
   sys->project(y, 0.0);
   double t = 0;
-  sink.write(make_sample(model, *sys, y, t, stats));
+  sink.write(sample_of(model, *sys, y, t, stats));
 
   odeint::runge_kutta4<StateVector> rk4;
   auto dopri = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
@@ -167,7 +188,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       stats.message = os.str();
       break;
     }
-    sink.write(make_sample(model, *sys, y, t, stats));
+    sink.write(sample_of(model, *sys, y, t, stats));
     if (progress) progress(t / T);
   }
   stats.end_time = t;

@@ -32,30 +32,31 @@ struct SteadyProblem {
   PhysicalState base;         // current iterate
   std::vector<Vec3> t1, t2;   // tangent bases of the iterate's elements
   int n;
-  int size() const { return 2 * n + (model.has_body ? 3 : 0); }
+  int nb;
+  int size() const { return 2 * n + 3 * nb; }
 
-  SteadyProblem(const Model& m, const Vec3& v) : model(m), V(v), ws(m), n(m.cable.n()) {
+  SteadyProblem(const Model& m, const Vec3& v)
+      : model(m), V(v), ws(m), n(m.cable.n()), nb(static_cast<int>(m.bodies.size())) {
     model.tow.mode = Tow::Mode::Motion;
     model.tow.pieces.clear();  // a0 = 0; the velocity is set in the state
     t1.resize(n);
     t2.resize(n);
     for (const Element& el : m.cable.elements)
       scale.push_back(element_rot_inertia(el) + 0.25 * (el.mass + el.added_mass) * el.length * el.length);
-    double sb = 1.0;
-    if (m.has_body) {
-      const Mat6 M = m.body.rigid_mass + m.body.fluid_mass;
-      sb = M.bottomRightCorner<3, 3>().trace() / 3 + M(0, 0) * m.body.link_point.squaredNorm();
+    for (const Body& b : m.bodies) {
+      const Mat6 M = b.rigid_mass + b.fluid_mass;
+      scale.push_back(M.bottomRightCorner<3, 3>().trace() / 3 + M(0, 0) * b.link_point.squaredNorm());
     }
-    scale.push_back(sb);
   }
 
   /// The state displaced by x from the iterate (tangent perturbations).
   PhysicalState displaced(const Eigen::VectorXd& x) const {
     PhysicalState s = base;
     for (int k = 0; k < n; ++k) s.e[k] = (base.e[k] + x[2 * k] * t1[k] + x[2 * k + 1] * t2[k]).normalized();
-    if (model.has_body) {
-      const Vec3 r = x.tail<3>();
-      if (r.norm() > 0) s.q = (Quat(Eigen::AngleAxisd(r.norm(), r.normalized())) * base.q).normalized();
+    for (int b = 0; b < nb; ++b) {
+      const Vec3 r = x.segment<3>(2 * n + 3 * b);
+      const Quat& q0 = base.bodies[static_cast<std::size_t>(b)].q;
+      if (r.norm() > 0) s.bodies[static_cast<std::size_t>(b)].q = (Quat(Eigen::AngleAxisd(r.norm(), r.normalized())) * q0).normalized();
     }
     return s;
   }
@@ -72,20 +73,20 @@ struct SteadyProblem {
       r[2 * k] = scale[k] * ws.acc.alpha[k].dot(t1[k]);
       r[2 * k + 1] = scale[k] * ws.acc.alpha[k].dot(t2[k]);
     }
-    if (model.has_body) r.tail<3>() = scale[n] * ws.acc.alpha_b;
+    for (int b = 0; b < nb; ++b) r.segment<3>(2 * n + 3 * b) = scale[static_cast<std::size_t>(n + b)] * ws.acc.alpha_b[static_cast<std::size_t>(b)];
     return r;
   }
 
   /// Largest unscaled angular acceleration of a residual [rad/s^2].
   double max_alpha(const Eigen::VectorXd& r) const {
     double m = 0;
-    for (int i = 0; i < r.size(); ++i) m = std::max(m, std::abs(r[i]) / scale[std::min(i / 2, n)]);
-    if (model.has_body)
-      for (int i = 2 * n; i < r.size(); ++i) m = std::max(m, std::abs(r[i]) / scale[n]);
+    for (int i = 0; i < 2 * n; ++i) m = std::max(m, std::abs(r[i]) / scale[static_cast<std::size_t>(i / 2)]);
+    for (int i = 2 * n; i < r.size(); ++i)
+      m = std::max(m, std::abs(r[i]) / scale[static_cast<std::size_t>(n + (i - 2 * n) / 3)]);
     return m;
   }
 
-  std::vector<double> scale;  // inertia about the top joint (elements), about Q (body) [kg m^2]
+  std::vector<double> scale;  // inertia about the top joint (elements), about Q (bodies) [kg m^2]
 
   /// Move the iterate by x and rebuild the tangent bases.
   void accept(const Eigen::VectorXd& x) {
@@ -94,37 +95,39 @@ struct SteadyProblem {
   }
 };
 
-/// Starting point: from the body up, each element aligned with the force it
-/// carries (moment balance about its top joint, its own load at mid-length).
-void sweep_from_body(SteadyProblem& p) {
+/// Starting point: from the bottom up, each element aligned with the force it
+/// carries (moment balance about its top joint, its own load at mid-length);
+/// a body passes on the force balancing its own loads, an attachment its load.
+void sweep_from_bottom(SteadyProblem& p) {
   const Model& m = p.model;
   PhysicalState& s = p.base;
-  s = PhysicalState::hanging(p.n);
+  s = PhysicalState::hanging(m);
   s.r0 = m.tow.start;
   s.v0 = p.V;
-  if (m.has_body) s.q = m.body.initial_attitude;
   compute_kinematics(m, s, p.ws);  // depths of the hanging guess (for a current profile)
-  Vec3 f = Vec3::Zero();           // force through the joint below the element
-  if (m.has_body) {
-    p.ws.vO = p.V;
-    p.ws.wB.setZero();
-    body_loads(m, s, 0.0, p.ws);
-    f = -p.ws.Fb;  // link force balancing the body's loads
-  }
+  for (auto& v : p.ws.vP) v = p.V;
+  attachment_loads(m, p.ws);
+  Vec3 f = -p.ws.Fa.back();  // force through the joint below the element
   for (int k = p.n - 1; k >= 0; --k) {
-    const Element& el = m.cable.elements[k];
-    Vec3 e = s.e[k], F, M;
+    const int bi = p.ws.body_at[static_cast<std::size_t>(k + 1)];
+    if (bi >= 0) {
+      BodyWork& bw = p.ws.body[static_cast<std::size_t>(bi)];
+      bw.vO = p.V;
+      bw.w.setZero();
+      body_loads(m.fluid, m.bodies[static_cast<std::size_t>(bi)], 0.0, bw);
+      f -= bw.Fb;  // link force balancing the body's loads and the cable below
+    }
+    const Element& el = m.cable.elements[static_cast<std::size_t>(k)];
+    Vec3 e = s.e[static_cast<std::size_t>(k)], F, M;
     for (int it = 0; it < 30; ++it) {
-      element_loads(m, el, e, Vec3::Zero(), p.V, p.ws.G[k].z(), F, M);
+      element_loads(m, el, e, Vec3::Zero(), p.V, p.ws.G[static_cast<std::size_t>(k)].z(), F, M);
       const Vec3 d = 0.5 * F - f;
       if (d.norm() < 1e-300) break;
       e = d.normalized();
     }
-    s.e[k] = e;
-    f -= F;
+    s.e[static_cast<std::size_t>(k)] = e;
+    f -= F + p.ws.Fa[static_cast<std::size_t>(k)];
   }
-  s.w.assign(p.n, Vec3::Zero());
-  s.wb.setZero();
   p.accept(Eigen::VectorXd::Zero(p.size()));
 }
 
@@ -142,7 +145,7 @@ Vec3 final_tow_velocity(const Tow& tow) {
 
 StaticsResult solve_statics(const Model& model, const Vec3& V) {
   SteadyProblem p(model, V);
-  sweep_from_body(p);
+  sweep_from_bottom(p);
   const int N = p.size();
   StaticsResult out;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
@@ -199,7 +202,9 @@ StaticsResult solve_statics(const Model& model, const Vec3& V) {
   forward_dynamics(p.model, p.base, 0.0, p.ws);
   out.tow_force = p.ws.acc.tow_force;
   out.link_force = p.ws.acc.link_force;
+  out.body_force = p.ws.acc.lower_link_force;
   out.joint_force = p.ws.acc.joint_force;
+  out.sample = make_sample(p.model, p.base, p.ws, 0.0);
   return out;
 }
 

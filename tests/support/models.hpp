@@ -38,8 +38,8 @@ inline Model cable_model(const CableSpec& c, double rho = 1025, double g = 9.81)
 
 /// The paper 5.2 sphere (3 kg, r = 0.05 m, link on its surface) attached to m.
 inline void add_sphere_body(Model& m, double mass = 3.0, double radius = 0.05, double cd = 0.5, double ca = 0.5) {
-  m.has_body = true;
-  Body& b = m.body;
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
   b.mass = mass;
   b.inertia_cg = 0.4 * mass * radius * radius * Mat3::Identity();
   b.cg = Vec3::Zero();
@@ -50,8 +50,8 @@ inline void add_sphere_body(Model& m, double mass = 3.0, double radius = 0.05, d
 
 /// A body with every load model and off-diagonal terms, for agreement tests.
 inline void add_rich_body(Model& m) {
-  m.has_body = true;
-  Body& b = m.body;
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
   b.mass = 40;
   b.inertia_cg << 2.0, 0.1, -0.05, 0.1, 5.0, 0.2, -0.05, 0.2, 5.5;
   b.cg = Vec3(-0.1, 0.02, -0.05);
@@ -70,12 +70,37 @@ inline void add_rich_body(Model& m) {
   finalize_body(b, m.fluid);
 }
 
+/// A chain of every kind of part: a heavy section of `n_top` elements, an
+/// in-line body (the rich body, jointed at link_point and lower_link_point),
+/// a lighter section of `n_low` elements with different properties, an end
+/// sphere, and attachments at joints 1 and n_top + 1 (when not at a body).
+inline Model two_part_model(int n_top = 3, int n_low = 4) {
+  CableSpec top;
+  top.n = n_top;
+  top.length = 15.0 * n_top;
+  top.mass_per_length = 4.0;
+  top.diameter = 0.03;
+  top.tangential = 0.02;
+  Model m = cable_model(top);
+  add_rich_body(m);
+  m.bodies.back().inline_body = true;
+  m.bodies.back().joint = n_top;
+  m.bodies.back().name = "depressor";
+  m.bodies.back().lower_link_point = Vec3(-0.5, 0.1, -0.2);
+  for (int i = 0; i < n_low; ++i)
+    m.cable.elements.push_back(make_element(6.0, 0.8, 0.012, 1.2, 0.02, m.cable.tangential_law, 0.9, m.fluid));
+  add_sphere_body(m);
+  if (n_top >= 2) m.cable.attachments.push_back({1, 15.0, 20.0, 0.004, 0.05, 3.0});
+  if (n_low >= 2) m.cable.attachments.push_back({n_top + 1, 15.0 * n_top + 6.0, 5.0, 0.01, 0.02, 8.0});
+  return m;
+}
+
 /// A random physical state: unit vectors anywhere (poles included), angular
 /// velocities normal to them, random body attitude and rates.
 inline PhysicalState random_state(const Model& m, std::mt19937& rng, double rate = 0.5) {
   std::normal_distribution<double> N(0.0, 1.0);
   auto rnd = [&] { return Vec3(N(rng), N(rng), N(rng)); };
-  PhysicalState s = PhysicalState::hanging(m.cable.n());
+  PhysicalState s = PhysicalState::hanging(m);
   s.r0 = rnd();
   s.v0 = rnd();
   for (int k = 0; k < m.cable.n(); ++k) {
@@ -83,8 +108,10 @@ inline PhysicalState random_state(const Model& m, std::mt19937& rng, double rate
     const Vec3 w = rate * rnd();
     s.w[k] = w - w.dot(s.e[k]) * s.e[k];
   }
-  s.q = Quat(N(rng), N(rng), N(rng), N(rng)).normalized();
-  s.wb = rate * rnd();
+  // Drawn even without a body, so that every model sees the same sequence.
+  const Quat q = Quat(N(rng), N(rng), N(rng), N(rng)).normalized();
+  const Vec3 wb = rate * rnd();
+  for (auto& b : s.bodies) b.q = q, b.w = wb;
   return s;
 }
 

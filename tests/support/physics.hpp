@@ -118,7 +118,7 @@ inline Energy cable_energy(const Model& m, const Sample& s) {
 /// R = Rz(yaw) Ry(pitch) Rx(roll) (docs/theory.md §4).
 inline Mat3 body_rotation(const Sample& s) {
   const double d2r = std::numbers::pi / 180;
-  const Vec3 a = s.body_rpy_deg * d2r;
+  const Vec3 a = s.bodies[0].rpy_deg * d2r;
   return (Eigen::AngleAxisd(a.z(), Vec3::UnitZ()) * Eigen::AngleAxisd(a.y(), Vec3::UnitY()) *
           Eigen::AngleAxisd(a.x(), Vec3::UnitX()))
       .toRotationMatrix();
@@ -129,7 +129,7 @@ inline Mat3 body_rotation(const Sample& s) {
 /// axes), the fluid's kinetic energy 1/2 nu^T M_A nu (Kirchhoff; still fluid).
 /// R: attitude (body axes -> R_g), O, vO: origin O_t and its velocity, w: angular velocity.
 inline Energy body_energy(const Model& m, const Mat3& R, const Vec3& O, const Vec3& vO, const Vec3& w) {
-  const Body& b = m.body;
+  const Body& b = m.bodies[0];
   const Vec3 rG = R * b.cg;
   const Vec3 vG = vO + w.cross(rG);
   const Mat3 I = R * b.inertia_cg * R.transpose();
@@ -142,7 +142,7 @@ inline Energy body_energy(const Model& m, const Mat3& R, const Vec3& O, const Ve
   return E;
 }
 inline Energy body_energy(const Model& m, const Sample& s) {
-  return body_energy(m, body_rotation(s), s.body_pos, s.body_vel, s.body_omega);
+  return body_energy(m, body_rotation(s), s.bodies[0].pos, s.bodies[0].vel, s.bodies[0].omega);
 }
 
 /// Joint positions and velocities rebuilt from a physical state:
@@ -162,10 +162,10 @@ inline Energy state_energy(const Model& m, const PhysicalState& s) {
   Sample smp;
   joints_of_state(m, s, smp.node_pos, smp.node_vel);
   Energy E = cable_energy(m, smp);
-  if (m.has_body) {
-    const Mat3 R = s.q.toRotationMatrix();
-    const Vec3 rQ = R * m.body.link_point;
-    const Energy Eb = body_energy(m, R, smp.node_pos.back() - rQ, smp.node_vel.back() - s.wb.cross(rQ), s.wb);
+  if (!m.bodies.empty()) {
+    const Mat3 R = s.bodies[0].q.toRotationMatrix();
+    const Vec3 rQ = R * m.bodies[0].link_point;
+    const Energy Eb = body_energy(m, R, smp.node_pos.back() - rQ, smp.node_vel.back() - s.bodies[0].w.cross(rQ), s.bodies[0].w);
     E.kinetic += Eb.kinetic;
     E.potential += Eb.potential;
   }

@@ -125,9 +125,9 @@ inline LoadSum steady_loads(const Model& m, const CableCoefficients& cc, const P
     if (m.cable.added_mass_model == AddedMassModel::IdealFluid)
       out.add_couple(cc.ca * rho * A * L * ue * u.cross(e));
   }
-  if (m.has_body) {
-    const Body& b = m.body;
-    const Mat3 R = s.q.toRotationMatrix();
+  if (!m.bodies.empty()) {
+    const Body& b = m.bodies[0];
+    const Mat3 R = s.bodies[0].q.toRotationMatrix();
     const Vec3 O = P - R * b.link_point;  // P = P_n = Q
     double vol = b.volume;
     Vec3 vol_moment = b.volume * b.cb;

@@ -47,8 +47,8 @@ Model body_model(double rho = 1025, double g = 9.81) {
   Model m;
   m.fluid.rho = rho;
   m.fluid.g = g;
-  m.has_body = true;
-  Body& b = m.body;
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
   b.mass = 0;
   b.inertia_cg.setZero();
   b.cg.setZero();
@@ -60,13 +60,14 @@ Model body_model(double rho = 1025, double g = 9.81) {
 struct BodyState {
   PhysicalState s;
   Workspace ws;
-  BodyState(const Model& m, const Mat3& R, const Vec3& O, const Vec3& vO, const Vec3& w) : ws(m) {
-    s.q = Quat(R);
-    s.wb = w;
-    ws.R = R;
-    ws.O = O;
-    ws.vO = vO;
-    ws.wB = w;
+  BodyState(const Model& m, const Mat3& R, const Vec3& O, const Vec3& vO, const Vec3& w)
+      : s(PhysicalState::hanging(m)), ws(m) {
+    s.bodies[0].q = Quat(R);
+    s.bodies[0].w = w;
+    ws.body[0].R = R;
+    ws.body[0].O = O;
+    ws.body[0].vO = vO;
+    ws.body[0].w = w;
   }
 };
 
@@ -75,8 +76,8 @@ struct Loads6 {
 };
 Loads6 body_loads(const Model& m, const Mat3& R, const Vec3& O, const Vec3& vO, const Vec3& w, double t = 0) {
   BodyState st(m, R, O, vO, w);
-  towsim::body_loads(m, st.s, t, st.ws);
-  return {st.ws.Fb, st.ws.Mb};
+  towsim::body_loads(m.fluid, m.bodies[0], t, st.ws.body[0]);
+  return {st.ws.body[0].Fb, st.ws.body[0].Mb};
 }
 
 Mat3 rotation(double roll, double pitch, double yaw) {
@@ -96,7 +97,7 @@ Mat3 rotation(double roll, double pitch, double yaw) {
 //   [[1.3,0.2,-0.3],[0.2,1.0,0.6],[-0.3,0.6,0.5]].
 TEST(BodyModel, RigidMassAboutOriginWithOffsetCg) {
   Model m = body_model();
-  Body& b = m.body;
+  Body& b = m.bodies[0];
   b.mass = 10;
   b.cg = Vec3(0.1, -0.2, 0.3);
   b.inertia_cg << 2, 0.1, -0.05, 0.1, 3, 0.2, -0.05, 0.2, 4;
@@ -133,7 +134,7 @@ TEST(BodyModel, RigidMassAboutOriginWithOffsetCg) {
 // The user's 6x6 added mass adds to it.
 TEST(BodyModel, SphereAddedMassIsPointMassAtCentre) {
   Model m = body_model(1000);
-  Body& b = m.body;
+  Body& b = m.bodies[0];
   b.mass = 5;
   b.inertia_cg = Mat3::Identity();
   b.spheres.push_back(SphereLoad{Vec3(0.5, 0, -0.2), 0.1, 0.5, 0.5});
@@ -159,7 +160,7 @@ TEST(BodyModel, SphereAddedMassIsPointMassAtCentre) {
 // vc = v + w x c, A = ma (I - aa^T), B = ma L^2/12 (I - aa^T).
 TEST(BodyModel, CylinderAddedMassAtCentre) {
   Model m = body_model(1000);
-  Body& b = m.body;
+  Body& b = m.bodies[0];
   const Vec3 a = Vec3(1, 2, -0.5).normalized(), c(-0.3, 0.1, 0.2);
   b.cylinders.push_back(CylinderLoad{c, a, 1.2, 0.15, 1.2, 0.01, 1.0});
   towsim::finalize_body(b, m.fluid);
@@ -185,7 +186,7 @@ TEST(BodyModel, CylinderAddedMassAtCentre) {
 // pi 0.0225/4 * 1.2 = 0.00675 pi. Centre = volume-weighted mean.
 TEST(BodyModel, DisplacedVolumeAndBuoyancyCentre) {
   Model m = body_model();
-  Body& b = m.body;
+  Body& b = m.bodies[0];
   b.mass = 40;
   b.cg = Vec3(0.1, 0, 0);
   b.volume = 0.02;
@@ -209,7 +210,7 @@ TEST(BodyModel, DisplacedVolumeAndBuoyancyCentre) {
 // M = (0, 0.1 W, 0) + (0.02 B, 0.1 B, 0) = (10.05525, 89.51625, 0).
 TEST(BodyModel, GravityAndBuoyancyMomentAboutOrigin) {
   Model m = body_model(1025, 9.81);
-  Body& b = m.body;
+  Body& b = m.bodies[0];
   b.mass = 40;
   b.cg = Vec3(0.1, 0, -0.05);
   b.volume = 0.05;
@@ -234,9 +235,9 @@ TEST(BodyModel, GravityAndBuoyancyMomentAboutOrigin) {
 // F = -k sqrt2 (1, 1, 0), M = c x F = -k sqrt2 (0, 0, 0.5). g = 0 here.
 TEST(BodyModel, SphereDragAtCentreOfRotatingBody) {
   Model m = body_model(1000, 0.0);
-  m.body.mass = 3;
-  m.body.spheres.push_back(SphereLoad{Vec3(0.5, 0, 0), 0.1, 0.5, 0.5});
-  towsim::finalize_body(m.body, m.fluid);
+  m.bodies[0].mass = 3;
+  m.bodies[0].spheres.push_back(SphereLoad{Vec3(0.5, 0, 0), 0.1, 0.5, 0.5});
+  towsim::finalize_body(m.bodies[0], m.fluid);
   const double k = 2.5 * pi, s2 = std::sqrt(2.0);
   Loads6 l = body_loads(m, Mat3::Identity(), Vec3(0, 0, -10), Vec3(1, 0, 0), Vec3(0, 0, 2));
   EXPECT_LE((l.F - (-k * s2) * Vec3(1, 1, 0)).norm(), 1e-12 * 30);
@@ -244,7 +245,7 @@ TEST(BodyModel, SphereDragAtCentreOfRotatingBody) {
   // Rotated body in a depth-dependent current: the current at the centre's depth.
   m.fluid.current_depth = {0, 20};
   m.fluid.current_velocity = {Vec3(1, 0, 0), Vec3(0, 0.5, 0)};
-  m.body.spheres[0].center = Vec3(0.5, 0.2, -1.0);
+  m.bodies[0].spheres[0].center = Vec3(0.5, 0.2, -1.0);
   const Mat3 R = rotation(0.3, 0.5, -0.7);
   const Vec3 O(2, 1, -10), vO(1.5, -0.3, 0.2), w(0.4, -0.9, 0.6);
   l = body_loads(m, R, O, vO, w);
@@ -263,8 +264,8 @@ TEST(BodyModel, SphereDragAtCentreOfRotatingBody) {
 // u.a = 2, u_n = (0, 0, 1): F = -(k_n, 0, 0)... by components below.
 TEST(BodyModel, CylinderLoadsAtCentre) {
   Model m = body_model(1000, 0.0);
-  m.body.cylinders.push_back(CylinderLoad{Vec3(0, 0.2, 0), Vec3::UnitX(), 1.2, 0.15, 1.2, 0.01, 1.0});
-  towsim::finalize_body(m.body, m.fluid);
+  m.bodies[0].cylinders.push_back(CylinderLoad{Vec3(0, 0.2, 0), Vec3::UnitX(), 1.2, 0.15, 1.2, 0.01, 1.0});
+  towsim::finalize_body(m.bodies[0], m.fluid);
   const Loads6 l = body_loads(m, Mat3::Identity(), Vec3(0, 0, -5), Vec3(2, 0, 1), Vec3::Zero());
   const double kn = 0.5 * 1000 * 1.2 * 0.15 * 1.2;       // 108
   const double kt = 0.5 * 1000 * pi * 0.15 * 1.2 * 0.01;  // 0.9 pi
@@ -286,8 +287,8 @@ LiftingSurface fin() {
 // along -u. rho = 1025, V = 3, A = 0.1: q = 461.25; CL = 0.1 pi at 0.05 rad.
 TEST(BodyModel, LiftingSurfaceSmallAngle) {
   Model m = body_model(1025, 0.0);
-  m.body.surfaces.push_back(fin());
-  towsim::finalize_body(m.body, m.fluid);
+  m.bodies[0].surfaces.push_back(fin());
+  towsim::finalize_body(m.bodies[0], m.fluid);
   const double V = 3, q = 461.25;
   const Vec3 c(-0.7, 0, 0.1);
   double err = 0;
@@ -342,8 +343,8 @@ TEST(BodyModel, DeflectionRotatesAboutSpanAxis) {
   LiftingSurface ls = fin();
   ls.deflection_time = {0};
   ls.deflection_angle = {0.1};
-  m.body.surfaces.push_back(ls);
-  towsim::finalize_body(m.body, m.fluid);
+  m.bodies[0].surfaces.push_back(ls);
+  towsim::finalize_body(m.bodies[0], m.fluid);
   const double V = 3, q = 461.25, d = 0.1;
   const Loads6 l = body_loads(m, Mat3::Identity(), Vec3(0, 0, -10), Vec3(V, 0, 0), Vec3::Zero());
   const double CL = 2 * pi * d, CD = 0.01 + 0.05 * CL * CL;
@@ -413,7 +414,7 @@ TEST(BodyModel, LiftCoefficientShape) {
 //   D_q .. = (10, -240, 15, 0.01, 0, -0.45): tau = (-15, 260.21, -20, -0.11, 0, 2.45).
 TEST(BodyModel, LinearAndQuadraticDamping) {
   Model m = body_model(1025, 0.0);
-  Body& b = m.body;
+  Body& b = m.bodies[0];
   b.linear_damping.diagonal() << 5, 10, 10, 1, 2, 2;
   b.linear_damping(1, 5) = b.linear_damping(5, 1) = 0.7;
   b.quadratic_damping.diagonal() << 10, 60, 60, 1, 5, 5;
@@ -434,7 +435,7 @@ TEST(BodyModel, LinearAndQuadraticDamping) {
 // Every fluid load of a body in a uniform current depends on v - U only.
 TEST(BodyModel, UniformCurrentGalilean) {
   Model still = body_model(1025, 9.81);
-  Body& b = still.body;
+  Body& b = still.bodies[0];
   b.mass = 40;
   b.inertia_cg = Mat3::Identity();
   b.cg = Vec3(-0.1, 0.02, -0.05);
@@ -469,21 +470,21 @@ TEST(BodyModel, UniformCurrentGalilean) {
 // Mw = diag(m, m, m, I_w), hw = [0; w x (I_w w)].
 TEST(BodyModel, InertiaNoAddedMassCgAtOrigin) {
   Model m = body_model(1025);
-  Body& b = m.body;
+  Body& b = m.bodies[0];
   b.mass = 12;
   b.inertia_cg << 2, 0.1, -0.05, 0.1, 5, 0.2, -0.05, 0.2, 5.5;
   towsim::finalize_body(b, m.fluid);
   const Mat3 R = rotation(0.4, -0.3, 1.2);
   const Vec3 w(0.3, -0.7, 0.5), vO(1.5, 0.2, -0.4);
   BodyState st(m, R, Vec3(1, 2, -20), vO, w);
-  towsim::body_inertia(m, st.s, st.ws);
+  towsim::body_inertia(m.fluid, m.bodies[0], st.ws.body[0]);
   const Mat3 Iw = R * b.inertia_cg * R.transpose();
   Mat6 Mw = Mat6::Zero();
   Mw.topLeftCorner<3, 3>() = 12 * Mat3::Identity();
   Mw.bottomRightCorner<3, 3>() = Iw;
   Vec6 hw;
   hw << Vec3::Zero(), w.cross(Iw * w);
-  const double err = std::max((st.ws.Mw - Mw).norm(), (st.ws.hw - hw).norm());
+  const double err = std::max((st.ws.body[0].Mw - Mw).norm(), (st.ws.body[0].hw - hw).norm());
   report("Inertia, no added mass, CG at O_t", err, 1e-13);
   EXPECT_LE(err, 1e-13);
 }
@@ -495,7 +496,7 @@ TEST(BodyModel, InertiaNoAddedMassCgAtOrigin) {
 // So hw = [0; R (v_rb x A11 v_rb)], and Mw = B (M_RB + M_A) B^T.
 TEST(BodyModel, InertiaAddedMassNoRotationUniformCurrent) {
   Model m = body_model(1025);
-  Body& b = m.body;
+  Body& b = m.bodies[0];
   b.mass = 12;
   b.inertia_cg = Vec3(1, 2, 3).asDiagonal();
   b.cg = Vec3(0.1, 0.05, -0.1);  // irrelevant at w = 0 (checked)
@@ -508,25 +509,25 @@ TEST(BodyModel, InertiaAddedMassNoRotationUniformCurrent) {
   const Mat3 R = rotation(0.4, -0.3, 1.2);
   const Vec3 vO(1.5, 0.2, -0.4), vrb = R.transpose() * (vO - Vec3(0.4, -0.6, 0));
   BodyState st(m, R, Vec3(1, 2, -20), vO, Vec3::Zero());
-  towsim::body_inertia(m, st.s, st.ws);
+  towsim::body_inertia(m.fluid, m.bodies[0], st.ws.body[0]);
   const Mat3 A11 = b.added_mass.topLeftCorner<3, 3>();
   Vec6 hw;
   hw << Vec3::Zero(), R * vrb.cross(A11 * vrb);
   Mat6 Bm = Mat6::Zero();
   Bm.topLeftCorner<3, 3>() = R;
   Bm.bottomRightCorner<3, 3>() = R;
-  const double err = std::max((st.ws.hw - hw).norm(), (st.ws.Mw - Bm * (b.rigid_mass + b.fluid_mass) * Bm.transpose()).norm());
+  const double err = std::max((st.ws.body[0].hw - hw).norm(), (st.ws.body[0].Mw - Bm * (b.rigid_mass + b.fluid_mass) * Bm.transpose()).norm());
   report("Inertia, added mass, w = 0, uniform current", err, 1e-12);
   EXPECT_LE(err, 1e-12);
   EXPECT_GT(hw.norm(), 1.0);  // the Munk moment is really there
   // Isotropic A11: no Munk moment, hw = 0.
   Model iso = m;
-  iso.body.added_mass = Mat6::Zero();
-  iso.body.added_mass.diagonal() << 7, 7, 7, 1, 1, 1;
-  towsim::finalize_body(iso.body, iso.fluid);
+  iso.bodies[0].added_mass = Mat6::Zero();
+  iso.bodies[0].added_mass.diagonal() << 7, 7, 7, 1, 1, 1;
+  towsim::finalize_body(iso.bodies[0], iso.fluid);
   BodyState si(iso, R, Vec3(1, 2, -20), vO, Vec3::Zero());
-  towsim::body_inertia(iso, si.s, si.ws);
-  EXPECT_LE(si.ws.hw.norm(), 1e-12);
+  towsim::body_inertia(iso.fluid, iso.bodies[0], si.ws.body[0]);
+  EXPECT_LE(si.ws.body[0].hw.norm(), 1e-12);
 }
 
 namespace {
@@ -571,7 +572,7 @@ struct BodyTrajectory {
 /// added mass (positive definite).
 Model kirchhoff_body() {
   Model m = body_model(1025);
-  Body& b = m.body;
+  Body& b = m.bodies[0];
   b.mass = 40;
   b.inertia_cg << 2.0, 0.1, -0.05, 0.1, 5.0, 0.2, -0.05, 0.2, 5.5;
   b.cg = Vec3(-0.1, 0.02, -0.05);
@@ -620,7 +621,7 @@ TEST(BodyModel, KirchhoffMatchesFiniteDifferences) {
       m.fluid.current_depth = {20, 40};
       m.fluid.current_velocity = {Vec3(0.8, 0.1, 0), Vec3(0.1, -0.4, 0.02)};
     }
-    const Body& b = m.body;
+    const Body& b = m.bodies[0];
     auto momenta = [&](double t) {
       const Mat3 R = T::R(t);
       const Vec3 U = m.fluid.current(T::O(t).z());
@@ -644,10 +645,10 @@ TEST(BodyModel, KirchhoffMatchesFiniteDifferences) {
         return lhs;
       };
       BodyState st(m, T::R(t), T::O(t), vO, T::w(t));
-      towsim::body_inertia(m, st.s, st.ws);
+      towsim::body_inertia(m.fluid, m.bodies[0], st.ws.body[0]);
       Vec6 acc;
       acc << T::a(t), T::alpha(t);
-      const Vec6 rhs = st.ws.Mw * acc + st.ws.hw;
+      const Vec6 rhs = st.ws.body[0].Mw * acc + st.ws.body[0].hw;
       // The FD bounds are on the 12-vector of momenta; each row of lhs adds two
       // of its 3-blocks (factor 2); the cross products are exact values.
       auto [d, tol] = fd_with_bound(momenta, t, h);

@@ -44,12 +44,12 @@ TEST(IoExamples, PaperPlanarValues) {
   EXPECT_EQ(m.cable.n(), 5);
   EXPECT_DOUBLE_EQ(m.cable.total_length(), 100.0);
   EXPECT_DOUBLE_EQ(m.cable.elements[0].mass, 30.0);
-  ASSERT_TRUE(m.has_body);
+  ASSERT_TRUE(!m.bodies.empty());
   // Zero apparent weight: body mass = mass of the water displaced by the two spheres.
   const double displaced = 1025.0 * 2 * 4.0 / 3.0 * M_PI * std::pow(0.25, 3);
-  EXPECT_NEAR(m.body.mass, displaced, 1e-6);
-  EXPECT_NEAR(m.body.displaced_volume * 1025.0, m.body.mass, 1e-6);
-  EXPECT_NEAR(m.body.inertia_cg(1, 1), 2 * (0.4 * displaced / 2 * 0.0625) + displaced * 0.5625, 1e-6);
+  EXPECT_NEAR(m.bodies[0].mass, displaced, 1e-6);
+  EXPECT_NEAR(m.bodies[0].displaced_volume * 1025.0, m.bodies[0].mass, 1e-6);
+  EXPECT_NEAR(m.bodies[0].inertia_cg(1, 1), 2 * (0.4 * displaced / 2 * 0.0625) + displaced * 0.5625, 1e-6);
   const auto b = load_scenario_text(find_example("paper-planar-b")->yaml, "b.yaml", "b", "");
   ASSERT_TRUE(b.ok());
   ASSERT_EQ(b.model->tow.pieces.size(), 2u);
@@ -62,8 +62,8 @@ TEST(IoExamples, Paper3dTurnValues) {
   const auto& m = *s.model;
   EXPECT_EQ(m.cable.n(), 10);
   EXPECT_DOUBLE_EQ(m.cable.elements[0].length, 30.0);
-  EXPECT_DOUBLE_EQ(m.body.inertia_cg(2, 2), 0.003);
-  EXPECT_DOUBLE_EQ(m.body.link_point.z(), 0.05);
+  EXPECT_DOUBLE_EQ(m.bodies[0].inertia_cg(2, 2), 0.003);
+  EXPECT_DOUBLE_EQ(m.bodies[0].link_point.z(), 0.05);
   ASSERT_EQ(m.tow.pieces.size(), 2u);
   EXPECT_EQ(m.tow.pieces[1].type, towsim::TowPiece::Type::Turn);
   EXPECT_TRUE(m.tow.pieces[1].port);
@@ -96,31 +96,41 @@ towsim::Sample sample(double t) {
   s.node_vel = {towsim::Vec3(1, 0, 0), towsim::Vec3(1, 0, 0)};
   s.tension = {5, 2};
   s.axial = {5, -2};
-  s.has_body = true;
-  s.body_pos = towsim::Vec3(t, 0, -10.5);
-  s.body_rpy_deg = towsim::Vec3(0, -t, 0);
-  s.link_force = towsim::Vec3(0, 0, 2);
+  s.bodies.resize(1);
+  s.bodies[0].pos = towsim::Vec3(t, 0, -10.5);
+  s.bodies[0].rpy_deg = towsim::Vec3(0, -t, 0);
+  s.bodies[0].link_force = towsim::Vec3(0, 0, 2);
   return s;
 }
 
 }  // namespace
 
+/// A model with one cable element and, optionally, an end body (the writer's
+/// columns depend on the chain only).
+towsim::Model writer_model(bool body) {
+  towsim::Model m;
+  m.cable.elements.resize(1);
+  if (body) m.bodies.emplace_back();
+  return m;
+}
+
 TEST(IoOutput, TimeseriesColumnsAndExtremes) {
   const fs::path dir = temp_dir("writer");
+  const towsim::Model model = writer_model(true);
   {
-    RunWriter w(dir.string(), true, true);
+    RunWriter w(dir.string(), model, true);
     w.write(sample(0));
     w.write(sample(0.5));
     w.flush();
     EXPECT_EQ(w.samples(), 2);
     EXPECT_DOUBLE_EQ(w.extremes().max_tow_tension.value, 5.0);
-    EXPECT_DOUBLE_EQ(w.extremes().max_body_depth.value, 10.5);
-    EXPECT_DOUBLE_EQ(w.extremes().min_body_deg[1].value, -0.5);
-    EXPECT_DOUBLE_EQ(w.extremes().min_body_deg[1].time, 0.5);
+    EXPECT_DOUBLE_EQ(w.extremes().end_body_extremes.max_depth.value, 10.5);
+    EXPECT_DOUBLE_EQ(w.extremes().end_body_extremes.min_deg[1].value, -0.5);
+    EXPECT_DOUBLE_EQ(w.extremes().end_body_extremes.min_deg[1].time, 0.5);
     EXPECT_DOUBLE_EQ(w.extremes().min_axial_force.value, -2.0);
     towsim::RunStats st;
     st.end_time = 0.5;
-    const auto j = make_summary({{"cable", {{"elements", 1}}}}, "m", st, w.extremes(), w.samples(), true, true);
+    const auto j = make_summary({{"cable", {{"elements", 1}}}}, "m", st, w.extremes(), w.samples(), model, true);
     ASSERT_TRUE(write_summary(dir.string(), j));
   }
   const auto ts = lines_of(dir / "timeseries.csv");
@@ -146,9 +156,12 @@ TEST(IoOutput, TimeseriesColumnsAndExtremes) {
 
 TEST(IoOutput, NoBodyHeaderAndNoNodes) {
   const fs::path dir = temp_dir("nobody");
+  const towsim::Model model = writer_model(false);
   {
-    RunWriter w(dir.string(), false, false);
-    w.write(sample(0));
+    RunWriter w(dir.string(), model, false);
+    towsim::Sample s = sample(0);
+    s.bodies.clear();
+    w.write(s);
   }
   EXPECT_FALSE(fs::exists(dir / "nodes.csv"));
   const auto ts = lines_of(dir / "timeseries.csv");

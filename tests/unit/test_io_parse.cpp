@@ -28,7 +28,7 @@ TEST_F(ScenarioFile, MinimalScenarioCompiles) {
   EXPECT_EQ(s.model->cable.n(), 5);
   EXPECT_DOUBLE_EQ(s.model->cable.elements[0].length, 20.0);
   EXPECT_DOUBLE_EQ(s.model->fluid.rho, 1025.0);
-  EXPECT_FALSE(s.model->has_body);
+  EXPECT_TRUE(s.model->bodies.empty());
   EXPECT_EQ(s.model->name, "scen");
   EXPECT_DOUBLE_EQ(s.model->sim.duration, 10.0);
   EXPECT_DOUBLE_EQ(s.model->sim.time_step, 0.01);
@@ -135,7 +135,7 @@ TEST_F(ScenarioFile, SetCreatesSectionsAndIndexesLists) {
                       {"body.spheres.0.radius=0.1", "tow.mode=force", "tow.force=[0,0,10]",
                        "environment.current=[0.5, 0, 0]"});
   ASSERT_TRUE(s.ok()) << s.diags.str();
-  EXPECT_DOUBLE_EQ(s.model->body.spheres.at(0).radius, 0.1);
+  EXPECT_DOUBLE_EQ(s.model->bodies.at(0).spheres.at(0).radius, 0.1);
   EXPECT_EQ(s.model->tow.mode, towsim::Tow::Mode::Force);
   ASSERT_EQ(s.model->tow.force_value.size(), 1u);
   EXPECT_DOUBLE_EQ(s.model->tow.force_value[0].z(), 10.0);
@@ -166,7 +166,8 @@ TEST_F(ScenarioFile, SeveralErrorsAtOnce) {
                 at("4:20: cable.mass_per_length: expected a number (got 'abc')") +
                 at("5:13: cable.diameter: must be > 0 (got -0.01)") +
                 at("6:3: cable.colour: unknown key (expected one of: length, elements, mass_per_length, diameter, "
-                   "normal_drag, tangential_drag, added_mass, added_mass_model, sign_smoothing_speed)") +
+                   "normal_drag, tangential_drag, added_mass, added_mass_model, sign_smoothing_speed, breaking_load, "
+                   "sections, attachments)") +
                 at("8:13: simulation.duration: must be > 0 (got 0)") +
                 at("9:15: simulation.integrator: expected one of rk4, dopri5, cash_karp54 (got 'rk5'; did you mean "
                    "'rk4'?)") +
@@ -228,12 +229,12 @@ TEST_F(ScenarioFile, SurfacesAndCurrentTable) {
   ASSERT_EQ(f.current_depth.size(), 2u);
   EXPECT_DOUBLE_EQ(f.current_depth[1], 200.0);
   EXPECT_DOUBLE_EQ(f.current_velocity[1].x(), 0.3);
-  const auto& surf = s.model->body.surfaces.at(0);
+  const auto& surf = s.model->bodies.at(0).surfaces.at(0);
   EXPECT_DOUBLE_EQ(surf.chord.x(), 1.0);
   EXPECT_DOUBLE_EQ(surf.normal.z(), 1.0);
   EXPECT_NEAR(surf.deflection_angle[1], 5.0 * M_PI / 180.0, 1e-15);
   EXPECT_NEAR(surf.stall_angle, 15.0 * M_PI / 180.0, 1e-15);
-  const towsim::Vec3 x = s.model->body.initial_attitude * towsim::Vec3::UnitX();
+  const towsim::Vec3 x = s.model->bodies.at(0).initial_attitude * towsim::Vec3::UnitX();
   EXPECT_NEAR(x.y(), 1.0, 1e-12);  // yaw 90 deg: body x along global y
 }
 

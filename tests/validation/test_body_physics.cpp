@@ -76,20 +76,20 @@ TEST_P(HangingBody, StaysAtRest) {
   double vmax = 0;
   for (const Sample& x : samples) {
     for (const Vec3& v : x.node_vel) vmax = std::max(vmax, v.norm());
-    vmax = std::max({vmax, x.body_vel.norm(), x.body_omega.norm() * r});
+    vmax = std::max({vmax, x.bodies[0].vel.norm(), x.bodies[0].omega.norm() * r});
   }
-  const double eL = (s.link_force - Vec3(0, 0, Wb)).norm() / Wb;
+  const double eL = (s.bodies[0].link_force - Vec3(0, 0, Wb)).norm() / Wb;
   const double eR = (s.tow_force - Vec3(0, 0, Wb + Wc)).norm() / (Wb + Wc);
   std::cout << "[measured] hanging body " << testing::run_case_name(c) << ": max speed " << vmax << " m/s, link force "
-            << s.link_force.transpose() << " vs " << Wb << " (rel " << eL << "), tow force rel err " << eR << "\n";
+            << s.bodies[0].link_force.transpose() << " vs " << Wb << " (rel " << eL << "), tow force rel err " << eR << "\n";
   EXPECT_LT(vmax, bound);
   // Forces: round-off of a sum of a few terms of size ~W (RK4), or the
   // tolerance-level motion above times the masses (DOPRI5).
   EXPECT_LT(eL, bound);
   EXPECT_LT(eR, bound);
   // The sphere hangs straight below its link point.
-  EXPECT_LT(std::abs(s.body_pos.x()) + std::abs(s.body_pos.y()), bound);
-  EXPECT_NEAR(s.body_pos.z(), -spec.length - r, bound * spec.length);
+  EXPECT_LT(std::abs(s.bodies[0].pos.x()) + std::abs(s.bodies[0].pos.y()), bound);
+  EXPECT_NEAR(s.bodies[0].pos.z(), -spec.length - r, bound * spec.length);
 }
 
 INSTANTIATE_TEST_SUITE_P(StillWater, HangingBody, ::testing::ValuesIn(testing::all_run_cases()), run_case_param_name);
@@ -138,7 +138,7 @@ TEST_P(CompoundPendulum, FrequenciesMatchLinearisedTwoDofPendulum) {
   m.initial.kind = Initial::Kind::Direction;
   m.initial.direction = Vec3(std::sin(x[0]), 0, -std::cos(x[0]));
   // C - Q = -R (0, 0, r) must be r (sin th2, 0, -cos th2): R = Ry(-th2).
-  m.body.initial_attitude = Quat(Eigen::AngleAxisd(-x[1], Vec3::UnitY()));
+  m.bodies[0].initial_attitude = Quat(Eigen::AngleAxisd(-x[1], Vec3::UnitY()));
   const double T_lin = 2 * kPi / w;
   m.sim.duration = 4.1 * T_lin;
   m.sim.time_step = c.mode == 0 ? 2e-3 : 1e-3;
@@ -154,8 +154,8 @@ TEST_P(CompoundPendulum, FrequenciesMatchLinearisedTwoDofPendulum) {
     t.push_back(s.t);
     x1.push_back(s.node_pos[1].x());
     v1.push_back(s.node_vel[1].x());
-    x2.push_back(s.body_pos.x() - s.node_pos[1].x());
-    v2.push_back(s.body_vel.x() - s.node_vel[1].x());
+    x2.push_back(s.bodies[0].pos.x() - s.node_pos[1].x());
+    v2.push_back(s.bodies[0].vel.x() - s.node_vel[1].x());
   }
   const auto c1 = testing::zero_crossings(t, x1, v1), c2 = testing::zero_crossings(t, x2, v2);
   ASSERT_EQ(c1.size(), 8u);
@@ -204,8 +204,8 @@ INSTANTIATE_TEST_SUITE_P(Vacuum, CompoundPendulum, ::testing::ValuesIn(pendulum_
 // ---------------------------------------------------------------------------
 /// A 40 kg body with a full inertia tensor and no fluid loads.
 void add_vacuum_body(Model& m, bool link_at_cg, bool added_mass) {
-  m.has_body = true;
-  Body& b = m.body;
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
   b.mass = 40;
   b.inertia_cg << 2.0, 0.1, -0.05, 0.1, 5.0, 0.2, -0.05, 0.2, 5.5;
   b.cg = Vec3(-0.1, 0.02, -0.05);
@@ -246,13 +246,13 @@ TEST_P(BodyEnergy, ConservedWithLinkOffTheCg) {
   auto total = [&](const Sample& s) {
     return testing::cable_energy(m, s).total() + testing::body_energy(m, s).total();
   };
-  const double scale = (m.body.mass + 16.0) * kG * 8.0;  // energy released by a fall of the cable's length
+  const double scale = (m.bodies[0].mass + 16.0) * kG * 8.0;  // energy released by a fall of the cable's length
   const double E0 = total(samples.front());
   double drift = 0, kemax = 0, wmax = 0;
   for (const Sample& s : samples) {
     drift = std::max(drift, std::abs(total(s) - E0) / scale);
     kemax = std::max(kemax, (testing::cable_energy(m, s).kinetic + testing::body_energy(m, s).kinetic) / scale);
-    wmax = std::max(wmax, s.body_omega.norm());
+    wmax = std::max(wmax, s.bodies[0].omega.norm());
   }
   std::cout << "[measured] body energy (link off CG) " << testing::run_case_name(c)
             << ": max |E-E0|/(M g L) = " << drift << ", max KE/(M g L) = " << kemax << ", max |w_body| = " << wmax
@@ -283,13 +283,13 @@ TEST_P(SpinningBodyEnergy, Conserved) {
   Model m = vacuum_body_chain(c.link_at_cg, c.added_mass);
   m.sim.formulation = c.formulation;
   PhysicalState s0 = initial_state(m);
-  s0.wb = Vec3(1.5, -2.0, 2.5);
+  s0.bodies[0].w = Vec3(1.5, -2.0, 2.5);
   s0.w[3] = Vec3(0, 0, 0.8);  // the last element swings too
   s0.w[3] -= s0.w[3].dot(s0.e[3]) * s0.e[3];
   auto sys = make_system(m);
   StateVector y = sys->initial(s0, 0.0);
   sys->project(y, 0.0);
-  const double scale = (m.body.mass + 16.0) * kG * 8.0;
+  const double scale = (m.bodies[0].mass + 16.0) * kG * 8.0;
   const double E0 = testing::state_energy(m, sys->physical(y)).total();
   double drift = 0;
   testing::integrate_rk4(*sys, y, 0.0, 1e-3, 3000, [&](const StateVector& yy, double) {
@@ -345,13 +345,13 @@ TEST_P(SteadyTowedBody, LinkAndTowForcesBalanceTheLoads) {
   const Sample& s = samples.back();
   const Sample& sp = samples[samples.size() - 2];
   auto speed_error = [&](const Sample& x) {
-    double dv = (x.body_vel - V * Vec3::UnitX()).norm() + x.body_omega.norm() * 0.05;
+    double dv = (x.bodies[0].vel - V * Vec3::UnitX()).norm() + x.bodies[0].omega.norm() * 0.05;
     for (const Vec3& v : x.node_vel) dv = std::max(dv, (v - V * Vec3::UnitX()).norm());
     return dv;
   };
 
   const double rho = m.fluid.rho, r = 0.05;
-  const Vec3 u = s.body_vel;  // sphere centre = O_t
+  const Vec3 u = s.bodies[0].vel;  // sphere centre = O_t
   const Vec3 drag = -0.5 * rho * 0.5 * kPi * r * r * u.norm() * u;
   const Vec3 Wb(0, 0, -(3.0 - rho * 4.0 / 3.0 * kPi * r * r * r) * kG);
   const Vec3 FL = -(drag + Wb);
@@ -362,12 +362,12 @@ TEST_P(SteadyTowedBody, LinkAndTowForcesBalanceTheLoads) {
 
   const double dv = speed_error(s), decay = speed_error(sp) / dv;
   const Vec3 Q = s.node_pos.back();
-  const Vec3 dir = (s.body_pos - Q) / r;  // unit: link point on the sphere's surface
-  const double eL = (s.link_force - FL).norm() / FL.norm();
+  const Vec3 dir = (s.bodies[0].pos - Q) / r;  // unit: link point on the sphere's surface
+  const double eL = (s.bodies[0].link_force - FL).norm() / FL.norm();
   const double eR = (s.tow_force - FR).norm() / FR.norm();
   const double eDir = (dir + FL.normalized()).norm();
   std::cout << "[measured] towed body " << testing::run_case_name(c) << ": max|v-V|=" << dv << " m/s (decayed x"
-            << decay << " over the last 30 s), link force " << s.link_force.transpose() << " vs " << FL.transpose()
+            << decay << " over the last 30 s), link force " << s.bodies[0].link_force.transpose() << " vs " << FL.transpose()
             << " (rel " << eL << "), tow force " << s.tow_force.transpose() << " vs " << FR.transpose() << " (rel "
             << eR << "), pose misalignment " << eDir << ", |dF_R| last 30 s " << (s.tow_force - sp.tow_force).norm()
             << "\n";
@@ -406,8 +406,8 @@ struct BodySpec {
 };
 
 void add_lively_body(Model& m, const BodySpec& bs, bool user_added_mass) {
-  m.has_body = true;
-  Body& b = m.body;
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
   b.mass = bs.mass;
   b.inertia_cg << 0.012, 0.001, -0.0005, 0.001, 0.015, 0.0008, -0.0005, 0.0008, 0.010;
   b.cg = Vec3(0.02, 0.01, -0.03);
@@ -430,10 +430,10 @@ BodyLoadsHere body_loads_here(const Model& m, const BodySpec& bs, const Mat3& R,
                               const Vec3& w) {
   const double rho = m.fluid.rho;
   BodyLoadsHere l;
-  l.G = O + R * m.body.cg;
+  l.G = O + R * m.bodies[0].cg;
   l.C = O + R * bs.sphere_center;
-  l.Q = O + R * m.body.link_point;
-  l.vG = vO + w.cross(R * m.body.cg);
+  l.Q = O + R * m.bodies[0].link_point;
+  l.vG = vO + w.cross(R * m.bodies[0].cg);
   l.vC = vO + w.cross(R * bs.sphere_center);
   const double vol = 4.0 / 3.0 * kPi * std::pow(bs.radius, 3);
   l.W = Vec3(0, 0, -bs.mass * kG);
@@ -450,7 +450,7 @@ TEST_P(BodyNewton, LinkForceFromFiniteDifferencedMotion) {
   add_lively_body(m, bs, /*user_added_mass=*/true);
   m.tow.pieces.push_back(testing::ramp_piece(Vec3(1, 0.3, 0), 1.5, 4.0));
   m.tow.pieces.push_back(testing::turn_piece(8.0, 5.0));   // no velocity jumps: only acceleration kinks
-  m.body.initial_attitude = quat_from_rpy(0.3, 0.2, 0.0);  // released off its equilibrium: it swings
+  m.bodies[0].initial_attitude = quat_from_rpy(0.3, 0.2, 0.0);  // released off its equilibrium: it swings
   m.sim.duration = 12;
   m.sim.time_step = 2e-3;
   m.sim.output_interval = 4e-3;
@@ -458,19 +458,19 @@ TEST_P(BodyNewton, LinkForceFromFiniteDifferencedMotion) {
   const auto S = testing::run(m);
   const double rho = m.fluid.rho;
   const double ma = bs.ca * rho * 4.0 / 3.0 * kPi * std::pow(bs.radius, 3);
-  const Mat3 IG = m.body.inertia_cg;
+  const Mat3 IG = m.bodies[0].inertia_cg;
 
   // Momenta of sample j about a fixed point X.
   auto momenta = [&](const Sample& s, const Vec3& X, Vec3& p, Vec3& h) {
     const Mat3 R = testing::body_rotation(s);
-    const auto l = body_loads_here(m, bs, R, s.body_pos, s.body_vel, s.body_omega);
+    const auto l = body_loads_here(m, bs, R, s.bodies[0].pos, s.bodies[0].vel, s.bodies[0].omega);
     Vec6 nu;
-    nu << R.transpose() * s.body_vel, R.transpose() * s.body_omega;
-    const Vec6 pu = m.body.added_mass * nu;
+    nu << R.transpose() * s.bodies[0].vel, R.transpose() * s.bodies[0].omega;
+    const Vec6 pu = m.bodies[0].added_mass * nu;
     const Vec3 pu_l = R * pu.head<3>(), hu = R * pu.tail<3>();
     p = bs.mass * l.vG + ma * l.vC + pu_l;
-    h = (l.G - X).cross(bs.mass * l.vG) + R * IG * R.transpose() * s.body_omega + (l.C - X).cross(ma * l.vC) +
-        (s.body_pos - X).cross(pu_l) + hu;
+    h = (l.G - X).cross(bs.mass * l.vG) + R * IG * R.transpose() * s.bodies[0].omega + (l.C - X).cross(ma * l.vC) +
+        (s.bodies[0].pos - X).cross(pu_l) + hu;
   };
   const double dt = m.sim.output_interval;
   double eF = 0, eM = 0, Fscale = 0, Mscale = 0, wmax = 0;
@@ -480,21 +480,21 @@ TEST_P(BodyNewton, LinkForceFromFiniteDifferencedMotion) {
     // The tow acceleration jumps at the end of the ramp and at the start of
     // the turn; the body's acceleration jumps with it: no differences across.
     if (std::abs(s.t - 4.0) < 0.02 || std::abs(s.t - 5.0) < 0.02) continue;
-    const Vec3 X = s.body_pos;
+    const Vec3 X = s.bodies[0].pos;
     Vec3 p[5], h[5];
     for (int i = -2; i <= 2; ++i) momenta(S[j + i], X, p[i + 2], h[i + 2]);
     // 4th-order central difference: f' = (f_-2 - 8 f_-1 + 8 f_1 - f_2) / (12 dt) + O(dt^4 f^(5)/30).
     const Vec3 dp = (p[0] - 8 * p[1] + 8 * p[3] - p[4]) / (12 * dt);
     const Vec3 dh = (h[0] - 8 * h[1] + 8 * h[3] - h[4]) / (12 * dt);
     const Mat3 R = testing::body_rotation(s);
-    const auto l = body_loads_here(m, bs, R, s.body_pos, s.body_vel, s.body_omega);
-    const Vec3 F = s.link_force + l.W + l.B + l.D;
-    const Vec3 Mx = (l.Q - X).cross(s.link_force) + (l.G - X).cross(l.W) + (l.C - X).cross(l.B + l.D);
+    const auto l = body_loads_here(m, bs, R, s.bodies[0].pos, s.bodies[0].vel, s.bodies[0].omega);
+    const Vec3 F = s.bodies[0].link_force + l.W + l.B + l.D;
+    const Vec3 Mx = (l.Q - X).cross(s.bodies[0].link_force) + (l.G - X).cross(l.W) + (l.C - X).cross(l.B + l.D);
     eF = std::max(eF, (dp - F).norm());
     eM = std::max(eM, (dh - Mx).norm());
-    Fscale = std::max(Fscale, s.link_force.norm());
-    Mscale = std::max(Mscale, ((l.Q - X).cross(s.link_force)).norm());
-    wmax = std::max(wmax, s.body_omega.norm());
+    Fscale = std::max(Fscale, s.bodies[0].link_force.norm());
+    Mscale = std::max(Mscale, ((l.Q - X).cross(s.bodies[0].link_force)).norm());
+    wmax = std::max(wmax, s.bodies[0].omega.norm());
   }
   std::cout << "[measured] body Newton-Euler by FD " << testing::formulation_name(GetParam())
             << ": max |dp/dt - F| = " << eF << " N (max |F_L| " << Fscale << " N, rel " << eF / Fscale
@@ -547,18 +547,18 @@ TEST_P(BodyNewton, LinkForceFromInstantaneousAccelerations) {
     Vec3 aQ = acc->a0;
     for (int k = 0; k < m.cable.n(); ++k)
       aQ += m.cable.elements[k].length * (acc->alpha[k].cross(s.e[k]) + s.w[k].cross(s.w[k].cross(s.e[k])));
-    const Mat3 R = s.q.toRotationMatrix();
-    const Vec3 O = P.back() - R * m.body.link_point;
-    const Vec3 vO = vP.back() - s.wb.cross(R * m.body.link_point);
-    const auto l = body_loads_here(m, bs, R, O, vO, s.wb);
-    const Vec3 al = acc->alpha_b, w = s.wb;
+    const Mat3 R = s.bodies[0].q.toRotationMatrix();
+    const Vec3 O = P.back() - R * m.bodies[0].link_point;
+    const Vec3 vO = vP.back() - s.bodies[0].w.cross(R * m.bodies[0].link_point);
+    const auto l = body_loads_here(m, bs, R, O, vO, s.bodies[0].w);
+    const Vec3 al = acc->alpha_b[0], w = s.bodies[0].w;
     auto acc_of = [&](const Vec3& X) -> Vec3 { return aQ + al.cross(X - l.Q) + w.cross(w.cross(X - l.Q)); };
     const Vec3 aG = acc_of(l.G), aC = acc_of(l.C);
-    const Mat3 I = R * m.body.inertia_cg * R.transpose();
+    const Mat3 I = R * m.bodies[0].inertia_cg * R.transpose();
     const Vec3 FA = -ma * aC;
-    const Vec3 rF = bs.mass * aG - (acc->link_force + l.W + l.B + l.D + FA);
-    const Vec3 rM = I * al + w.cross(I * w) - ((l.Q - l.G).cross(acc->link_force) + (l.C - l.G).cross(l.B + l.D + FA));
-    const double Fs = std::max({acc->link_force.norm(), bs.mass * aG.norm(), bs.mass * kG});
+    const Vec3 rF = bs.mass * aG - (acc->link_force[0] + l.W + l.B + l.D + FA);
+    const Vec3 rM = I * al + w.cross(I * w) - ((l.Q - l.G).cross(acc->link_force[0]) + (l.C - l.G).cross(l.B + l.D + FA));
+    const double Fs = std::max({acc->link_force[0].norm(), bs.mass * aG.norm(), bs.mass * kG});
     eF = std::max(eF, rF.norm() / Fs);
     eM = std::max(eM, rM.norm() / (Fs * 0.1));  // moments: forces times the body's size (~0.1 m)
   }

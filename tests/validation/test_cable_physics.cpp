@@ -444,7 +444,7 @@ std::pair<Vec3, Vec3> centre_of_mass(const Model& m, const PhysicalState& s) {
 /// A bent chain with rates: directions in a zig-zag, random angular velocities.
 PhysicalState bent_chain(const Model& m, std::mt19937& rng, double rate) {
   std::normal_distribution<double> N(0.0, 1.0);
-  PhysicalState s = PhysicalState::hanging(m.cable.n());
+  PhysicalState s = PhysicalState::hanging(m);
   s.r0 = Vec3(1, -2, -5);
   s.v0 = Vec3(0.3, 0.1, 0.5);
   for (int k = 0; k < m.cable.n(); ++k) {
@@ -562,7 +562,7 @@ TEST(PoleAxis, SameAccelerationsNearTheSingularity) {
     // Elements near the paper's singular axis z_g: 26..35 deg from the
     // vertical (still inside the z_g chart, |cos theta| < 0.9) pointing down
     // or up, random azimuths and rates.
-    PhysicalState s = PhysicalState::hanging(m.cable.n());
+    PhysicalState s = PhysicalState::hanging(m);
     const double t = 4.0;
     const auto kin = tow_kinematics(m.tow, t);
     s.r0 = kin.pos, s.v0 = kin.vel;
@@ -642,7 +642,7 @@ class PaperChartSystem {
 /// Joint positions after integrating the paper's equations with RK4 from the
 /// hanging state, element charts first built on `pole`.
 std::vector<Vec3> paper_run(const Model& m, const Vec3& pole, double h, double T) {
-  PhysicalState s0 = PhysicalState::hanging(m.cable.n());
+  PhysicalState s0 = PhysicalState::hanging(m);
   const auto k0 = tow_kinematics(m.tow, 0.0);
   s0.r0 = k0.pos, s0.v0 = k0.vel;
   PaperChartSystem sys(m, s0, pole);

@@ -78,8 +78,8 @@ TEST_P(FormulationAgreement, SameAccelerationsAndForces) {
     EXPECT_LT(rel(ws.acc.a0, pw.acc.a0, a0max), 1e-9);
     EXPECT_LT(rel(ws.acc.tow_force, pw.acc.tow_force, fmax), 1e-9);
     if (c.body) {
-      EXPECT_LT(rel(ws.acc.alpha_b, pw.acc.alpha_b, std::max(amax, ws.acc.alpha_b.norm())), 1e-9);
-      EXPECT_LT(rel(ws.acc.link_force, pw.acc.link_force, fmax), 1e-9);
+      EXPECT_LT(rel(ws.acc.alpha_b[0], pw.acc.alpha_b[0], std::max(amax, ws.acc.alpha_b[0].norm())), 1e-9);
+      EXPECT_LT(rel(ws.acc.link_force[0], pw.acc.link_force[0], fmax), 1e-9);
     }
   }
 }

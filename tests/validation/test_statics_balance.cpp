@@ -119,7 +119,7 @@ TEST_P(StaticsStillWaterVsCurrent, SameEquilibrium) {
   double de = 0;
   for (int k = 0; k < towed.cable.n(); ++k) de = std::max(de, (a.state.e[k] - b.state.e[k]).norm());
   const double dF = (a.tow_force - b.tow_force).norm() / a.tow_force.norm();
-  const double dL = (a.link_force - b.link_force).norm() / a.tow_force.norm();
+  const double dL = (a.link_force[0] - b.link_force[0]).norm() / a.tow_force.norm();
   std::cout << "[measured] still water vs current statics " << c.example << ": max|e_a - e_b|=" << de
             << ", |dF_R|/|F_R|=" << dF << ", |dF_L|/|F_R|=" << dL << "\n";
   // 1e-12: the relative velocities agree to round-off (V - 0 vs 0 - (-V)),

@@ -135,11 +135,11 @@ TEST_P(StaticsSettling, RunFromHangingSettlesToStatics) {
     if (out) *out << s.t << " " << dP << " " << dF << "\n";
   }
   double dPb = 0;
-  if (m.has_body) {
-    const Mat3 R = st.state.q.toRotationMatrix();
-    const Vec3 O = P.back() - R * m.body.link_point;
+  if (!m.bodies.empty()) {
+    const Mat3 R = st.state.bodies[0].q.toRotationMatrix();
+    const Vec3 O = P.back() - R * m.bodies[0].link_point;
     const Sample& s = sink.samples.back();
-    dPb = ((s.body_pos - s.tow_pos) - (O - P[0])).norm() / Ltot;
+    dPb = ((s.bodies[0].pos - s.tow_pos) - (O - P[0])).norm() / Ltot;
   }
   std::cout << "[measured] settling " << c.example << " at " << c.V << " m/s: after " << c.settle_time
             << " s max|dP|/L=" << dP << ", body |dO|/L=" << dPb << ", |dF_R|/|F_R|=" << dF << " ("

@@ -59,7 +59,7 @@ TEST_P(TheoryHangingChain, SimulatedFrequencyMatchesLinearisedChain) {
   spec.mass_per_length = kMassPerLength;
   Model m = testing::cable_model(spec, /*rho=*/0.0, kG);  // vacuum: no fluid load, no added mass
   m.sim.formulation = c.formulation;
-  PhysicalState s = PhysicalState::hanging(c.n);
+  PhysicalState s = PhysicalState::hanging(m);
   for (int k = 0; k < c.n; ++k) s.e[k] = Vec3(std::sin(v[k]), 0, -std::cos(v[k]));
   auto sys = make_system(m);
   StateVector y = sys->initial(s, 0.0);

@@ -52,6 +52,7 @@ enum class AddedMassModel {
 
 /// One rigid, straight, inextensible cable element i (1 = top).
 struct Element {
+  int section = 0;   // index of the cable section it belongs to (0 = top) [-]
   double length;     // L_i, joint to joint [m] (the paper's 2l)
   double mass;       // m_i in air [kg] (the paper's 3m)
   double diameter;   // D_i, hydrodynamic and displacement diameter [m]
@@ -63,9 +64,32 @@ struct Element {
   double friction_factor;  // Pode: 1/2 rho Cd f D L; Skin: 1/2 rho pi D L Ct [kg/m]
 };
 
+/// A point load lumped at a cable joint: clump weight, float, sensor.
+/// Its mass moves with the joint; its loads act at the joint.
+struct Attachment {
+  int joint = 0;            // joint index k (0 = tow point, n = cable end) [-]
+  double at = 0;            // arc length asked for, from the tow point [m]
+  double mass = 0;          // in air [kg]
+  double volume = 0;        // displaced volume [m^3]
+  double drag_area = 0;     // Cd A: drag -1/2 rho CdA |u| u [m^2]
+  double added_mass = 0;    // isotropic added mass [kg]
+};
+
+/// A run of equal elements between two joints of the chain (a section
+/// boundary is a joint, or an in-line body).
+struct Section {
+  std::string name;         // for messages and outputs
+  int first_element = 0;    // index of its first element in Cable::elements [-]
+  int elements = 0;         // number of elements [-]
+  double length = 0;        // [m]
+  double breaking_load = 0; // [N]; 0 = not given
+};
+
 /// Cable: the chain of elements and its fluid-load options.
 struct Cable {
   std::vector<Element> elements;  // ordered from the tow point (1) to the end (n)
+  std::vector<Section> sections;  // top to bottom; one for a uniform cable
+  std::vector<Attachment> attachments;  // sorted by joint
   TangentialLaw tangential_law = TangentialLaw::Pode;
   AddedMassModel added_mass_model = AddedMassModel::IdealFluid;
   double sign_smoothing_speed = 1e-3;  // v_s in sgn_s(x) = x / sqrt(x^2 + v_s^2) [m/s]
@@ -110,12 +134,18 @@ struct LiftingSurface {
   std::vector<double> deflection_angle;  // [rad]
 };
 
-/// The towed rigid body (docs/theory.md §4, paper section 4).
+/// A rigid body of the chain (docs/theory.md §4, paper section 4): the towed body at
+/// the end, or an in-line body (depressor) between two cable sections.
 struct Body {
-  double mass;               // m_B [kg]
-  Mat3 inertia_cg;           // inertia tensor about the CG, body axes [kg m^2]
-  Vec3 cg;                   // r_G, body axes [m]
-  Vec3 link_point;           // r_Q, the ball joint with the cable, body axes [m]
+  std::string name = "body"; // output column prefix ("body" = today's columns)
+  int joint = -1;            // joint k of the chain where its link point Q hangs
+                             // (the bottom of element k); -1 = the cable's end, n [-]
+  bool inline_body = false;  // true: the next section hangs from lower_link_point
+  Vec3 lower_link_point = Vec3::Zero();  // r_Q2, ball joint with the cable below, body axes [m]
+  double mass = 0;             // m_B [kg]
+  Mat3 inertia_cg = Mat3::Zero();         // inertia tensor about the CG, body axes [kg m^2]
+  Vec3 cg = Vec3::Zero();                 // r_G, body axes [m]
+  Vec3 link_point = Vec3::Zero();         // r_Q, the ball joint with the cable, body axes [m]
   double volume = 0.0;       // displaced volume not counted by the load models [m^3]
   Vec3 cb = Vec3::Zero();    // r_B, centre of buoyancy of `volume`, body axes [m]
   Mat6 added_mass = Mat6::Zero();  // user 6x6 added mass about O_t, body axes [SI]
@@ -126,11 +156,11 @@ struct Body {
   std::vector<LiftingSurface> surfaces;
   Quat initial_attitude = Quat::Identity();  // body axes -> R_g at t = 0
 
-  // Derived at compile time (compile() fills these):
-  Mat6 rigid_mass;        // M_RB about O_t, body axes [SI]
-  Mat6 fluid_mass;        // M_A: added_mass + sphere and cylinder added masses, about O_t, body axes
-  double displaced_volume;// total: volume + spheres + cylinders [m^3]
-  Vec3 buoyancy_center;   // centre of the total displaced volume, body axes [m]
+  // Derived by finalize_body() (compile() calls it); zero until then:
+  Mat6 rigid_mass = Mat6::Zero();     // M_RB about O_t, body axes [SI]
+  Mat6 fluid_mass = Mat6::Zero();     // M_A: added_mass + sphere and cylinder added masses, about O_t, body axes
+  double displaced_volume = 0;        // total: volume + spheres + cylinders [m^3]
+  Vec3 buoyancy_center = Vec3::Zero();// centre of the total displaced volume, body axes [m]
 };
 
 /// One piece of an imposed tow-point motion (docs/scenario.md "tow").
@@ -201,13 +231,15 @@ struct Simulation {
   bool write_nodes = true;      // write nodes.csv
 };
 
-/// The whole compiled system.
+/// The whole compiled system: a chain of linked parts from the tow point
+/// down, cable elements (grouped in sections) and rigid bodies. Body b
+/// hangs from joint bodies[b].joint; bodies are sorted by joint, at most one
+/// per joint, the end body (at the cable's end, nothing below) last.
 struct Model {
   std::string name;        // scenario name (file stem or example name)
   Fluid fluid;
   Cable cable;
-  bool has_body = false;
-  Body body;
+  std::vector<Body> bodies;
   Tow tow;
   Initial initial;
   Simulation sim;
@@ -221,5 +253,11 @@ Element make_element(double length, double mass_per_length, double diameter,
 
 /// Fill Body's derived fields (rigid_mass, fluid_mass, displaced volume).
 void finalize_body(Body& body, const Fluid& fluid);
+
+/// The end body (the one with nothing below it), or nullptr.
+const Body* end_body(const Model& model);
+
+/// The joint a body hangs from: body.joint, or n for the end body (-1).
+int body_joint(const Model& model, const Body& body);
 
 }  // namespace towsim

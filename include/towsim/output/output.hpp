@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -21,17 +22,24 @@ struct Extreme {
   void min(double v, double t);
 };
 
+/// Extremes of one body.
+struct BodyExtremes {
+  Extreme max_link_force;        // |F_L| [N]
+  Extreme max_lower_link_force;  // |force at Q2| [N] (in-line body)
+  Extreme max_depth;             // -z of O_t [m]
+  Extreme min_deg[3], max_deg[3];// roll, pitch, yaw [deg]
+};
+
 /// Extremes over all written samples.
 struct Extremes {
   Extreme max_tow_tension;    // |F_R| [N]
   Extreme max_cable_tension;  // largest joint tension anywhere [N]
   Extreme max_end_depth;      // -z of P_n [m]
   Extreme min_axial_force;    // smallest axial force in any joint, < 0 in compression [N]
-  Extreme max_link_force;     // |F_L| [N] (body)
-  Extreme max_body_depth;     // -z of O_t [m] (body)
-  Extreme min_body_deg[3], max_body_deg[3];  // roll, pitch, yaw [deg] (body)
-  /// Update with one sample.
-  void add(const Sample& s);
+  BodyExtremes end_body_extremes;           // the end body's (if any)
+  std::vector<BodyExtremes> inline_bodies;  // per Model::bodies entry (in-line ones used)
+  /// Update with one sample of `model`.
+  void add(const Model& model, const Sample& s);
 };
 
 /// Writes timeseries.csv (and nodes.csv) row by row, each sample's rows
@@ -41,7 +49,7 @@ class RunWriter : public OutputSink {
  public:
   /// Create the files in the existing directory `dir` and write their
   /// headers; throws std::runtime_error when a file cannot be created.
-  RunWriter(const std::string& dir, bool has_body, bool write_nodes);
+  RunWriter(const std::string& dir, const Model& model, bool write_nodes);
   ~RunWriter() override;
   RunWriter(const RunWriter&) = delete;
   RunWriter& operator=(const RunWriter&) = delete;
@@ -56,7 +64,7 @@ class RunWriter : public OutputSink {
   long samples() const { return samples_; }
 
  private:
-  bool has_body_;
+  const Model& model_;
   std::FILE* series_ = nullptr;
   std::FILE* nodes_ = nullptr;
   std::string buf_;
@@ -64,13 +72,13 @@ class RunWriter : public OutputSink {
   long samples_ = 0;
 };
 
-/// The timeseries.csv header for a run with or without a body (no newline).
-std::string timeseries_header(bool has_body);
+/// The timeseries.csv header for the model's chain (no newline).
+std::string timeseries_header(const Model& model);
 
 /// summary.json content: model name, RunStats, extremes, the scenario echo.
 nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,
                                     const RunStats& stats, const Extremes& ex, long samples,
-                                    bool has_body, bool write_nodes);
+                                    const Model& model, bool write_nodes);
 
 /// Write `summary` as DIR/summary.json (pretty-printed); false on I/O error.
 bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary);

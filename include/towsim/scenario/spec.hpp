@@ -44,6 +44,35 @@ struct EnvironmentSpec {
   std::vector<RowSpec> current;  // rows {depth [m], ux, uy, uz [m/s]}; uniform = one row at depth 0
 };
 
+/// cable.sections item: a run of equal elements. Unset properties take the
+/// cable-level value (or its default).
+struct SectionSpec {
+  Where where;
+  Field<std::string> name;          // for messages [-]
+  Field<double> length;             // [m]
+  Field<long long> elements;        // [-]
+  Field<double> mass_per_length;    // in air [kg/m]
+  Field<double> diameter;           // [m]
+  Field<double> normal_drag;        // Cd [-]
+  Field<std::string> tangential_law;  // pode | skin
+  Field<double> tangential_coef;    // f or ct [-]
+  Field<double> added_mass;         // Ca [-]
+  Field<double> axial_stiffness;    // EA [N] (refused: the cable is inextensible in this version)
+  Field<double> breaking_load;      // [N], for utilisation
+};
+
+struct BodySpec;
+
+/// cable.attachments item: a point load lumped at the nearest joint.
+struct AttachmentSpec {
+  Where where;
+  Field<double> at;                 // arc length from the tow point [m]
+  Field<double> mass{0.0};          // [kg]
+  Field<double> volume{0.0};        // [m^3]
+  Field<double> drag_area{0.0};     // Cd A [m^2]
+  Field<double> added_mass{0.0};    // [kg]
+};
+
 /// cable: a chain of equal elements.
 struct CableSpec {
   Where where;
@@ -57,6 +86,15 @@ struct CableSpec {
   Field<double> added_mass{1.0};              // Ca [-]
   Field<std::string> added_mass_model{"ideal_fluid"};  // ideal_fluid | morison
   Field<double> sign_smoothing_speed{1e-3};   // [m/s]
+  Field<double> breaking_load;                // [N] (single-section form)
+  // cable.sections: items in order, each a section or an in-line body
+  // (index into `inline_bodies`); empty = the single-section form above.
+  Where sections_where;
+  std::vector<SectionSpec> sections;
+  std::vector<int> item_body;       // per sections item: -1 (a section) or body index
+  std::vector<Where> item_where;    // per sections item
+  std::vector<BodySpec> inline_bodies;
+  std::vector<AttachmentSpec> attachments;
 };
 
 /// body.spheres item.
@@ -99,6 +137,8 @@ struct SurfaceSpec {
 struct BodySpec {
   bool present = false;
   Where where;
+  Field<std::string> name;                  // output column prefix (in-line bodies) [-]
+  Field<Vec3> lower_link_point;             // in-line body: where the next section hangs, body axes [m]
   Field<double> mass;                       // [kg]
   Field<Mat3> inertia;                      // about the CG, body axes [kg m^2]
   Field<Vec3> center_of_gravity{Vec3::Zero()};  // [m]

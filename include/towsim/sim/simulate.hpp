@@ -5,27 +5,40 @@
 #include <string>
 #include <vector>
 
-#include "towsim/model/model.hpp"
+#include "towsim/dynamics/state.hpp"
 
 namespace towsim {
 
-/// Everything written for one output time (README "Output files"; docs/contract.md §U5).
+/// One body's outputs at a sample time.
+struct BodySample {
+  Vec3 pos;                     // O_t [m, R_g]
+  Vec3 vel;                     // velocity of O_t [m/s, R_g]
+  Vec3 rpy_deg;                 // roll phi, pitch theta, yaw psi (ZYX as in the paper) [deg]
+  Vec3 omega;                   // angular velocity [rad/s, R_g]
+  Vec3 link_force;              // F_L exerted by the cable above on the body at Q [N, R_g]
+  Vec3 lower_link_force;        // in-line body: force on the cable below at Q2 [N, R_g]
+};
+
+/// Everything written for one output time (docs/scenario.md "Output files").
+/// Nodes are the cable's joints top to bottom; an in-line body's joint gives
+/// two nodes, its upper link Q (end of the section above) then its lower
+/// link Q2 (top of the section below).
 struct Sample {
   double t = 0;                 // simulated time [s]
   Vec3 tow_pos, tow_vel;        // O_r = P_0 [m], [m/s], R_g
   Vec3 tow_force;               // F_R exerted by the vessel on the cable at O_r [N, R_g]
-  std::vector<Vec3> node_pos;   // P_0..P_n [m, R_g]
-  std::vector<Vec3> node_vel;   // velocities of P_0..P_n [m/s, R_g]
-  std::vector<double> tension;  // |force carried through joint k|, k = 0..n [N]
-  std::vector<double> axial;    // that force along the element above joint k (below, for k = 0):
-                                // positive in tension, negative in compression [N]
-  bool has_body = false;
-  Vec3 body_pos;                // O_t [m, R_g]
-  Vec3 body_vel;                // velocity of O_t [m/s, R_g]
-  Vec3 body_rpy_deg;            // roll phi, pitch theta, yaw psi (ZYX as in the paper) [deg]
-  Vec3 body_omega;              // angular velocity [rad/s, R_g]
-  Vec3 link_force;              // F_L exerted by the cable on the body at Q [N, R_g]
+  std::vector<Vec3> node_pos;   // cable nodes [m, R_g]
+  std::vector<Vec3> node_vel;   // their velocities [m/s, R_g]
+  std::vector<double> tension;  // |force carried through the node onto the part below| [N]
+  std::vector<double> axial;    // that force along the adjacent element (the one above; below, at the
+                                // top of a section): positive in tension, negative in compression [N]
+  std::vector<BodySample> bodies;  // per Model::bodies entry
 };
+
+/// The sample of a physical state at time t from a workspace the dynamics
+/// just filled for it (forward_dynamics(model, s, t, ws)): the one place
+/// where outputs are assembled, for runs and statics alike.
+Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, double t);
 
 /// Receives samples in time order. Implementations write files.
 class OutputSink {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "towsim/dynamics/state.hpp"
+#include "towsim/sim/simulate.hpp"
 
 namespace towsim {
 
@@ -13,8 +14,10 @@ struct StaticsResult {
   PhysicalState state;      // configuration; every point moves at tow_velocity
   Vec3 tow_velocity;        // steady velocity of the tow point [m/s, R_g]
   Vec3 tow_force;           // F_R [N, R_g]
-  Vec3 link_force;          // F_L [N, R_g] (zero without body)
+  std::vector<Vec3> link_force;  // F_L on each body at Q [N, R_g]
+  std::vector<Vec3> body_force;  // each in-line body's force on the cable below at Q2 [N, R_g]
   std::vector<Vec3> joint_force;  // f_k through joint k, k = 0..n [N, R_g]
+  Sample sample;            // the equilibrium as an output sample (t = 0)
   double residual = 0;      // largest angular acceleration left [rad/s^2]
   int iterations = 0;       // Newton iterations
   bool converged = false;

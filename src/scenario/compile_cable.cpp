@@ -1,0 +1,234 @@
+// Checking and building the cable: sections, in-line bodies, attachments
+// (docs/scenario.md "cable"). One resolved list of sections serves both the
+// single-section form and `cable.sections`.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <set>
+
+#include "checks.hpp"
+#include "reader.hpp"
+
+namespace towsim::io {
+namespace {
+
+constexpr long long kMaxElements = 100000;  // elements in the whole cable
+
+/// A section's properties after inheriting the cable-level values.
+struct Resolved {
+  Where where;                // the section (or the cable, single-section form)
+  std::string name;
+  Field<double> length;
+  Field<long long> elements;
+  Field<double> mass_per_length, diameter, normal_drag, tangential_coef, added_mass, breaking_load;
+  Field<std::string> tangential_law;
+  Field<double> axial_stiffness;
+};
+
+/// Field f of the section if given, else the cable's.
+template <class T>
+Field<T> pick(const Field<T>& section, const Field<T>& cable) {
+  return section.given ? section : cable;
+}
+
+/// The sections in order, each with its properties resolved.
+std::vector<Resolved> resolve(const CableSpec& c) {
+  std::vector<Resolved> out;
+  if (c.sections.empty() && c.item_body.empty()) {
+    out.push_back({c.where, "cable", c.length, c.elements, c.mass_per_length, c.diameter, c.normal_drag,
+                   c.tangential_coef, c.added_mass, c.breaking_load, c.tangential_law, {}});
+    return out;
+  }
+  for (std::size_t i = 0; i < c.sections.size(); ++i) {
+    const SectionSpec& s = c.sections[i];
+    Resolved r{s.where,
+               s.name.given ? s.name.value : "section " + std::to_string(i),
+               s.length,
+               s.elements,
+               pick(s.mass_per_length, c.mass_per_length),
+               pick(s.diameter, c.diameter),
+               pick(s.normal_drag, c.normal_drag),
+               s.tangential_law.given ? s.tangential_coef : c.tangential_coef,
+               pick(s.added_mass, c.added_mass),
+               pick(s.breaking_load, c.breaking_load),
+               pick(s.tangential_law, c.tangential_law),
+               s.axial_stiffness};
+    out.push_back(r);
+  }
+  return out;
+}
+
+/// A required property that neither the section nor the cable gives.
+void require(const Field<double>& f, const Where& section, const std::string& key, Diagnostics& d) {
+  if (f.given) return;
+  d.error(section.loc, join_path(section.path, key), "missing (give it in the section or at cable level)");
+}
+
+void check_section(const Resolved& s, Diagnostics& d, bool sectioned) {
+  check_positive(s.length, d);
+  check_at_least(s.elements, 1, d);
+  check_at_most(s.elements, kMaxElements, d);
+  if (sectioned) {  // the single-section form reports them as missing keys
+    require(s.mass_per_length, s.where, "mass_per_length", d);
+    require(s.diameter, s.where, "diameter", d);
+  }
+  check_positive(s.mass_per_length, d);
+  check_positive(s.diameter, d);
+  check_non_negative(s.normal_drag, d);
+  check_non_negative(s.tangential_coef, d);
+  check_non_negative(s.added_mass, d);
+  check_positive(s.breaking_load, d);
+  if (s.axial_stiffness.given)
+    d.error(s.axial_stiffness.where.loc, s.axial_stiffness.where.path,
+            "not supported in this version: the cable is inextensible (remove the key; docs/scenario.md)");
+}
+
+/// The order of sections and bodies: a section first, never two bodies in a
+/// row, an in-line body with a lower link, names that make distinct columns.
+void check_topology(const CableSpec& c, const BodySpec& end_body, Diagnostics& d) {
+  const auto& items = c.item_body;
+  if (!items.empty() && items.front() >= 0)
+    d.error(c.item_where.front().loc, c.item_where.front().path, "the first item must be a cable section");
+  for (std::size_t i = 1; i < items.size(); ++i)
+    if (items[i] >= 0 && items[i - 1] >= 0)
+      d.error(c.item_where[i].loc, c.item_where[i].path, "a body must hang from a cable section (two bodies in a row)");
+  if (!items.empty() && items.back() >= 0)
+    d.error(c.item_where.back().loc, c.item_where.back().path,
+            "the last item is a body: give the end body as the top-level body: key");
+  std::set<std::string> names{"body"};
+  for (const BodySpec& b : c.inline_bodies) {
+    if (!b.present) continue;
+    check_body(b, d);
+    if (!b.lower_link_point.given)
+      d.error(b.where.loc, join_path(b.where.path, "lower_link_point"), "missing (an in-line body needs it)");
+    if (!b.name.given) continue;
+    const std::string& n = b.name.value;
+    bool ok = !n.empty();
+    for (char ch : n) ok = ok && (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_');
+    if (!ok)
+      d.error(b.name.where.loc, b.name.where.path, "must be letters, digits and _ (it prefixes output columns)");
+    else if (!names.insert(n).second)
+      d.error(b.name.where.loc, b.name.where.path, "'" + n + "' is already used (names must be distinct, not 'body')");
+  }
+  if (end_body.present && end_body.lower_link_point.given)
+    d.error(end_body.lower_link_point.where.loc, end_body.lower_link_point.where.path,
+            "only for an in-line body (nothing hangs below the end body)");
+}
+
+/// Total elements, and the joint index nearest to arc length s (with the
+/// section lengths' element sizes).
+int nearest_joint(const std::vector<Resolved>& secs, double s) {
+  int joint = 0;
+  double top = 0;
+  for (const Resolved& r : secs) {
+    const double le = r.length.value / static_cast<double>(r.elements.value);
+    if (s <= top + r.length.value || &r == &secs.back()) {
+      const long long k = std::llround(std::clamp((s - top) / le, 0.0, static_cast<double>(r.elements.value)));
+      return joint + static_cast<int>(k);
+    }
+    joint += static_cast<int>(r.elements.value);
+    top += r.length.value;
+  }
+  return joint;
+}
+
+void check_attachments(const CableSpec& c, const std::vector<Resolved>& secs, bool end_body, Diagnostics& d) {
+  double total = 0;
+  for (const Resolved& r : secs) total += r.length.value;
+  // Joints where a body hangs: after each section followed by a body, and the end.
+  std::set<int> body_joints;
+  int joint = 0;
+  for (std::size_t i = 0, s = 0; i < c.item_body.size(); ++i) {
+    if (c.item_body[i] >= 0) body_joints.insert(joint);
+    else joint += static_cast<int>(secs[s++].elements.value);
+  }
+  if (end_body) body_joints.insert(nearest_joint(secs, total));
+  for (const AttachmentSpec& a : c.attachments) {
+    check_non_negative(a.at, d);
+    check_non_negative(a.mass, d);
+    check_non_negative(a.volume, d);
+    check_non_negative(a.drag_area, d);
+    check_non_negative(a.added_mass, d);
+    if (a.at.given && a.at.value > total)
+      d.error(a.at.where.loc, a.at.where.path,
+              "beyond the cable's end (" + fmt_num(a.at.value) + " > " + fmt_num(total) + " m)");
+    else if (a.at.given && body_joints.count(nearest_joint(secs, a.at.value)))
+      d.error(a.at.where.loc, a.at.where.path,
+              "falls on a body's link joint (give its mass to the body, or move it along the cable)");
+  }
+}
+
+}  // namespace
+
+void check_cable(const CableSpec& c, const BodySpec& end_body, const SimulationSpec& sim, Diagnostics& d) {
+  const std::vector<Resolved> secs = resolve(c);
+  long long total = 0;
+  for (const Resolved& s : secs) {
+    check_section(s, d, !c.item_body.empty());
+    total += std::max(0LL, s.elements.value);
+  }
+  check_positive(c.sign_smoothing_speed, d);
+  if (secs.size() > 1 && total > kMaxElements)
+    d.error(c.sections_where.loc, c.sections_where.path,
+            "too many elements in all (" + std::to_string(total) + " > " + std::to_string(kMaxElements) + ")");
+  // One tangential law for the whole cable (element loads take the cable's).
+  for (const Resolved& s : secs)
+    if (s.tangential_law.value != secs.front().tangential_law.value && s.tangential_law.given)
+      d.error(s.tangential_law.where.loc, s.tangential_law.where.path,
+              "all sections must use the same tangential drag law (the first uses " +
+                  secs.front().tangential_law.value + ")");
+  check_topology(c, end_body, d);
+  if (!d.ok()) return;
+  check_attachments(c, secs, end_body.present, d);
+  // The paper's dense form has one cable and at most one body, at its end.
+  const bool chain = !c.inline_bodies.empty() || !c.attachments.empty();
+  if (chain && sim.formulation.value == "paper")
+    d.error(sim.formulation.where.loc, sim.formulation.where.path,
+            "the paper formulation has no in-line bodies or attachments (use formulation: default)");
+}
+
+void build_chain(const CableSpec& c, const BodySpec& end_body, Model& m) {
+  const std::vector<Resolved> secs = resolve(c);
+  Cable& cable = m.cable;
+  cable.tangential_law = secs.front().tangential_law.value == "skin" ? TangentialLaw::Skin : TangentialLaw::Pode;
+  cable.added_mass_model =
+      c.added_mass_model.value == "morison" ? AddedMassModel::Morison : AddedMassModel::IdealFluid;
+  cable.sign_smoothing_speed = c.sign_smoothing_speed.value;
+  // Sections in order; after each but the last, the in-line body between.
+  std::size_t section = 0;
+  for (std::size_t item = 0; item < std::max<std::size_t>(1, c.item_body.size()); ++item) {
+    const int bi = c.item_body.empty() ? -1 : c.item_body[item];
+    if (bi >= 0) {
+      Body body = build_body(c.inline_bodies[static_cast<std::size_t>(bi)], m.fluid);
+      if (!c.inline_bodies[static_cast<std::size_t>(bi)].name.given)
+        body.name = "body" + std::to_string(m.bodies.size() + 1);
+      body.inline_body = true;
+      body.joint = cable.n();
+      m.bodies.push_back(body);
+      continue;
+    }
+    const Resolved& s = secs[section];
+    const long long n = s.elements.value;
+    const double le = s.length.value / static_cast<double>(n);
+    cable.sections.push_back({s.name, cable.n(), static_cast<int>(n), s.length.value, s.breaking_load.given ? s.breaking_load.value : 0.0});
+    for (long long i = 0; i < n; ++i) {
+      Element el = make_element(le, s.mass_per_length.value, s.diameter.value, s.normal_drag.value,
+                                s.tangential_coef.value, cable.tangential_law, s.added_mass.value, m.fluid);
+      el.section = static_cast<int>(section);
+      cable.elements.push_back(el);
+    }
+    ++section;
+  }
+  if (end_body.present) {
+    m.bodies.push_back(build_body(end_body, m.fluid));
+    m.bodies.back().name = "body";
+  }
+  // Attachments at the nearest joint, sorted by joint.
+  for (const AttachmentSpec& a : c.attachments)
+    cable.attachments.push_back({nearest_joint(secs, a.at.value), a.at.value, a.mass.value, a.volume.value,
+                                 a.drag_area.value, a.added_mass.value});
+  std::stable_sort(cable.attachments.begin(), cable.attachments.end(),
+                   [](const Attachment& x, const Attachment& y) { return x.joint < y.joint; });
+}
+
+}  // namespace towsim::io
