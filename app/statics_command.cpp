@@ -55,7 +55,11 @@ int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream&
   }
   const Model& model = *sc.model;
   if (model.tow.mode != Tow::Mode::Motion) {
-    err << "towsim: statics: tow.mode: statics needs mode: motion (the steady speed comes from the tow law)\n";
+    // A rule between the command and the scenario, in the scenario's error format.
+    const Where& w = sc.spec.tow.mode.where;
+    err << Diagnostic{w.loc, w.path, "statics needs mode: motion (the steady speed comes from the tow law; got force)"}
+               .str()
+        << "\n";
     return kExitInvalid;
   }
   const StaticsResult r = solve_statics(model, final_tow_velocity(model.tow));

@@ -45,6 +45,14 @@ void check_simulation(const SimulationSpec& s, Diagnostics& d) {
   check_count(s.duration, s.output_interval, "output_interval", kMaxSamples, d);
 }
 
+/// Rules between `initial` and `tow`: a steady start takes its velocity from
+/// the tow's imposed motion, so it needs tow.mode: motion.
+void check_initial(const InitialSpec& init, const TowSpec& tow, Diagnostics& d) {
+  if (init.kind.given && init.kind.value == "steady" && tow.mode.value == "force")
+    d.error(init.kind.where.loc, init.kind.where.path,
+            "steady needs tow.mode: motion (the steady velocity comes from the tow's motion; tow.mode is force)");
+}
+
 Fluid build_fluid(const EnvironmentSpec& e) {
   Fluid f;
   f.rho = e.water_density.value;
@@ -89,6 +97,7 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   if (spec.body.present) check_body(spec.body, diags);
   check_tow(spec.tow, diags);
   check_nonzero(spec.initial.direction, diags);
+  check_initial(spec.initial, spec.tow, diags);
   check_simulation(spec.simulation, diags);
   if (!diags.ok()) return std::nullopt;
   Model m;

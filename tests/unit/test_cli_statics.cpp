@@ -1,48 +1,43 @@
 // `towsim statics`: steady tow of the built-in examples from the command line.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <cstdio>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "../support/cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
+using namespace towsim::testing;
 
-/// Run the towsim binary with `args`; returns (exit status, stdout + stderr).
-std::pair<int, std::string> towsim(const std::string& args) {
-  const std::string cmd = std::string("'") + TOWSIM_BINARY + "' " + args + " 2>&1";
-  std::string out;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (p == nullptr) return {-1, out};
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-  const int st = ::pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+/// Every row of a CSV file has the header's columns, each a finite number.
+void expect_all_finite(const fs::path& file) {
+  const Csv csv = read_csv(file);
+  ASSERT_FALSE(csv.rows.empty()) << file;
+  for (std::size_t i = 0; i < csv.rows.size(); ++i) {
+    EXPECT_EQ(csv.rows[i].size(), csv.header.size()) << file << " row " << i + 1;
+    for (std::size_t j = 0; j < csv.rows[i].size() && j < csv.header.size(); ++j)
+      EXPECT_TRUE(std::isfinite(csv.rows[i][j])) << file << " row " << i + 1 << " column " << csv.header[j];
+  }
 }
 
 class CliStatics : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CliStatics, ConvergesAndWritesTheConfiguration) {
-  const fs::path dir = fs::temp_directory_path() / ("towsim_statics_" + GetParam() + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  const auto [status, out] = towsim("statics --example " + GetParam() + " --out '" + dir.string() + "'");
+  const fs::path dir = fresh_dir("statics_" + GetParam()) / "out";
+  const auto [status, out] = run_towsim("statics --example " + GetParam() + " --out " + quoted(dir));
   EXPECT_EQ(status, 0) << out;
   EXPECT_NE(out.find("converged: yes"), std::string::npos) << out;
   EXPECT_NE(out.find("tow force F_R = ("), std::string::npos) << out;
   // nodes.csv: header + one row per joint P_0..P_n.
-  std::ifstream nodes(dir / "nodes.csv");
-  ASSERT_TRUE(nodes.good());
-  std::string line;
-  int rows = 0;
-  while (std::getline(nodes, line)) ++rows;
-  EXPECT_GE(rows, 1 + 2);
-  fs::remove_all(dir);
+  EXPECT_GE(lines_of(dir / "nodes.csv").size(), 1u + 2u);
+  // The statics writer fills every column (axial_force was once NaN in every row).
+  expect_all_finite(dir / "timeseries.csv");
+  expect_all_finite(dir / "nodes.csv");
+  fs::remove_all(dir.parent_path());
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltIn, CliStatics,
@@ -55,9 +50,57 @@ INSTANTIATE_TEST_SUITE_P(BuiltIn, CliStatics,
                          });
 
 TEST(CliStaticsErrors, ForceModeIsRefused) {
-  const auto [status, out] = towsim("statics --example cable-tow --set tow.mode=force --set 'tow.force=[10,0,0]'");
+  const auto [status, out] = run_towsim("statics --example cable-tow --set tow.mode=force --set 'tow.force=[10,0,0]'");
   EXPECT_EQ(status, 2) << out;
-  EXPECT_NE(out.find("statics needs mode: motion"), std::string::npos) << out;
+  EXPECT_EQ(out,
+            "--set:1:10: tow.mode: statics needs mode: motion (the steady speed comes from the tow law; got force)\n");
+}
+
+// The statics output equals the first sample of a run started `initial:
+// steady` from the same scenario: both come from one statics solve and one
+// sample assembly. The tow is at its full speed from t = 0 (ramp_time 0), so
+// the run's first state is the steady one with no tow acceleration.
+using CliStaticsVsRun = TempDirTest;
+
+TEST_F(CliStaticsVsRun, NodesEqualTheSteadyRunAtTimeZero) {
+  const fs::path scen = dir_ / "steady.yaml";
+  std::ofstream(scen) << "cable: {length: 100, elements: 8, mass_per_length: 1.5, diameter: 0.019}\n"
+                         "body:\n  mass: 3\n  inertia: [0.003, 0.003, 0.003]\n  link_point: [0, 0, 0.05]\n"
+                         "  spheres: [{center: [0, 0, 0], radius: 0.05}]\n"
+                         "tow:\n  motion: [{type: ramp, direction: [1, 0, 0.2], speed: 2, ramp_time: 0}]\n"
+                         "initial: steady\n"
+                         "simulation: {duration: 0.1, output_interval: 0.1}\n";
+  const auto st = run_towsim("statics " + quoted(scen) + " --out " + quoted(dir_ / "statics"));
+  ASSERT_EQ(st.status, 0) << st.out;
+  const auto rn = run_towsim("run " + quoted(scen) + " --out " + quoted(dir_ / "run") + " --quiet");
+  ASSERT_EQ(rn.status, 0) << rn.out;
+  expect_all_finite(dir_ / "statics" / "nodes.csv");
+  expect_all_finite(dir_ / "statics" / "timeseries.csv");
+
+  const Csv s = read_csv(dir_ / "statics" / "nodes.csv");
+  const Csv r = read_csv(dir_ / "run" / "nodes.csv");
+  ASSERT_EQ(s.header, r.header);
+  ASSERT_EQ(s.rows.size(), 9u);  // joints P_0..P_8 at t = 0
+  ASSERT_GE(r.rows.size(), s.rows.size());
+  const int tension = s.column("tension"), axial = s.column("axial_force");
+  ASSERT_GE(axial, 0);
+  // The same solve and the same assembly, printed to 12 significant digits:
+  // measured, the forces print identically and positions differ by 2e-12 m
+  // (the run reads the tow law 1e-12 s inside its first step, at V = 2 m/s).
+  // 1e-10 of each column's largest magnitude allows for that and for
+  // printing round-off (5e-12 relative) alone.
+  constexpr double kRelTol = 1e-10;
+  for (std::size_t j = 0; j < s.header.size(); ++j) {
+    double scale = 1;  // the column's largest magnitude (at least 1: time, node)
+    for (const auto& row : s.rows) scale = std::max(scale, std::abs(row[j]));
+    for (std::size_t i = 0; i < s.rows.size(); ++i)
+      EXPECT_NEAR(s.rows[i][j], r.rows[i][j], kRelTol * scale) << "joint " << i << " column " << s.header[j];
+  }
+  // A taut cable at equilibrium: 0 < axial force <= tension (its projection).
+  for (const auto& row : s.rows) {
+    EXPECT_GT(row[axial], 0);
+    EXPECT_LE(row[axial], row[tension] * (1 + kRelTol));
+  }
 }
 
 }  // namespace

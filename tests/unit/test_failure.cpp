@@ -3,11 +3,8 @@
 // body, and keeps what was computed up to then (complete rows, a summary with
 // status "failed"); SIGTERM during a run keeps complete rows and a summary
 // with status "interrupted".
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -21,77 +18,15 @@
 #include <thread>
 #include <vector>
 
+#include "../support/cli.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Exit {
-  int status = -1;  // exit code, or -signal when killed by a signal
-  std::string err;  // what it wrote to stderr
-  std::string out;  // what it wrote to stdout
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-/// A child running TOWSIM_BINARY with `args`, stdout and stderr sent to files.
-class Child {
- public:
-  Child(const std::vector<std::string>& args, const fs::path& dir) : out_(dir / "stdout"), err_(dir / "stderr") {
-    std::vector<std::string> argv{TOWSIM_BINARY};
-    argv.insert(argv.end(), args.begin(), args.end());
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      const int o = ::open(out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      const int e = ::open(err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      ::dup2(o, STDOUT_FILENO);
-      ::dup2(e, STDERR_FILENO);
-      std::vector<char*> cargv;
-      for (auto& a : argv) cargv.push_back(a.data());
-      cargv.push_back(nullptr);
-      ::execv(cargv[0], cargv.data());
-      ::_exit(127);
-    }
-  }
-  ~Child() {
-    if (pid_ > 0 && !waited_) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-  }
-  pid_t pid() const { return pid_; }
-  /// True while the child has not exited.
-  bool running() {
-    if (waited_) return false;
-    int st = 0;
-    if (::waitpid(pid_, &st, WNOHANG) == pid_) {
-      waited_ = true;
-      status_ = st;
-    }
-    return !waited_;
-  }
-  Exit wait() {
-    if (!waited_) {
-      ::waitpid(pid_, &status_, 0);
-      waited_ = true;
-    }
-    Exit r;
-    r.status = WIFEXITED(status_) ? WEXITSTATUS(status_) : WIFSIGNALED(status_) ? -WTERMSIG(status_) : -1000;
-    r.out = slurp(out_);
-    r.err = slurp(err_);
-    return r;
-  }
-
- private:
-  fs::path out_, err_;
-  pid_t pid_ = -1;
-  bool waited_ = false;
-  int status_ = 0;
-};
+using towsim::testing::Child;
+using towsim::testing::Exit;
+using towsim::testing::slurp;
 
 /// timeseries.csv checked line by line: every line ends in '\n' and has the
 /// header's number of columns; returns the data rows (header excluded).
@@ -111,17 +46,7 @@ std::vector<std::string> complete_rows(const fs::path& csv) {
 
 double first_number(const std::string& row) { return std::stod(row.substr(0, row.find(','))); }
 
-class Failure : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("towsim_fail_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+using Failure = towsim::testing::TempDirTest;
 
 // A short, stiff cable (1 m in 10 elements of 0.1 m, fast tow) integrated by
 // fixed-step RK4 with a step beyond its stability limit: the first element's

@@ -1,6 +1,5 @@
 // Built-in examples: all present, each parses and compiles; outputs' format.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -10,6 +9,7 @@
 #include "towsim/scenario/examples.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/scenario/scenario.hpp"
+#include "../support/cli.hpp"
 
 namespace fs = std::filesystem;
 using namespace towsim::io;
@@ -72,20 +72,8 @@ TEST(IoExamples, Paper3dTurnValues) {
 
 namespace {
 
-/// A fresh temporary directory.
-fs::path temp_dir(const std::string& tag) {
-  const fs::path d = fs::temp_directory_path() / ("towsim_out_" + tag + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::vector<std::string> lines_of(const fs::path& p) {
-  std::ifstream in(p);
-  std::vector<std::string> out;
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
-}
+using towsim::testing::fresh_dir;
+using towsim::testing::lines_of;
 
 towsim::Sample sample(double t) {
   towsim::Sample s;
@@ -115,7 +103,7 @@ towsim::Model writer_model(bool body) {
 }
 
 TEST(IoOutput, TimeseriesColumnsAndExtremes) {
-  const fs::path dir = temp_dir("writer");
+  const fs::path dir = fresh_dir("out_writer");
   const towsim::Model model = writer_model(true);
   {
     RunWriter w(dir.string(), model, true);
@@ -155,7 +143,7 @@ TEST(IoOutput, TimeseriesColumnsAndExtremes) {
 }
 
 TEST(IoOutput, NoBodyHeaderAndNoNodes) {
-  const fs::path dir = temp_dir("nobody");
+  const fs::path dir = fresh_dir("out_nobody");
   const towsim::Model model = writer_model(false);
   {
     RunWriter w(dir.string(), model, false);

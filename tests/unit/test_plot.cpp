@@ -11,6 +11,7 @@
 #include <string>
 
 #include "plot.hpp"
+#include "../support/cli.hpp"
 
 namespace fs = std::filesystem;
 using towsim::io::plot_names;
@@ -21,17 +22,11 @@ namespace {
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 /// A fresh directory per test, removed at the end.
-class PlotRun : public ::testing::Test {
+class PlotRun : public towsim::testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("towsim_plot_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
   void TearDown() override {
     ::unsetenv("TOWSIM_GNUPLOT");
-    fs::remove_all(dir_);
+    TempDirTest::TearDown();
   }
 
   /// Write a small run: 3 joints, 11 output times; with a two-sphere body,
@@ -80,8 +75,6 @@ class PlotRun : public ::testing::Test {
         EXPECT_GT(fs::file_size(p), 0u) << p;
       }
   }
-
-  fs::path dir_;
 };
 
 }  // namespace

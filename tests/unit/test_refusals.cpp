@@ -6,11 +6,7 @@
 // force, surfaces orthogonality) are not repeated here. docs/reliability.md
 // lists every class with its message.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -18,6 +14,7 @@
 #include <vector>
 
 #include "towsim/scenario/scenario.hpp"
+#include "../support/cli.hpp"
 #include "../support/scenario_files.hpp"
 
 namespace fs = std::filesystem;
@@ -29,6 +26,7 @@ namespace {
 using Refusal = towsim::testing::ScenarioFiles;
 using towsim::testing::kCable;
 using towsim::testing::kSim;
+using towsim::testing::run_towsim;
 
 const std::string kBody =  // lines 8-11
     "body:\n"
@@ -254,6 +252,23 @@ TEST_F(Refusal, StepsAndSamplesBeyondLimits) {
                    "above 1e+09)"));
 }
 
+// --- rules between sections (checked by compile, so `check` refuses too) ----
+
+TEST_F(Refusal, SteadyStartNeedsAnImposedTowMotion) {
+  const std::string kProblem =
+      "initial: steady needs tow.mode: motion (the steady velocity comes from the tow's motion; tow.mode is force)";
+  const auto s = load(kCable + kSim + "tow:\n  mode: force\n  force: [10, 0, 0]\n" + "initial: steady\n");
+  EXPECT_EQ(s.diags.str(), at("11:10: " + kProblem));
+  // The same rule reached through --set: reported where `initial` is written.
+  const auto set = load(kCable + kSim + "initial: steady\n", {"tow.mode=force", "tow.force=[10, 0, 0]"});
+  EXPECT_EQ(set.diags.str(), at("8:10: " + kProblem));
+  const auto set_initial = load(kCable + kSim + "tow: {mode: force, force: [1, 0, 0]}\n", {"initial=steady"});
+  EXPECT_EQ(set_initial.diags.str(), "--set:1:9: " + kProblem + "\n");
+  // Accepted: steady with an imposed motion, force mode with another start.
+  EXPECT_TRUE(load(kCable + kSim + "initial: steady\n").ok());
+  EXPECT_TRUE(load(kCable + kSim + "tow: {mode: force, force: [1, 0, 0]}\ninitial: hanging\n").ok());
+}
+
 // --- YAML-level limits -------------------------------------------------------
 
 TEST_F(Refusal, AliasBombIsRefused) {
@@ -318,23 +333,6 @@ TEST_F(Refusal, SeveralErrorsAcrossFilesInOrder) {
 
 // --- the program: every class exits 2 and writes nothing ---------------------
 
-namespace {
-
-/// Run the towsim binary with `args` (shell syntax); exit status and output.
-std::pair<int, std::string> run_towsim(const std::string& args) {
-  const std::string cmd = std::string("'") + TOWSIM_BINARY + "' " + args + " 2>&1";
-  std::string out;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (p == nullptr) return {-1, ""};
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
-  const int st = ::pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
-
-}  // namespace
-
 TEST_F(Refusal, ProgramExits2AndWritesNothingForEachClass) {
   const std::vector<std::string> bad = {
       kCable + kSim + "colour: red\n",                                                  // unknown key
@@ -347,6 +345,7 @@ TEST_F(Refusal, ProgramExits2AndWritesNothingForEachClass) {
       kCable + kSim + "tow:\n  motion:\n    - {type: track, file: none.csv}\n",         // track file
       kCable + kSim + "tow:\n  motion:\n    - {type: turn, radius: 5}\n",               // turn speed
       "cable: [1, 2\n",                                                                  // YAML syntax
+      kCable + kSim + "tow: {mode: force, force: [1, 0, 0]}\ninitial: steady\n",           // between sections
   };
   for (std::size_t i = 0; i < bad.size(); ++i) {
     const std::string scen = write(bad[i], "bad" + std::to_string(i) + ".yaml");
@@ -355,6 +354,10 @@ TEST_F(Refusal, ProgramExits2AndWritesNothingForEachClass) {
     EXPECT_EQ(status, 2) << bad[i] << text;
     EXPECT_EQ(text.rfind(scen + ":", 0), 0u) << text;
     EXPECT_FALSE(fs::exists(out)) << bad[i];
+    // `check` applies the same rules: what fails a run fails the check.
+    const auto [check_status, check_text] = run_towsim("check '" + scen + "'");
+    EXPECT_EQ(check_status, 2) << bad[i] << check_text;
+    EXPECT_EQ(check_text, text) << bad[i];
   }
   const fs::path out = dir_ / "out-set";
   const auto [status, text] = run_towsim("run --example cable-tow --set cable.elemnts=3 --out '" + out.string() + "'");
