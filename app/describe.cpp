@@ -99,20 +99,26 @@ void describe_body(const Body& b, const Cable& c, const Fluid& f, std::ostream& 
                                count(b.surfaces.size(), "surface"));
 }
 
-std::string piece_text(const TowPiece& p) {
-  switch (p.type) {
-    case TowPiece::Type::Ramp:
-      return "ramp along " + vec(p.direction) + " to " + fmt_num(p.speed) + " m/s in " + fmt_num(p.ramp_time) + " s";
-    case TowPiece::Type::Heave:
-      return "heave " + fmt_num(p.amplitude) + " m, period " + fmt_num(p.period) + " s, from t = " +
-             fmt_num(p.start_time) + " s";
-    case TowPiece::Type::Turn:
-      return std::string("turn to ") + (p.port ? "port" : "starboard") + ", radius " + fmt_num(p.radius) +
-             " m, from t = " + fmt_num(p.start_time) + " s";
-    default:
-      return "track of " + std::to_string(p.track_time.size()) + " points, t = " + fmt_num(p.track_time.front()) +
-             " to " + fmt_num(p.track_time.back()) + " s";
-  }
+std::string piece_text(const Ramp& p) {
+  return "ramp along " + vec(p.direction) + " to " + fmt_num(p.speed) + " m/s in " + fmt_num(p.ramp_time) + " s";
+}
+std::string piece_text(const Heave& p) {
+  return "heave " + fmt_num(p.amplitude) + " m, period " + fmt_num(p.period) + " s, from t = " +
+         fmt_num(p.start_time) + " s";
+}
+std::string piece_text(const Turn& p) {
+  std::string s = std::string("turn to ") + (p.port ? "port" : "starboard") + ", radius " + fmt_num(p.radius) +
+                  " m, from t = " + fmt_num(p.start_time) + " s";
+  if (std::isfinite(p.angle)) s += ", by " + fmt_num(p.angle * 180 / std::numbers::pi) + " deg";
+  return s;
+}
+std::string piece_text(const SpeedChange& p) {
+  return "speed change to " + fmt_num(p.speed) + " m/s over " + fmt_num(p.ramp_time) + " s, from t = " +
+         fmt_num(p.start_time) + " s";
+}
+std::string piece_text(const Track& p) {
+  return "track of " + std::to_string(p.time.size()) + " points, t = " + fmt_num(p.time.front()) + " to " +
+         fmt_num(p.time.back()) + " s";
 }
 
 void describe_tow(const Tow& t, std::ostream& out) {
@@ -127,7 +133,8 @@ void describe_tow(const Tow& t, std::ostream& out) {
   }
   out << "tow: imposed motion from " << vec(t.start) << " m\n";
   if (t.pieces.empty()) line(out, "motion", "none (fixed tow point)");
-  for (const auto& p : t.pieces) line(out, "motion", piece_text(p));
+  for (const auto& p : t.pieces)
+    line(out, "motion", std::visit([](const auto& law) { return piece_text(law); }, p));
 }
 
 void describe_run(const Model& m, std::ostream& out) {

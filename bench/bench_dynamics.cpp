@@ -23,7 +23,6 @@
 #include "models.hpp"  // tests/support: cable_model, add_sphere_body, random_state
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/paper.hpp"
-#include "pieces.hpp"
 
 namespace {
 
@@ -42,7 +41,7 @@ Model bench_model(int n, bool body) {
   spec.tangential = 0.02;
   Model m = testing::cable_model(spec);
   if (body) testing::add_sphere_body(m);
-  m.tow.pieces.push_back(bench::ramp(Vec3(1, 0, 0), 1.57, 15.0));
+  m.tow.pieces.push_back(Ramp{Vec3(1, 0, 0), 1.57, 15.0});
   return m;
 }
 

@@ -42,7 +42,6 @@
 
 #include "baseline/cartesian.hpp"
 #include "towsim/sim/simulate.hpp"
-#include "pieces.hpp"
 
 namespace {
 
@@ -75,8 +74,8 @@ Model planar_model(AddedMassModel am, bool body, bool law_b = false) {
     finalize_body(b, m.fluid);
   }
   m.tow.mode = Tow::Mode::Motion;
-  m.tow.pieces.push_back(bench::ramp(Vec3(1, 0, 0), 2.0, 15.0));
-  if (law_b) m.tow.pieces.push_back(bench::heave(1.0, 10.0, 15.0));
+  m.tow.pieces.push_back(Ramp{Vec3(1, 0, 0), 2.0, 15.0});
+  if (law_b) m.tow.pieces.push_back(Heave{1.0, 10.0, 15.0});
   m.initial.kind = Initial::Kind::Hanging;
   m.sim.duration = kDuration;
   m.sim.write_nodes = false;
@@ -506,7 +505,7 @@ void scaling() {
     for (int i = 0; i < n; ++i)
       m.cable.elements.push_back(
           make_element(300.0 / n, 0.14, 0.010, 1.9, 0.0, TangentialLaw::Pode, 1.0, m.fluid));
-    m.tow.pieces.push_back(bench::ramp(Vec3(1, 0, 0), 1.57, 15.0));
+    m.tow.pieces.push_back(Ramp{Vec3(1, 0, 0), 1.57, 15.0});
     m.sim.duration = kDuration;
     m.sim.write_nodes = false;
     const RunResult ref = run_towsim(m, Integrator::DOPRI5, 1e-3, 1e-9, kGrid, Formulation::Default, 1);

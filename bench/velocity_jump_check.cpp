@@ -17,15 +17,14 @@
 
 #include "baseline/cartesian.hpp"
 #include "towsim/sim/simulate.hpp"
-#include "pieces.hpp"
 
 namespace {
 
 using namespace towsim;
 
-enum class Heave { Piece, TrackSine, TrackOneMinusCos };
+enum class HeaveKind { Piece, TrackSine, TrackOneMinusCos };
 
-Model model(Heave kind) {
+Model model(HeaveKind kind) {
   Model m;
   m.cable.added_mass_model = AddedMassModel::Morison;
   for (int i = 0; i < 5; ++i)
@@ -39,16 +38,16 @@ Model model(Heave kind) {
   b.spheres.push_back({Vec3(0, 0, 0), 0.25, 0.5, 0.5});
   b.spheres.push_back({Vec3(-1.5, 0, 0), 0.25, 0.5, 0.5});
   finalize_body(b, m.fluid);
-  m.tow.pieces.push_back(bench::ramp(Vec3(1, 0, 0), 2.0, 15.0));
-  if (kind == Heave::Piece) {
-    m.tow.pieces.push_back(bench::heave(1.0, 10.0, 15.0));
+  m.tow.pieces.push_back(Ramp{Vec3(1, 0, 0), 2.0, 15.0});
+  if (kind == HeaveKind::Piece) {
+    m.tow.pieces.push_back(Heave{1.0, 10.0, 15.0});
   } else {
-    TowPiece tr = bench::track();
+    Track tr;
     for (double t = 0; t <= 121; t += 0.25) {
       const double ph = 2 * std::numbers::pi * (t - 15) / 10;
-      const double z = t <= 15 ? 0 : (kind == Heave::TrackSine ? std::sin(ph) : 1 - std::cos(ph));
-      tr.track_time.push_back(t);
-      tr.track_pos.push_back(Vec3(0, 0, z));
+      const double z = t <= 15 ? 0 : (kind == HeaveKind::TrackSine ? std::sin(ph) : 1 - std::cos(ph));
+      tr.time.push_back(t);
+      tr.pos.push_back(Vec3(0, 0, z));
     }
     m.tow.pieces.push_back(tr);
   }
@@ -67,7 +66,7 @@ int main() {
                          "1 - cos through a track (C2)"};
   std::printf("tow force, baseline (h = 1e-3 s) vs towsim (dopri5 1e-10), relative to max |F_ref|, t = 0.5 ... "
               "119.5 s except 15 s\n");
-  for (Heave kind : {Heave::Piece, Heave::TrackSine, Heave::TrackOneMinusCos}) {
+  for (HeaveKind kind : {HeaveKind::Piece, HeaveKind::TrackSine, HeaveKind::TrackOneMinusCos}) {
     const Model m = model(kind);
     MemorySink sink;
     simulate(m, sink, {});

@@ -101,9 +101,9 @@ void CentralDifference::assemble_and_solve() {
       Mo_[k] += Mk / 6;
       const Vec3 vG = 0.5 * (v_[k - 1] + v_[k]);
       const Vec3 edot = (v_[k] - v_[k - 1]) / l.length;
-      const double zG = 0.5 * (x_[k - 1].z() + x_[k].z());
+      const Vec3 xG = 0.5 * (x_[k - 1] + x_[k]);
       Vec3 F, Mom;
-      element_loads(m, el, e, edot, vG, zG, F, Mom);
+      element_loads(m, el, e, edot, vG, xG, t_, F, Mom);
       const Vec3 Mx = Mom.cross(e) / l.length;  // a moment about G as a couple on the ends
       Q_[k - 1] += 0.5 * F - Mx;
       Q_[k] += 0.5 * F + Mx;

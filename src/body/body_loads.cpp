@@ -23,18 +23,18 @@ void add_force(BodyWork& ws, const Vec3& c, const Vec3& F) {
 }
 
 /// Drag of a sphere load.
-void sphere_loads(const Fluid& fluid, const SphereLoad& sp, BodyWork& ws) {
+void sphere_loads(const Fluid& fluid, const SphereLoad& sp, double t, BodyWork& ws) {
   const Vec3 c = ws.R * sp.center;
-  const Vec3 ur = ws.vO + ws.w.cross(c) - fluid.current(ws.O.z() + c.z());
+  const Vec3 ur = ws.vO + ws.w.cross(c) - fluid.velocity(ws.O + c, t);
   const double area = std::numbers::pi * sp.radius * sp.radius;
   add_force(ws, c, -0.5 * fluid.rho * sp.drag * area * ur.norm() * ur);
 }
 
 /// Normal drag and axial skin friction of a slender cylinder load.
-void cylinder_loads(const Fluid& fluid, const CylinderLoad& cy, BodyWork& ws) {
+void cylinder_loads(const Fluid& fluid, const CylinderLoad& cy, double t, BodyWork& ws) {
   const Vec3 c = ws.R * cy.center;
   const Vec3 a = ws.R * cy.axis;
-  const Vec3 u = ws.vO + ws.w.cross(c) - fluid.current(ws.O.z() + c.z());
+  const Vec3 u = ws.vO + ws.w.cross(c) - fluid.velocity(ws.O + c, t);
   const double ua = u.dot(a);
   const Vec3 un = u - ua * a;
   const double rho = fluid.rho;
@@ -53,7 +53,7 @@ void surface_loads(const Fluid& fluid, const LiftingSurface& ls, double t, BodyW
   const double d = surface_deflection(ls, t);
   const Vec3 chord = ws.R * (std::cos(d) * ls.chord + std::sin(d) * ls.normal);
   const Vec3 normal = ws.R * (-std::sin(d) * ls.chord + std::cos(d) * ls.normal);
-  const Vec3 u = ws.vO + ws.w.cross(c) - fluid.current(ws.O.z() + c.z());
+  const Vec3 u = ws.vO + ws.w.cross(c) - fluid.velocity(ws.O + c, t);
   const Vec3 up = u - u.dot(span) * span;  // velocity in the surface's plane
   const double V = up.norm();
   if (V < 1e-12) return;
@@ -88,13 +88,14 @@ double surface_deflection(const LiftingSurface& ls, double t) {
   return interpolate(ls.deflection_time, ls.deflection_angle, t);
 }
 
-void body_inertia(const Fluid& fluid, const Body& b, BodyWork& ws) {
+void body_inertia(const Fluid& fluid, const Body& b, BodyWork& ws, double t) {
   const Mat3& R = ws.R;
   // Body-frame velocities, absolute and relative to the water at O_t.
   const Vec3 vb = R.transpose() * ws.vO;
   const Vec3 wb = R.transpose() * ws.w;
-  const Vec3 vr = R.transpose() * (ws.vO - fluid.current(ws.O.z()));
-  const Vec3 dU = R.transpose() * (fluid.current_gradient(ws.O.z()) * ws.vO.z());
+  const Vec3 vr = R.transpose() * (ws.vO - fluid.velocity(ws.O, t));
+  // Rate of change of the water velocity seen by O_t as it moves.
+  const Vec3 dU = R.transpose() * fluid.rate_seen(ws.O, ws.vO, t);
   Vec6 nu, nur;
   nu << vb, wb;
   nur << vr, wb;
@@ -125,13 +126,13 @@ void body_loads(const Fluid& fluid, const Body& b, double t, BodyWork& ws) {
   add_force(ws, ws.R * b.cg, Vec3(0, 0, -b.mass * g));
   add_force(ws, ws.R * b.buoyancy_center, Vec3(0, 0, rho * g * b.displaced_volume));
   if (rho == 0) return;
-  for (const auto& sp : b.spheres) sphere_loads(fluid, sp, ws);
-  for (const auto& cy : b.cylinders) cylinder_loads(fluid, cy, ws);
+  for (const auto& sp : b.spheres) sphere_loads(fluid, sp, t, ws);
+  for (const auto& cy : b.cylinders) cylinder_loads(fluid, cy, t, ws);
   for (const auto& ls : b.surfaces) surface_loads(fluid, ls, t, ws);
   // Generic damping on the body-frame velocity relative to the water.
   if (!b.linear_damping.isZero() || !b.quadratic_damping.isZero()) {
     Vec6 nur;
-    nur << ws.R.transpose() * (ws.vO - fluid.current(ws.O.z())), ws.R.transpose() * ws.w;
+    nur << ws.R.transpose() * (ws.vO - fluid.velocity(ws.O, t)), ws.R.transpose() * ws.w;
     const Vec6 tau = -b.linear_damping * nur - b.quadratic_damping * nur.cwiseAbs().cwiseProduct(nur);
     ws.Fb += ws.R * tau.head<3>();
     ws.Mb += ws.R * tau.tail<3>();

@@ -167,12 +167,12 @@ void check_fits(const Model& model, const PhysicalState& s, const Workspace& ws)
 void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
   const auto& els = model.cable.elements;
   for (std::size_t k = 0; k < els.size(); ++k) {
-    element_loads(model, els[k], s.e[k], ws.edot[k], ws.vG[k], ws.G[k].z(), ws.F[k], ws.Mom[k]);
+    element_loads(model, els[k], s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
     ws.Mt[k] = element_mass(els[k], s.e[k]);
   }
-  attachment_loads(model, ws);
+  attachment_loads(model, t, ws);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    body_inertia(model.fluid, model.bodies[b], ws.body[b]);
+    body_inertia(model.fluid, model.bodies[b], ws.body[b], t);
     body_loads(model.fluid, model.bodies[b], t, ws.body[b]);
   }
 }

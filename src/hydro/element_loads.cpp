@@ -12,7 +12,7 @@ Mat3 element_mass(const Element& el, const Vec3& e) {
 }
 
 void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot,
-                   const Vec3& vG, double zG, Vec3& F, Vec3& M) {
+                   const Vec3& vG, const Vec3& xG, double t, Vec3& F, Vec3& M) {
   const Fluid& fluid = model.fluid;
   // Weight and buoyancy (apparent weight), along -z.
   F = Vec3(0, 0, -el.weight);
@@ -20,7 +20,7 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   if (fluid.rho == 0) return;
 
   // Velocity relative to the water, split along and across the element.
-  const Vec3 u = vG - fluid.current(zG);
+  const Vec3 u = vG - fluid.velocity(xG, t);
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
 
@@ -34,9 +34,9 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
     F -= el.friction_factor * std::abs(ue) * ue * e;
 
   // Added mass: the relative velocity also changes as G moves through a
-  // sheared current, du/dt = a_G - U'(z) zdot; the U' term is known here.
-  if (fluid.current_velocity.size() > 1) {
-    const Vec3 dU = fluid.current_gradient(zG) * vG.z();
+  // non-uniform flow, du/dt = a_G - rate seen by G; that rate is known here.
+  if (!fluid.uniform()) {
+    const Vec3 dU = fluid.rate_seen(xG, vG, t);
     F += el.added_mass * (dU - dU.dot(e) * e);
   }
   // Ideal fluid: -dP/dt velocity terms and the Munk moment (paper 2.42).
@@ -50,7 +50,7 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
 
 namespace towsim {
 
-void attachment_loads(const Model& model, Workspace& ws) {
+void attachment_loads(const Model& model, double t, Workspace& ws) {
   const Fluid& fluid = model.fluid;
   for (std::size_t k = 0; k < ws.Ma.size(); ++k) ws.Ma[k].setZero(), ws.Fa[k].setZero();
   for (const Attachment& a : model.cable.attachments) {
@@ -60,11 +60,11 @@ void attachment_loads(const Model& model, Workspace& ws) {
     // Apparent weight, then drag on the velocity relative to the water.
     ws.Fa[k].z() -= (a.mass - fluid.rho * a.volume) * fluid.g;
     if (fluid.rho == 0) continue;
-    const Vec3 u = ws.vP[k] - fluid.current(ws.P[k].z());
+    const Vec3 u = ws.vP[k] - fluid.velocity(ws.P[k], t);
     ws.Fa[k] -= 0.5 * fluid.rho * a.drag_area * u.norm() * u;
-    // Added mass in a sheared current: the water's velocity at the moving
-    // joint changes at U'(z) zdot, known here (as for the elements).
-    if (fluid.current_velocity.size() > 1) ws.Fa[k] += a.added_mass * fluid.current_gradient(ws.P[k].z()) * ws.vP[k].z();
+    // Added mass in a non-uniform flow: the water's velocity seen by the
+    // moving joint changes at a known rate (as for the elements).
+    if (!fluid.uniform()) ws.Fa[k] += a.added_mass * fluid.rate_seen(ws.P[k], ws.vP[k], t);
   }
 }
 

@@ -28,27 +28,7 @@ Mat6 point_inertia_6(const Mat3& A, const Mat3& B, const Vec3& c) {
   return m;
 }
 
-/// Index of the table interval containing x (clamped), for linear interpolation.
-std::size_t interval(const std::vector<double>& xs, double x) {
-  auto it = std::upper_bound(xs.begin(), xs.end(), x);
-  std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - xs.begin(), 1)) - 1;
-  return std::min(i, xs.size() - 2);
-}
 }  // namespace
-
-Vec3 Fluid::current(double z) const {
-  if (current_velocity.empty()) return Vec3::Zero();
-  return interpolate(current_depth, current_velocity, -z);
-}
-
-Vec3 Fluid::current_gradient(double z) const {
-  if (current_velocity.size() < 2) return Vec3::Zero();
-  const double d = -z;
-  if (d <= current_depth.front() || d >= current_depth.back()) return Vec3::Zero();
-  const std::size_t i = interval(current_depth, d);
-  // dU/dz = -dU/d(depth)
-  return -(current_velocity[i + 1] - current_velocity[i]) / (current_depth[i + 1] - current_depth[i]);
-}
 
 double Cable::total_length() const {
   double s = 0;

@@ -41,7 +41,8 @@ void build_chain(const CableSpec& c, const BodySpec& end_body, Model& model);
 
 /// Check the tow's values; needs no tow errors so far for the turn-speed check.
 void check_tow(const TowSpec& t, Diagnostics& d);
-/// Build the Tow from a checked spec.
-Tow build_tow(const TowSpec& t, bool include_turns = true);
+/// Build the Tow from a checked spec (without turns and speed changes: the
+/// offsets alone, whose velocity starts the course).
+Tow build_tow(const TowSpec& t, bool include_manoeuvres = true);
 
 }  // namespace towsim::io

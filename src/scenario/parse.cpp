@@ -37,10 +37,21 @@ void parse_initial(const YNode* n, InitialSpec& init, Diagnostics& d) {
 void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
   r.read("water_density", env.water_density);
   r.read("gravity", env.gravity);
+  // current (m/s) or current_kn (knots): a vector, or rows {depth, velocity | velocity_kn}.
   const YNode* c = r.get("current");
+  const YNode* c_kn = r.get("current_kn");
+  if (c != nullptr && c_kn != nullptr) {
+    d.error(c_kn->key_loc, "environment.current_kn", "give either 'current' or 'current_kn', not both");
+    return;
+  }
+  const bool knots = c_kn != nullptr;
+  const auto to_mps = [knots](const Vec3& u) {  // [m/s]
+    return knots ? Vec3(knots_to_mps(u.x()), knots_to_mps(u.y()), knots_to_mps(u.z())) : u;
+  };
+  if (c == nullptr) c = c_kn;
   if (c == nullptr) return;
   env.current_given = true;
-  env.current_where = r.where(*c, "current");
+  env.current_where = r.where(*c, knots ? "current_kn" : "current");
   const std::string path = env.current_where.path;
   if (c->is_seq() && !c->items.empty() && c->items[0].is_map()) {
     const std::size_t errors_before = d.size();
@@ -49,17 +60,19 @@ void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
       Field<double> depth;
       Field<Vec3> vel;
       row.read("depth", depth, row.present());
-      row.read("velocity", vel, row.present());
+      row.read(knots ? "velocity_kn" : "velocity", vel, row.present());
       row.finish();
+      const Vec3 u = to_mps(vel.value);
       if (depth.given && vel.given)
-        env.current.push_back(RowSpec{{depth.value, vel.value.x(), vel.value.y(), vel.value.z()},
-                                      depth.where});
+        env.current.push_back(RowSpec{{depth.value, u.x(), u.y(), u.z()}, depth.where});
     }
     if (d.size() != errors_before) env.current.clear();  // no order checks on a partial table
     return;
   }
   Vec3 u;
-  if (convert(*c, path, d, u)) env.current.push_back(RowSpec{{0.0, u.x(), u.y(), u.z()}, env.current_where});
+  if (!convert(*c, path, d, u)) return;
+  u = to_mps(u);
+  env.current.push_back(RowSpec{{0.0, u.x(), u.y(), u.z()}, env.current_where});
 }
 
 namespace {

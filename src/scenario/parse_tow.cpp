@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 
@@ -26,23 +27,65 @@ std::vector<std::pair<std::string, int>> split_csv(const std::string& line) {
   return fields;
 }
 
-/// Parse one data line of a track file into a row; false after reporting.
+/// The columns of a track file, in the order time, x, y, z.
+constexpr std::array<const char*, 4> kTrackColumns{"time", "x", "y", "z"};
+
+/// Read a track file's header line: for each of time, x, y, z the index of
+/// its field. False after reporting an unknown, repeated or missing name.
+bool parse_track_header(const std::string& line, const SourceLoc& at, const std::string& path, Diagnostics& d,
+                        std::array<std::size_t, 4>& order) {
+  const auto fields = split_csv(line);
+  constexpr std::size_t kUnset = static_cast<std::size_t>(-1);
+  order.fill(kUnset);
+  bool ok = true;
+  for (std::size_t f = 0; f < fields.size(); ++f) {
+    const auto& [name, col] = fields[f];
+    const SourceLoc here{at.file, at.line, col};
+    const auto it = std::find_if(kTrackColumns.begin(), kTrackColumns.end(),
+                                 [&](const char* c) { return name == c; });
+    if (it == kTrackColumns.end()) {
+      d.error(here, path, "unknown column '" + name + "' in the track header (expected time, x, y, z)");
+      ok = false;
+      continue;
+    }
+    const auto c = static_cast<std::size_t>(it - kTrackColumns.begin());
+    if (order[c] != kUnset) {
+      d.error(here, path, "column '" + name + "' appears twice in the track header");
+      ok = false;
+      continue;
+    }
+    order[c] = f;
+  }
+  for (std::size_t c = 0; c < order.size() && ok; ++c)
+    if (order[c] == kUnset) {
+      d.error(at, path, std::string("the track header has no column '") + kTrackColumns[c] +
+                            "' (expected time, x, y, z)");
+      ok = false;
+    }
+  return ok;
+}
+
+/// Parse one data line of a track file into a row {t, x, y, z}, its fields
+/// taken in `order` (see parse_track_header); false after reporting.
 bool parse_track_line(const std::string& line, const SourceLoc& at, const std::string& path,
-                      Diagnostics& d, RowSpec& row) {
+                      const std::array<std::size_t, 4>& order, Diagnostics& d, RowSpec& row) {
   const auto fields = split_csv(line);
   if (fields.size() != 4) {
     d.error(at, path, "expected 4 values time,x,y,z (got " + std::to_string(fields.size()) + ")");
     return false;
   }
-  row.values.clear();
-  for (const auto& [text, col] : fields) {
+  std::array<double, 4> values{};
+  for (std::size_t f = 0; f < fields.size(); ++f) {
+    const auto& [text, col] = fields[f];
     const auto v = scalar_to_double(text);
     if (!v) {
       d.error(SourceLoc{at.file, at.line, col}, path, "expected a number (got '" + text + "')");
       return false;
     }
-    row.values.push_back(*v);
+    values[f] = *v;
   }
+  row.values.clear();
+  for (const std::size_t f : order) row.values.push_back(values[f]);
   row.where = Where{at, path};
   return true;
 }
@@ -70,11 +113,11 @@ void parse_track(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagno
 
 void parse_piece(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagnostics& d) {
   p.where = r.where();
-  r.choice("type", p.type, {"ramp", "heave", "turn", "track"}, true);
+  r.choice("type", p.type, {"ramp", "heave", "turn", "speed", "track"}, true);
   const std::string& t = p.type.value;
   if (t == "ramp") {
     r.read("direction", p.direction, true);
-    r.read("speed", p.speed, true);
+    r.read_speed("speed", p.speed, true);
     r.read("ramp_time", p.ramp_time, true);
   } else if (t == "heave") {
     r.read("amplitude", p.amplitude, true);
@@ -84,8 +127,14 @@ void parse_piece(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagno
     r.read("radius", p.radius, true);
     r.read("start_time", p.start_time);
     r.choice("side", p.side, {"port", "starboard"});
+    r.read("angle_deg", p.angle_deg);
+  } else if (t == "speed") {
+    r.read_speed("speed", p.speed, true);
+    r.read("start_time", p.start_time);
+    r.read("ramp_time", p.ramp_time, true);
   } else if (t == "track") {
     parse_track(r, p, base_dir, d);
+    r.read("speed_scale", p.speed_scale);
   }
 }
 
@@ -124,15 +173,20 @@ std::vector<RowSpec> read_track_csv(const std::string& file, const Where& where,
   std::string line;
   int lineno = 0;
   bool first = true;
+  std::array<std::size_t, 4> order{0, 1, 2, 3};  // without a header: time, x, y, z
   while (std::getline(in, line)) {
     ++lineno;
     const auto b = line.find_first_not_of(" \t\r");
     if (b == std::string::npos || line[b] == '#') continue;
+    // A first line that does not start with a number is the header: columns by name.
     const bool header = first && !scalar_to_double(split_csv(line)[0].first);
     first = false;
-    if (header) continue;
+    if (header) {
+      if (!parse_track_header(line, SourceLoc{file, lineno, 1}, where.path, d, order)) return {};
+      continue;
+    }
     RowSpec row;
-    if (parse_track_line(line, SourceLoc{file, lineno, 1}, where.path, d, row)) rows.push_back(row);
+    if (parse_track_line(line, SourceLoc{file, lineno, 1}, where.path, order, d, row)) rows.push_back(row);
   }
   if (d.size() != errors_before) return {};  // reported: no further checks on a partial track
   if (rows.empty()) d.error(SourceLoc{file, std::max(lineno, 1), 1}, where.path, "the track file has no data rows");

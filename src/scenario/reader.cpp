@@ -1,5 +1,7 @@
 #include "reader.hpp"
 
+#include <algorithm>
+
 #include "scalar.hpp"
 
 namespace towsim::io {
@@ -175,6 +177,27 @@ const YNode* MapReader::get(const std::string& key, bool required) {
   return nullptr;
 }
 
+void MapReader::read_speed(const std::string& key, Field<double>& f, bool required) {
+  const std::string kn = key + "_kn";
+  if (std::find(aliases_.begin(), aliases_.end(), kn) == aliases_.end()) aliases_.push_back(kn);
+  const YNode* v = node_ != nullptr ? node_->find(kn) : nullptr;
+  if (v == nullptr || v->is_null()) {
+    read(key, f, required);
+    return;
+  }
+  get(key);  // known, whether given or not
+  if (node_->find(key) != nullptr) {
+    d_.error(v->key_loc, sub(kn), "give either '" + key + "' or '" + kn + "', not both");
+    return;
+  }
+  f.where = where(*v, kn);
+  double value = 0;
+  if (convert(*v, f.where.path, d_, value)) {
+    f.value = knots_to_mps(value);
+    f.given = true;
+  }
+}
+
 void MapReader::choice(const std::string& key, Field<std::string>& f,
                        const std::vector<std::string>& choices, bool required) {
   Field<std::string> tmp = f;
@@ -210,8 +233,11 @@ void MapReader::finish() {
     }
     bool is_known = false;
     for (const auto& k : known_) is_known = is_known || k == v.key;
+    for (const auto& k : aliases_) is_known = is_known || k == v.key;
     if (is_known) continue;
-    const std::string hint = closest_match(v.key, known_);
+    std::vector<std::string> accepted = known_;
+    accepted.insert(accepted.end(), aliases_.begin(), aliases_.end());
+    const std::string hint = closest_match(v.key, accepted);
     std::string msg = "unknown key";
     if (!hint.empty()) {
       msg += " (did you mean '" + hint + "'?)";

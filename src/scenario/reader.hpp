@@ -69,6 +69,9 @@ class MapReader {
       f.given = true;
     }
   }
+  /// Read a speed [m/s] given as `key` (m/s) or `key`_kn (knots, 1 kn =
+  /// 1852/3600 m/s exactly); both is an error.
+  void read_speed(const std::string& key, Field<double>& f, bool required = false);
   /// Read a text field that must be one of `choices`.
   void choice(const std::string& key, Field<std::string>& f, const std::vector<std::string>& choices,
               bool required = false);
@@ -82,7 +85,11 @@ class MapReader {
   std::string path_;
   Diagnostics& d_;
   std::vector<std::string> known_;
+  std::vector<std::string> aliases_;  // accepted keys not listed in "expected one of" (`_kn`)
 };
+
+/// Knots to metres per second: 1 kn = 1852 m / 3600 s exactly [m/s].
+inline double knots_to_mps(double kn) { return kn * 1852.0 / 3600.0; }
 
 /// Report `got` unless it is one of `choices` (with a "did you mean" hint).
 bool check_choice(const std::string& got, const std::vector<std::string>& choices, const Where& w,

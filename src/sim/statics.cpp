@@ -106,7 +106,7 @@ void sweep_from_bottom(SteadyProblem& p) {
   s.v0 = p.V;
   compute_kinematics(m, s, p.ws);  // depths of the hanging guess (for a current profile)
   for (auto& v : p.ws.vP) v = p.V;
-  attachment_loads(m, p.ws);
+  attachment_loads(m, 0.0, p.ws);
   Vec3 f = -p.ws.Fa.back();  // force through the joint below the element
   for (int k = p.n - 1; k >= 0; --k) {
     const int bi = p.ws.body_at[static_cast<std::size_t>(k + 1)];
@@ -120,7 +120,7 @@ void sweep_from_bottom(SteadyProblem& p) {
     const Element& el = m.cable.elements[static_cast<std::size_t>(k)];
     Vec3 e = s.e[static_cast<std::size_t>(k)], F, M;
     for (int it = 0; it < 30; ++it) {
-      element_loads(m, el, e, Vec3::Zero(), p.V, p.ws.G[static_cast<std::size_t>(k)].z(), F, M);
+      element_loads(m, el, e, Vec3::Zero(), p.V, p.ws.G[static_cast<std::size_t>(k)], 0.0, F, M);
       const Vec3 d = 0.5 * F - f;
       if (d.norm() < 1e-300) break;
       e = d.normalized();
@@ -136,9 +136,14 @@ void sweep_from_bottom(SteadyProblem& p) {
 Vec3 final_tow_velocity(const Tow& tow) {
   Vec3 v = Vec3::Zero();
   for (const auto& piece : tow.pieces) {
-    if (piece.type == TowPiece::Type::Ramp) v += piece.speed * piece.direction.normalized();
-    if (piece.type == TowPiece::Type::Track && piece.track_time.size() > 1)
-      v += tow_kinematics(Tow{Tow::Mode::Motion, Vec3::Zero(), {piece}, {}, {}}, piece.track_time.back()).vel;
+    if (const auto* ramp = std::get_if<Ramp>(&piece)) v += ramp->speed * ramp->direction.normalized();
+    if (const auto* track = std::get_if<Track>(&piece); track != nullptr && track->time.size() > 1)
+      v += track->at(track->time.back()).vel;
+  }
+  // Manoeuvres: the course's last speed and heading replace the horizontal part.
+  CourseState c;
+  if (final_course(tow, c)) {
+    v = Vec3(c.U * c.h.x(), c.U * c.h.y(), v.z());
   }
   return v;
 }

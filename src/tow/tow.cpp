@@ -1,109 +1,36 @@
-// Imposed tow-point kinematics and tow force laws (docs/scenario.md "tow"; docs/theory.md §6.1).
+// The tow point's imposed motion and force (include/towsim/tow/tow.hpp):
+// offsets added up, then the vessel course once manoeuvres steer it.
+#include "towsim/tow/tow.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <concepts>
+#include <type_traits>
 
-#include "towsim/model/model.hpp"
 #include "towsim/model/table.hpp"
 
 namespace towsim {
 
 namespace {
 
-/// Ramp: speed grows linearly from 0 at t = 0 to `speed` at ramp_time, then constant.
-TowKinematics ramp(const TowPiece& p, double t) {
-  const Vec3 d = p.direction.normalized();
-  const double T = p.ramp_time;
-  TowKinematics k{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-  if (t < 0) return k;
-  if (T <= 0) {  // no ramp: at speed from the start
-    k.vel = p.speed * d;
-    k.pos = p.speed * t * d;
-    return k;
-  }
-  if (t < T) {
-    k.acc = p.speed / T * d;
-    k.vel = p.speed * t / T * d;
-    k.pos = p.speed * t * t / (2 * T) * d;
-  } else {
-    k.vel = p.speed * d;
-    k.pos = p.speed * (t - T / 2) * d;
-  }
-  return k;
-}
+/// A law with a displacement of its own (an offset law).
+template <class L>
+concept OffsetLaw = requires(const L& law, double t) {
+  { law.at(t) } -> std::same_as<TowKinematics>;
+};
 
-/// Heave: z += A sin(2 pi (t - t0) / T) after t0 (rising first).
-TowKinematics heave(const TowPiece& p, double t) {
-  TowKinematics k{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-  if (t <= p.start_time) return k;
-  const double w = 2 * std::numbers::pi / p.period;
-  const double ph = w * (t - p.start_time);
-  k.pos.z() = p.amplitude * std::sin(ph);
-  k.vel.z() = p.amplitude * w * std::cos(ph);
-  k.acc.z() = -p.amplitude * w * w * std::sin(ph);
-  return k;
-}
-
-/// Second derivatives of the natural cubic spline through (ts, xs) (Thomas algorithm).
-std::vector<Vec3> spline_curvatures(const std::vector<double>& ts, const std::vector<Vec3>& xs) {
-  const std::size_t m = ts.size();
-  std::vector<Vec3> M(m, Vec3::Zero());
-  if (m <= 2) return M;
-  std::vector<double> c(m, 0.0);
-  std::vector<Vec3> d(m, Vec3::Zero());
-  for (std::size_t i = 1; i + 1 < m; ++i) {
-    const double h0 = ts[i] - ts[i - 1], h1 = ts[i + 1] - ts[i];
-    const Vec3 rhs = 6 * ((xs[i + 1] - xs[i]) / h1 - (xs[i] - xs[i - 1]) / h0);
-    const double diag = 2 * (h0 + h1) - h0 * c[i - 1];
-    c[i] = h1 / diag;
-    d[i] = (rhs - h0 * d[i - 1]) / diag;
-  }
-  for (std::size_t i = m - 2; i >= 1; --i) M[i] = d[i] - c[i] * M[i + 1];
-  return M;
-}
-
-/// Track: natural cubic spline through (time, position), so velocity and
-/// acceleration are continuous; straight-line extrapolation outside the table.
-TowKinematics track(const TowPiece& p, double t) {
-  const auto& ts = p.track_time;
-  const auto& xs = p.track_pos;
-  const std::size_t m = ts.size();
-  TowKinematics k{xs.front(), Vec3::Zero(), Vec3::Zero()};
-  if (m < 2) return k;
-  const std::vector<Vec3> local = p.track_curv.size() == m ? std::vector<Vec3>{} : spline_curvatures(ts, xs);
-  const std::vector<Vec3>& M = p.track_curv.size() == m ? p.track_curv : local;
-  auto segment = [&](std::size_t i, double tt) {
-    const double h = ts[i + 1] - ts[i];
-    const double a = (ts[i + 1] - tt) / h, b = (tt - ts[i]) / h;
-    TowKinematics s;
-    s.pos = a * xs[i] + b * xs[i + 1] + ((a * a * a - a) * M[i] + (b * b * b - b) * M[i + 1]) * h * h / 6;
-    s.vel = (xs[i + 1] - xs[i]) / h + ((1 - 3 * a * a) * M[i] + (3 * b * b - 1) * M[i + 1]) * h / 6;
-    s.acc = a * M[i] + b * M[i + 1];
-    return s;
-  };
-  if (t <= ts.front()) {
-    TowKinematics s = segment(0, ts.front());
-    return {s.pos + s.vel * (t - ts.front()), s.vel, Vec3::Zero()};
-  }
-  if (t >= ts.back()) {
-    TowKinematics s = segment(m - 2, ts.back());
-    return {s.pos + s.vel * (t - ts.back()), s.vel, Vec3::Zero()};
-  }
-  const std::size_t i = std::min<std::size_t>(std::upper_bound(ts.begin(), ts.end(), t) - ts.begin() - 1, m - 2);
-  return segment(i, t);
-}
-
-/// Sum of every piece but the turn.
-TowKinematics straight_path(const Tow& tow, double t) {
+/// Start plus the sum of the offset laws at t; manoeuvres add zeros.
+TowKinematics offsets(const Tow& tow, double t) {
   TowKinematics k{tow.start, Vec3::Zero(), Vec3::Zero()};
-  for (const auto& p : tow.pieces) {
-    TowKinematics d{Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-    switch (p.type) {
-      case TowPiece::Type::Ramp: d = ramp(p, t); break;
-      case TowPiece::Type::Heave: d = heave(p, t); break;
-      case TowPiece::Type::Track: d = track(p, t); break;
-      case TowPiece::Type::Turn: break;
-    }
+  for (const auto& piece : tow.pieces) {
+    const TowKinematics d = std::visit(
+        [t](const auto& law) -> TowKinematics {
+          if constexpr (OffsetLaw<std::decay_t<decltype(law)>>)
+            return law.at(t);
+          else
+            return {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+        },
+        piece);
     k.pos += d.pos;
     k.vel += d.vel;
     k.acc += d.acc;
@@ -111,52 +38,138 @@ TowKinematics straight_path(const Tow& tow, double t) {
   return k;
 }
 
-}  // namespace
+enum class Event { Begin, TurnEnd, SpeedEnd };
+constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 
-TowKinematics tow_kinematics(const Tow& tow, double t) {
-  TowKinematics k = straight_path(tow, t);
-  const auto turn = std::find_if(tow.pieces.begin(), tow.pieces.end(),
-                                 [](const TowPiece& p) { return p.type == TowPiece::Type::Turn; });
-  if (turn == tow.pieces.end() || t <= turn->start_time) return k;
-  // Turn: leave the straight path tangentially on a circle at the horizontal
-  // speed V reached at start_time; the vertical motion carries on unchanged.
-  const TowKinematics s = straight_path(tow, turn->start_time);
-  Vec3 vh(s.vel.x(), s.vel.y(), 0);
+/// Walk the course from the first manoeuvre up to time t, event by event
+/// (a manoeuvre begins, a turn or a speed change ends), calling
+/// on_event(time, event, piece index, course) at each one before t; leave c
+/// at the segment containing t. False when there is no course at t: no
+/// manoeuvre, t not after the first one, or no horizontal speed then (no heading).
+template <class OnEvent>
+bool walk(const Tow& tow, double t, CourseState& c, OnEvent&& on_event) {
+  const auto& ps = tow.pieces;
+  std::size_t i = 0;
+  while (i < ps.size() && !is_manoeuvre(ps[i])) ++i;
+  if (i == ps.size()) return false;
+  const double t_first = start_time(ps[i]);
+  if (!(t > t_first)) return false;
+  // The course starts from the offsets' horizontal position and velocity.
+  const TowKinematics s = offsets(tow, t_first);
+  const Vec3 vh(s.vel.x(), s.vel.y(), 0);
   const double V = vh.norm();
-  if (V <= 0) return k;
-  const Vec3 h = vh / V;                                            // heading
-  const Vec3 n = turn->port ? Vec3(-h.y(), h.x(), 0) : Vec3(h.y(), -h.x(), 0);  // towards the centre
-  const double R = turn->radius;
-  const double phi = V * (t - turn->start_time) / R;
-  const Vec3 ph = Vec3(s.pos.x(), s.pos.y(), 0) + R * (1 - std::cos(phi)) * n + R * std::sin(phi) * h;
-  const Vec3 vv = V * (std::cos(phi) * h + std::sin(phi) * n);
-  const Vec3 aa = V * V / R * (std::cos(phi) * n - std::sin(phi) * h);
-  k.pos = Vec3(ph.x(), ph.y(), k.pos.z());
-  k.vel = Vec3(vv.x(), vv.y(), k.vel.z());
-  k.acc = Vec3(aa.x(), aa.y(), k.acc.z());
-  return k;
+  if (V <= 0) return false;
+  c = CourseState{};
+  c.t0 = t_first;
+  c.p = Vec3(s.pos.x(), s.pos.y(), 0);
+  c.h = vh / V;
+  c.U = V;
+  std::size_t turn_piece = kNone, speed_piece = kNone;
+  while (true) {
+    // Begin the manoeuvres due now (they are in time order).
+    for (; i < ps.size(); ++i) {
+      if (!is_manoeuvre(ps[i])) continue;
+      if (start_time(ps[i]) > c.t0) break;
+      on_event(c.t0, Event::Begin, i, c);
+      if (const auto* turn = std::get_if<Turn>(&ps[i])) {
+        turn->begin(c);
+        turn_piece = i;
+      } else if (const auto* speed = std::get_if<SpeedChange>(&ps[i])) {
+        speed->begin(c);
+        speed_piece = i;
+      }
+    }
+    // The next event; t inside this segment: done.
+    const double t_next = i < ps.size() ? start_time(ps[i]) : CourseState::kNever;
+    const double t_turn = turn_end_time(c);
+    const double te = std::min({t_next, c.a_end, t_turn});
+    if (!(te < t)) return true;
+    const bool turn_ends = t_turn == te, speed_ends = c.a_end == te;
+    advance(c, te, turn_ends);
+    if (speed_ends) {  // land exactly on the new speed
+      c.U = c.U_end;
+      c.a = 0;
+      c.a_end = CourseState::kNever;
+      on_event(te, Event::SpeedEnd, speed_piece, c);
+    }
+    if (turn_ends) on_event(te, Event::TurnEnd, turn_piece, c);
+  }
 }
 
-void prepare_track(TowPiece& piece) {
-  if (piece.type == TowPiece::Type::Track && piece.track_time.size() >= 2)
-    piece.track_curv = spline_curvatures(piece.track_time, piece.track_pos);
+}  // namespace
+
+bool is_manoeuvre(const TowLaw& law) {
+  return std::holds_alternative<Turn>(law) || std::holds_alternative<SpeedChange>(law);
+}
+
+double start_time(const TowLaw& law) {
+  if (const auto* turn = std::get_if<Turn>(&law)) return turn->start_time;
+  if (const auto* speed = std::get_if<SpeedChange>(&law)) return speed->start_time;
+  return 0;
+}
+
+TowKinematics tow_kinematics(const Tow& tow, double t) {
+  TowKinematics k = offsets(tow, t);
+  CourseState c;
+  if (!walk(tow, t, c, [](double, Event, std::size_t, const CourseState&) {})) return k;
+  // The course replaces the horizontal motion; the offsets keep the vertical.
+  const TowKinematics h = course_at(c, t);
+  k.pos = Vec3(h.pos.x(), h.pos.y(), k.pos.z());
+  k.vel = Vec3(h.vel.x(), h.vel.y(), k.vel.z());
+  k.acc = Vec3(h.acc.x(), h.acc.y(), k.acc.z());
+  return k;
 }
 
 std::vector<double> tow_breakpoints(const Tow& tow) {
   std::vector<double> out;
-  for (const auto& p : tow.pieces) {
-    if (p.type == TowPiece::Type::Ramp && p.ramp_time > 0) out.push_back(p.ramp_time);
-    if (p.type == TowPiece::Type::Heave || p.type == TowPiece::Type::Turn) out.push_back(p.start_time);
-    if (p.type == TowPiece::Type::Track && !p.track_time.empty()) {
-      out.push_back(p.track_time.front());
-      out.push_back(p.track_time.back());
-    }
-  }
+  for (const auto& piece : tow.pieces)
+    std::visit(
+        [&](const auto& law) {
+          if constexpr (OffsetLaw<std::decay_t<decltype(law)>>)
+            law.breakpoints(out);
+          else
+            out.push_back(law.start_time);
+        },
+        piece);
+  // Ends of turns and speed changes (found by running the course).
+  CourseState c;
+  walk(tow, CourseState::kNever, c,
+       [&](double te, Event, std::size_t, const CourseState&) { out.push_back(te); });
   if (tow.mode == Tow::Mode::Force) out.insert(out.end(), tow.force_time.begin(), tow.force_time.end());
   std::erase_if(out, [](double t) { return !(t > 0); });
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
+}
+
+std::vector<ManoeuvreSpan> manoeuvre_spans(const Tow& tow) {
+  std::vector<ManoeuvreSpan> spans;
+  CourseState c;
+  walk(tow, CourseState::kNever, c, [&](double te, Event ev, std::size_t piece, const CourseState& now) {
+    if (ev == Event::Begin) {
+      spans.push_back({piece, te, CourseState::kNever, now.U});
+      return;
+    }
+    for (auto& s : spans)
+      if (s.piece == piece) s.end = te;
+  });
+  // A turn cut short by a later one (refused by compile): its end without the later turns.
+  for (auto& s : spans) {
+    const auto* turn = std::get_if<Turn>(&tow.pieces[s.piece]);
+    if (turn == nullptr || std::isfinite(s.end) || !std::isfinite(turn->angle)) continue;
+    Tow alone = tow;
+    alone.pieces.clear();
+    for (std::size_t j = 0; j < tow.pieces.size(); ++j)
+      if (j <= s.piece || !std::holds_alternative<Turn>(tow.pieces[j])) alone.pieces.push_back(tow.pieces[j]);
+    walk(alone, CourseState::kNever, c, [&](double te, Event ev, std::size_t piece, const CourseState&) {
+      if (ev == Event::TurnEnd && piece == s.piece) s.end = te;
+    });
+  }
+  return spans;
+}
+
+bool final_course(const Tow& tow, CourseState& out) {
+  return walk(tow, CourseState::kNever, out, [](double, Event, std::size_t, const CourseState&) {});
 }
 
 Vec3 tow_force(const Tow& tow, double t) {

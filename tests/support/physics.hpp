@@ -61,32 +61,17 @@ inline std::vector<Sample> run(const Model& m, RunStats* stats_out = nullptr) {
 }
 
 /// A ramp piece of tow motion: speed reached linearly over ramp_time.
-inline TowPiece ramp_piece(const Vec3& direction, double speed, double ramp_time) {
-  TowPiece p{};
-  p.type = TowPiece::Type::Ramp;
-  p.direction = direction;
-  p.speed = speed;
-  p.ramp_time = ramp_time;
-  return p;
+inline TowLaw ramp_piece(const Vec3& direction, double speed, double ramp_time) {
+  return Ramp{direction, speed, ramp_time};
 }
 /// A heave piece: z += amplitude sin(2 pi (t - start) / period) after start.
-inline TowPiece heave_piece(double amplitude, double period, double start_time) {
-  TowPiece p{};
-  p.type = TowPiece::Type::Heave;
-  p.amplitude = amplitude;
-  p.period = period;
-  p.start_time = start_time;
-  return p;
+inline TowLaw heave_piece(double amplitude, double period, double start_time) {
+  return Heave{amplitude, period, start_time};
 }
 
 /// A turn piece: leaves the straight path at start_time on a circle of `radius`.
-inline TowPiece turn_piece(double radius, double start_time, bool port = true) {
-  TowPiece p{};
-  p.type = TowPiece::Type::Turn;
-  p.radius = radius;
-  p.start_time = start_time;
-  p.port = port;
-  return p;
+inline TowLaw turn_piece(double radius, double start_time, bool port = true) {
+  return Turn{radius, start_time, port};
 }
 
 /// Kinetic and potential energy [J].

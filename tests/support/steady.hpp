@@ -35,12 +35,7 @@ inline void straight_tow(Model& m, double V) {
   m.tow.mode = Tow::Mode::Motion;
   m.tow.pieces.clear();
   if (V != 0) {
-    TowPiece p{};
-    p.type = TowPiece::Type::Ramp;
-    p.direction = Vec3::UnitX();
-    p.speed = V;
-    p.ramp_time = 0;
-    m.tow.pieces.push_back(p);
+    m.tow.pieces.push_back(Ramp{Vec3::UnitX(), V, 0});
   }
 }
 

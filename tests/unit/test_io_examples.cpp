@@ -53,7 +53,7 @@ TEST(IoExamples, PaperPlanarValues) {
   const auto b = load_scenario_text(find_example("paper-planar-b")->yaml, "b.yaml", "b", "");
   ASSERT_TRUE(b.ok());
   ASSERT_EQ(b.model->tow.pieces.size(), 2u);
-  EXPECT_EQ(b.model->tow.pieces[1].type, towsim::TowPiece::Type::Heave);
+  EXPECT_TRUE(std::holds_alternative<towsim::Heave>(b.model->tow.pieces[1]));
 }
 
 TEST(IoExamples, Paper3dTurnValues) {
@@ -65,9 +65,9 @@ TEST(IoExamples, Paper3dTurnValues) {
   EXPECT_DOUBLE_EQ(m.bodies[0].inertia_cg(2, 2), 0.003);
   EXPECT_DOUBLE_EQ(m.bodies[0].link_point.z(), 0.05);
   ASSERT_EQ(m.tow.pieces.size(), 2u);
-  EXPECT_EQ(m.tow.pieces[1].type, towsim::TowPiece::Type::Turn);
-  EXPECT_TRUE(m.tow.pieces[1].port);
-  EXPECT_DOUBLE_EQ(m.tow.pieces[1].radius, 7.5);
+  ASSERT_TRUE(std::holds_alternative<towsim::Turn>(m.tow.pieces[1]));
+  EXPECT_TRUE(std::get<towsim::Turn>(m.tow.pieces[1]).port);
+  EXPECT_DOUBLE_EQ(std::get<towsim::Turn>(m.tow.pieces[1]).radius, 7.5);
 }
 
 namespace {

@@ -196,7 +196,8 @@ TEST_F(ScenarioFile, TurnNeedsHorizontalSpeed) {
                       "tow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: 2, ramp_time: 10}\n"
                       "    - {type: turn, radius: 5, start_time: 0}\n"
                       "    - {type: turn, radius: 5, start_time: 3}\n");
-  EXPECT_EQ(s.diags.str(), at("12:7: tow.motion.2: at most one turn piece is allowed (the first is tow.motion.1)"));
+  EXPECT_EQ(s.diags.str(), at("12:7: tow.motion.2: a turn cannot start while the turn tow.motion.1 goes on (it has no "
+                              "angle_deg: it never ends)"));
   const auto t = load(kCable + kSim +
                       "tow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: 2, ramp_time: 10}\n"
                       "    - {type: turn, radius: 5, start_time: 0}\n");

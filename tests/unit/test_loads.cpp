@@ -63,7 +63,7 @@ struct Loads {
 };
 Loads loads(const Model& m, const Element& el, const Vec3& e, const Vec3& edot, const Vec3& vG, double zG = -10) {
   Loads l;
-  towsim::element_loads(m, el, e, edot, vG, zG, l.F, l.M);
+  towsim::element_loads(m, el, e, edot, vG, Vec3(0, 0, zG), 0.0, l.F, l.M);
   return l;
 }
 

@@ -183,8 +183,8 @@ TEST_F(Refusal, NonUnitDirectionsAreNormalised) {
                       "tow:\n  motion:\n    - {type: ramp, direction: [3, 4, 0], speed: 2, ramp_time: 1}\n"
                       "initial: {direction: [0, 0, -5]}\n");
   ASSERT_TRUE(s.ok()) << s.diags.str();
-  EXPECT_NEAR(s.model->tow.pieces.at(0).direction.x(), 0.6, 1e-15);
-  EXPECT_NEAR(s.model->tow.pieces.at(0).direction.y(), 0.8, 1e-15);
+  EXPECT_NEAR(std::get<towsim::Ramp>(s.model->tow.pieces.at(0)).direction.x(), 0.6, 1e-15);
+  EXPECT_NEAR(std::get<towsim::Ramp>(s.model->tow.pieces.at(0)).direction.y(), 0.8, 1e-15);
   EXPECT_NEAR(s.model->initial.direction.z(), -1.0, 1e-15);
 }
 

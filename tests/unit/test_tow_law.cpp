@@ -24,7 +24,7 @@ namespace {
 
 using towsim::Tow;
 using towsim::TowKinematics;
-using towsim::TowPiece;
+using TowPiece = towsim::TowLaw;
 using towsim::Vec3;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -34,35 +34,13 @@ void report(const char* what, double err, double tol) {
   std::printf("[measured] %-58s max err %.3e  (tol %.3e)\n", what, err, tol);
 }
 
-TowPiece ramp(Vec3 dir, double speed, double ramp_time) {
-  TowPiece p;
-  p.type = TowPiece::Type::Ramp;
-  p.direction = dir;
-  p.speed = speed;
-  p.ramp_time = ramp_time;
-  return p;
-}
-TowPiece heave(double amplitude, double period, double start) {
-  TowPiece p;
-  p.type = TowPiece::Type::Heave;
-  p.amplitude = amplitude;
-  p.period = period;
-  p.start_time = start;
-  return p;
-}
-TowPiece turn(double radius, double start, bool port) {
-  TowPiece p;
-  p.type = TowPiece::Type::Turn;
-  p.radius = radius;
-  p.start_time = start;
-  p.port = port;
-  return p;
-}
+TowPiece ramp(Vec3 dir, double speed, double ramp_time) { return towsim::Ramp{dir, speed, ramp_time}; }
+TowPiece heave(double amplitude, double period, double start) { return towsim::Heave{amplitude, period, start}; }
+TowPiece turn(double radius, double start, bool port) { return towsim::Turn{radius, start, port}; }
 TowPiece track(std::vector<double> t, std::vector<Vec3> x) {
-  TowPiece p;
-  p.type = TowPiece::Type::Track;
-  p.track_time = std::move(t);
-  p.track_pos = std::move(x);
+  towsim::Track p;  // spline not prepared: evaluated from the rows
+  p.time = std::move(t);
+  p.pos = std::move(x);
   return p;
 }
 Tow motion(std::vector<TowPiece> pieces, Vec3 start = Vec3::Zero()) {

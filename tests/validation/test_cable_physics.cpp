@@ -210,12 +210,11 @@ Model smooth_tow_model() {
   spec.length = 30;
   spec.tangential = 0.0;
   Model m = testing::cable_model(spec);
-  TowPiece p{};
-  p.type = TowPiece::Type::Track;
+  Track p;
   for (int i = -2; i <= 10; ++i) {
     const double t = i;
-    p.track_time.push_back(t);
-    p.track_pos.push_back(Vec3(1.5 * t + 0.3 * std::sin(t), 0.5 * std::sin(0.7 * t), 0.3 * std::sin(1.3 * t)));
+    p.time.push_back(t);
+    p.pos.push_back(Vec3(1.5 * t + 0.3 * std::sin(t), 0.5 * std::sin(0.7 * t), 0.3 * std::sin(1.3 * t)));
   }
   m.tow.pieces.push_back(p);
   return m;

@@ -161,8 +161,7 @@ TEST_P(StaticsDynamicInvariance, TowedInStillWaterEqualsHeldInCurrent) {
   const DynamicInvarianceCase c = GetParam();
   Model towed = validation::example_model(c.example);
   validation::straight_tow(towed, c.V);
-  TowPiece heave{};
-  heave.type = TowPiece::Type::Heave;
+  towsim::Heave heave;
   heave.amplitude = 1.0;
   heave.period = 10.0;
   heave.start_time = 5.0;

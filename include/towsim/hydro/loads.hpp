@@ -12,10 +12,10 @@ double smooth_sign(double x, double v_s);
 /// normal pressure drag, tangential friction and the velocity terms of the
 /// ideal-fluid added mass (incl. the Munk moment). The acceleration terms of
 /// the added mass are NOT included: they belong to the mass matrix Mt, Ia.
-/// e: unit axis, edot = de/dt, vG: velocity of G, zG: height of G.
-/// Outputs: F [N, R_g] and moment about G, M [N m, R_g].
+/// e: unit axis, edot = de/dt, vG: velocity of G, xG: position of G [m, R_g],
+/// t: time [s]. Outputs: F [N, R_g] and moment about G, M [N m, R_g].
 void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot,
-                   const Vec3& vG, double zG, Vec3& F, Vec3& M);
+                   const Vec3& vG, const Vec3& xG, double t, Vec3& F, Vec3& M);
 
 /// Translational inertia of an element at G: m I + ma (I - ee^T) [kg].
 Mat3 element_mass(const Element& el, const Vec3& e);
@@ -27,7 +27,8 @@ inline double element_rot_inertia(const Element& el) { return el.inertia + el.ad
 /// d(momentum, moment of momentum about O_t)/dt = Mw [a_O; alpha] + hw.
 /// Rigid part with absolute velocities, added mass with velocities relative to
 /// the water (Kirchhoff's equations). Needs bw's kinematics (compute_kinematics).
-void body_inertia(const Fluid& fluid, const Body& body, BodyWork& bw);
+/// t: time [s] (the water's velocity may depend on it; steady flows ignore it).
+void body_inertia(const Fluid& fluid, const Body& body, BodyWork& bw, double t = 0);
 
 /// External loads on the body except the link force: gravity, buoyancy,
 /// sphere, cylinder and lifting-surface loads, damping. Force bw.Fb [N] and
@@ -37,7 +38,7 @@ void body_loads(const Fluid& fluid, const Body& body, double t, BodyWork& bw);
 /// Loads of the attachments lumped at each joint: ws.Ma (mass + added mass)
 /// and ws.Fa (apparent weight, drag on the velocity relative to the water).
 /// Needs the joints' kinematics (compute_kinematics).
-void attachment_loads(const Model& model, Workspace& ws);
+void attachment_loads(const Model& model, double t, Workspace& ws);
 
 /// Lift coefficient of a lifting surface at angle of attack alpha [rad]:
 /// linear up to stall, then falling smoothly to zero at 90 degrees.

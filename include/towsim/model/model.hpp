@@ -8,35 +8,14 @@
 // (x forward, y, z) attached to the towed body at its origin O_t.
 #pragma once
 
-#include <Eigen/Dense>
 #include <string>
 #include <vector>
 
+#include "towsim/model/fluid.hpp"
+#include "towsim/model/types.hpp"
+#include "towsim/tow/tow.hpp"
+
 namespace towsim {
-
-using Vec3 = Eigen::Vector3d;
-using Mat3 = Eigen::Matrix3d;
-using Mat6 = Eigen::Matrix<double, 6, 6>;
-using Vec6 = Eigen::Matrix<double, 6, 1>;
-using Quat = Eigen::Quaterniond;
-
-/// Water and gravity. `rho == 0` means no fluid at all (vacuum).
-struct Fluid {
-  double rho = 1025.0;  // water density [kg/m^3]
-  double g = 9.81;      // gravitational acceleration [m/s^2], along -z_g
-
-  /// Current profile: velocity U(z) [m/s, R_g] given at depths, linearly
-  /// interpolated in depth, held constant beyond the table's ends. A single
-  /// row means a uniform current. Empty means still water.
-  std::vector<double> current_depth;  // depth = -z of each row [m], increasing
-  std::vector<Vec3> current_velocity;  // U at that depth [m/s, R_g]
-
-  /// Current U at height z [m/s, R_g].
-  Vec3 current(double z) const;
-  /// dU/dz at height z [1/s, R_g] (zero for a uniform current).
-  Vec3 current_gradient(double z) const;
-  bool has_current() const { return !current_velocity.empty(); }
-};
 
 /// Tangential (axial) friction law on a cable element (docs/theory.md §3).
 enum class TangentialLaw {
@@ -162,53 +141,6 @@ struct Body {
   double displaced_volume = 0;        // total: volume + spheres + cylinders [m^3]
   Vec3 buoyancy_center = Vec3::Zero();// centre of the total displaced volume, body axes [m]
 };
-
-/// One piece of an imposed tow-point motion (docs/scenario.md "tow").
-struct TowPiece {
-  enum class Type { Ramp, Heave, Turn, Track } type;
-  Vec3 direction = Vec3::UnitX();  // ramp: unit direction [-]
-  double speed = 0;       // ramp: final speed [m/s]
-  double ramp_time = 0;   // ramp: time to reach it [s] (0 = at once)
-  double amplitude = 0;   // heave: [m]
-  double period = 0;      // heave: [s]
-  double start_time = 0;  // heave, turn: [s]
-  double radius = 0;      // turn: [m]
-  bool port = true;       // turn: true = to port (left), false = starboard
-  // track: time, and position relative to the tow start (natural cubic spline)
-  std::vector<double> track_time;  // [s], strictly increasing
-  std::vector<Vec3> track_pos;     // [m, R_g]
-  std::vector<Vec3> track_curv;    // spline second derivatives at the knots [m/s^2] (prepare_track)
-};
-
-/// Precompute a track piece's natural-spline coefficients (track_curv), so
-/// that evaluating it costs O(log rows) with no allocation. Pieces without
-/// them are still evaluated correctly, recomputing the spline per call.
-void prepare_track(TowPiece& piece);
-
-/// The tow point O_r: imposed motion (tow force is an output) or imposed force.
-struct Tow {
-  enum class Mode { Motion, Force } mode = Tow::Mode::Motion;
-  Vec3 start = Vec3::Zero();     // O_r at t = 0 [m, R_g]
-  std::vector<TowPiece> pieces;  // Motion: summed (a turn replaces the horizontal path)
-  // Force: F_R(t) tabulated (one row = constant), linear interpolation [s], [N, R_g]
-  std::vector<double> force_time;
-  std::vector<Vec3> force_value;
-};
-
-/// Kinematics of the tow point at one instant.
-struct TowKinematics {
-  Vec3 pos, vel, acc;  // [m], [m/s], [m/s^2], R_g
-};
-
-/// Imposed tow-point kinematics at time t (Motion mode).
-TowKinematics tow_kinematics(const Tow& tow, double t);
-/// Imposed tow force at time t (Force mode) [N, R_g].
-Vec3 tow_force(const Tow& tow, double t);
-
-/// Times > 0 where the tow law is not smooth (end of a ramp, start of a heave
-/// or a turn, ends of a track, rows of a force table), sorted. Integrators
-/// land on them so that no step straddles a jump in acceleration or velocity.
-std::vector<double> tow_breakpoints(const Tow& tow);
 
 /// How the run starts.
 struct Initial {

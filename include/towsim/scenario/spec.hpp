@@ -154,20 +154,25 @@ struct BodySpec {
   std::vector<SurfaceSpec> surfaces;
 };
 
-/// tow.motion item: ramp, heave, turn or track.
+/// tow.motion item: ramp, heave, turn, speed or track.
 struct PieceSpec {
   Where where;
-  Field<std::string> type;        // ramp | heave | turn | track
+  Field<std::string> type;        // ramp | heave | turn | speed | track
   Field<Vec3> direction;          // ramp [-]
-  Field<double> speed;            // ramp [m/s]
-  Field<double> ramp_time;        // ramp [s]
+  Field<double> speed;            // ramp, speed [m/s] (`speed_kn` in knots)
+  Field<double> ramp_time;        // ramp, speed [s]
   Field<double> amplitude;        // heave [m]
   Field<double> period;           // heave [s]
-  Field<double> start_time{0.0};  // heave, turn [s]
+  Field<double> start_time{0.0};  // heave, turn, speed [s]
   Field<double> radius;           // turn [m]
   Field<std::string> side{"port"};  // turn: port | starboard
+  Field<double> angle_deg;        // turn: change of heading at which it ends [deg]; absent = never ends
   Where track_where;              // track: the `file` or `points` key
   std::vector<RowSpec> track;     // track rows {t [s], x, y, z [m]}
+  Field<double> speed_scale{1.0}; // track: times are divided by it [-]
+
+  /// A piece that steers the course (turn, speed).
+  bool manoeuvre() const { return type.value == "turn" || type.value == "speed"; }
 };
 
 /// tow: the tow point's imposed motion or force.

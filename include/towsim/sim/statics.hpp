@@ -25,7 +25,9 @@ struct StaticsResult {
 };
 
 /// The tow velocity a steady tow settles to: the sum of the ramps' final
-/// velocities and a track's final velocity (heave and turn left out) [m/s].
+/// velocities and a track's final velocity (heave left out); with turns or
+/// speed changes, horizontally the course's final speed along its heading
+/// after the last manoeuvre (a turn that never ends: the heading at its start) [m/s].
 Vec3 final_tow_velocity(const Tow& tow);
 
 /// Equilibrium of the model's cable and body when the tow point moves at the

@@ -1,0 +1,39 @@
+// The vessel's course once manoeuvres steer it: speed U(t) along a heading
+// psi(t) in the horizontal plane (docs/theory.md 6.2).
+#pragma once
+
+#include <limits>
+
+#include "towsim/tow/kinematics.hpp"
+
+namespace towsim {
+
+/// The course at a time t0 where a segment starts. Within a segment the speed
+/// changes at a constant rate `a` and the path has constant curvature (a
+/// straight line, R = 0, or an arc of radius R), so position, velocity and
+/// acceleration are closed forms of the distance run s(t) = U tau + a tau^2 / 2
+/// (tau = t - t0): exact to round-off.
+struct CourseState {
+  static constexpr double kNever = std::numeric_limits<double>::infinity();
+  double t0 = 0;            // start of the segment [s]
+  Vec3 p = Vec3::Zero();    // horizontal position at t0 [m, R_g] (z = 0)
+  Vec3 h = Vec3::UnitX();   // unit heading at t0 [-, R_g] (horizontal)
+  double U = 0;             // speed along the heading at t0 [m/s]
+  double a = 0;             // dU/dt while a speed change runs [m/s^2]
+  double a_end = kNever;    // time the speed change ends [s]
+  double U_end = 0;         // speed then [m/s]
+  double R = 0;             // turn radius [m]; 0 = straight
+  Vec3 n = Vec3::Zero();    // unit normal towards the turn's centre [-, R_g]
+  double turn_left = kNever;  // heading change left before the turn ends [rad]
+};
+
+/// Horizontal position, velocity and acceleration at t >= c.t0 in c's segment.
+TowKinematics course_at(const CourseState& c, double t);
+/// The time the running turn ends if the segment lasts (kNever if it does not end).
+double turn_end_time(const CourseState& c);
+/// Start a new segment at te >= c.t0. `turn_ends`: te is the running turn's
+/// end, where the heading has turned by exactly turn_left; the path is
+/// straight after it.
+void advance(CourseState& c, double te, bool turn_ends);
+
+}  // namespace towsim

@@ -1,0 +1,70 @@
+// The tow point O_r: imposed motion (tow force is an output) or imposed force
+// (docs/scenario.md "tow", docs/theory.md 6.1-6.2).
+//
+// A motion is a list of pieces, each a small law type in its own file. Two
+// kinds compose:
+// - offset laws (Ramp, Heave, Track) give a displacement from the tow start;
+//   the displacements add up;
+// - manoeuvres (Turn, SpeedChange), listed in time order, steer a vessel
+//   course: from the first manoeuvre on, the horizontal motion is the course
+//   (speed U(t) along heading psi(t), started from the offsets' horizontal
+//   position and velocity then), and the offsets give only the vertical.
+// Adding a law: its own header and source, one entry in TowLaw, its parser.
+#pragma once
+
+#include <variant>
+#include <vector>
+
+#include "towsim/tow/heave.hpp"
+#include "towsim/tow/ramp.hpp"
+#include "towsim/tow/speed.hpp"
+#include "towsim/tow/track.hpp"
+#include "towsim/tow/turn.hpp"
+
+namespace towsim {
+
+/// One piece of an imposed tow-point motion.
+using TowLaw = std::variant<Ramp, Heave, Track, Turn, SpeedChange>;
+
+/// True for a manoeuvre (a piece that steers the course).
+bool is_manoeuvre(const TowLaw& law);
+/// A manoeuvre's start time [s] (0 for an offset law).
+double start_time(const TowLaw& law);
+
+/// The tow point O_r: imposed motion (tow force is an output) or imposed force.
+struct Tow {
+  enum class Mode { Motion, Force } mode = Tow::Mode::Motion;
+  Vec3 start = Vec3::Zero();   // O_r at t = 0 [m, R_g]
+  std::vector<TowLaw> pieces;  // Motion: offsets add; manoeuvres (in time order) steer the course
+  // Force: F_R(t) tabulated (one row = constant), linear interpolation [s], [N, R_g]
+  std::vector<double> force_time;
+  std::vector<Vec3> force_value;
+};
+
+/// Imposed tow-point kinematics at time t (Motion mode).
+TowKinematics tow_kinematics(const Tow& tow, double t);
+/// Imposed tow force at time t (Force mode) [N, R_g].
+Vec3 tow_force(const Tow& tow, double t);
+
+/// Times > 0 where the tow law is not smooth (end of a ramp, start of a heave,
+/// ends of a track, start and end of each manoeuvre, rows of a force table),
+/// sorted. Integrators land on them so that no step straddles a jump in
+/// acceleration or velocity.
+std::vector<double> tow_breakpoints(const Tow& tow);
+
+/// Where a manoeuvre runs on the course, for checks and reports.
+struct ManoeuvreSpan {
+  std::size_t piece = 0;  // index in Tow::pieces [-]
+  double start = 0;       // [s]
+  double end = 0;         // [s], as if no later turn cut it short; CourseState::kNever: never ends
+  double speed = 0;       // course speed at its start [m/s]
+};
+/// The manoeuvres' spans, in list order. Empty when the course cannot start
+/// (no horizontal speed at the first manoeuvre: no heading).
+std::vector<ManoeuvreSpan> manoeuvre_spans(const Tow& tow);
+
+/// The course after its last event (speed and heading no longer change, unless
+/// a turn never ends), or nothing without manoeuvres.
+bool final_course(const Tow& tow, CourseState& out);
+
+}  // namespace towsim

@@ -1,0 +1,49 @@
+// The water (include/towsim/model/fluid.hpp): a steady current U(z) given by
+// depth, linear between the table's rows.
+#include <algorithm>
+
+#include "towsim/model/fluid.hpp"
+#include "towsim/model/table.hpp"
+
+namespace towsim {
+
+namespace {
+/// Index of the table interval containing x (clamped), for linear interpolation.
+std::size_t interval(const std::vector<double>& xs, double x) {
+  auto it = std::upper_bound(xs.begin(), xs.end(), x);
+  std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(it - xs.begin(), 1)) - 1;
+  return std::min(i, xs.size() - 2);
+}
+}  // namespace
+
+Vec3 Fluid::velocity(const Vec3& x, double /*t*/) const { return current(x.z()); }
+
+Vec3 Fluid::rate_seen(const Vec3& x, const Vec3& v, double /*t*/) const {
+  // Steady and a function of z only: du/dt = 0 and (v . grad) u = U'(z) v_z.
+  return current_gradient(x.z()) * v.z();
+}
+
+Vec3 Fluid::acceleration(const Vec3& x, double /*t*/) const {
+  // Du/Dt = du/dt + (u . grad) u = 0 + U'(z) U_z(z). The current is steady
+  // and varies only with depth, so a water particle keeps its velocity unless
+  // it moves vertically through the shear: for a horizontal current (U_z = 0
+  // in every row, the usual case) the material acceleration is exactly zero.
+  if (uniform()) return Vec3::Zero();
+  return current_gradient(x.z()) * current(x.z()).z();
+}
+
+Vec3 Fluid::current(double z) const {
+  if (current_velocity.empty()) return Vec3::Zero();
+  return interpolate(current_depth, current_velocity, -z);
+}
+
+Vec3 Fluid::current_gradient(double z) const {
+  if (current_velocity.size() < 2) return Vec3::Zero();
+  const double d = -z;
+  if (d <= current_depth.front() || d >= current_depth.back()) return Vec3::Zero();
+  const std::size_t i = interval(current_depth, d);
+  // dU/dz = -dU/d(depth)
+  return -(current_velocity[i + 1] - current_velocity[i]) / (current_depth[i + 1] - current_depth[i]);
+}
+
+}  // namespace towsim
