@@ -1,6 +1,6 @@
-// towsim: the command-line front end (INTERFACE.md). Argument parsing only;
+// towsim: the command-line front end (docs/contract.md §U2). Argument parsing only;
 // each subcommand is registered by its own add_*_command function and runs a
-// function of towsim/io/commands.hpp. Exit statuses: see ExitStatus.
+// function of app/commands.hpp. Exit statuses: see ExitStatus.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -9,10 +9,11 @@
 #include <memory>
 #include <type_traits>
 
-#include "towsim/io/commands.hpp"
-#include "towsim/io/plot.hpp"
-#include "towsim/io/report.hpp"
-#include "towsim/io/sweep.hpp"
+#include "commands.hpp"
+#include "plot.hpp"
+#include "report.hpp"
+#include "sweep.hpp"
+#include "towsim/version.hpp"
 
 namespace {
 
@@ -78,7 +79,7 @@ void add_examples_command(CLI::App& app, int& status) {
   cmd->callback([name, &status] { status = examples_command(*name, std::cout, std::cerr); });
 }
 
-/// `towsim plot DIR`: figures of a run's outputs (src/io/plot.cpp).
+/// `towsim plot DIR`: figures of a run's outputs (app/plot.cpp).
 void add_plot_command(CLI::App& app, int& status) {
   auto dir = std::make_shared<std::string>();
   auto opts = std::make_shared<PlotOptions>();
@@ -139,6 +140,7 @@ void add_sweep_command(CLI::App& app, int& status) {
 int main(int argc, char** argv) {
   CLI::App app{"towsim: simulator of underwater towed cables and towed bodies"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("towsim ") + towsim::kVersion, "Print the version and exit");
   int status = kExitOk;
   add_run_command(app, status);
   add_check_command(app, status);

@@ -1,5 +1,5 @@
 // Cost of one evaluation of the dynamics versus the number of elements n
-// (issue 4, part 4; docs/performance.md).
+// (docs/performance.md "Cost of one evaluation vs n").
 //
 //   forward_dynamics/{cable,sphere}  the default O(n) recursion
 //   paper_dynamics/{cable,sphere}    the paper's dense Lagrange form (n <= 300:

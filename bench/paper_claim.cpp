@@ -1,4 +1,4 @@
-// The paper's claims, measured (issue 4, part 5; docs/performance.md):
+// The paper's claims, measured (docs/performance.md "The paper's claims, measured"; docs/contract.md §P7):
 // "less computing time" and "no noise in the tow force" against the earlier
 // formulation (bench/baseline: Cartesian joints, one multiplier per element,
 // central differences), on the paper's example 5.1, tow law A.

@@ -1,7 +1,7 @@
 # The 3-D view of `towsim report` (web/viewer.js with three.js from the npm
-# registry), bundled by esbuild at build time and embedded into towsim_core,
+# registry), bundled by esbuild at build time and embedded into towsim_app,
 # so that report.html is self-contained and `towsim` needs no file at run time.
-# Included by the top-level CMakeLists.txt after towsim_core is defined.
+# Included by the top-level CMakeLists.txt after towsim_app is defined.
 #
 # npm ci installs the exact versions of web/package-lock.json into
 # build/web/node_modules. Without npm (or with -DTOWSIM_REPORT_3D=OFF, or when
@@ -53,4 +53,4 @@ std::string_view embedded_viewer_note() {
 ]=])
 configure_file(${TOWSIM_VIEWER_CPP}.in ${TOWSIM_VIEWER_CPP} @ONLY)
 set_source_files_properties(${TOWSIM_VIEWER_CPP} PROPERTIES OBJECT_DEPENDS "${TOWSIM_VIEWER_JS};${TOWSIM_VIEWER_NOTE}")
-target_sources(towsim_core PRIVATE ${TOWSIM_VIEWER_CPP} ${TOWSIM_VIEWER_JS})
+target_sources(towsim_app PRIVATE ${TOWSIM_VIEWER_CPP} ${TOWSIM_VIEWER_JS})

@@ -1,5 +1,5 @@
 # Script mode (cmake -P): write OUT, a C++ source holding every
-# SCENARIO_DIR/*.yaml as a byte array (see src/io/examples.cpp).
+# SCENARIO_DIR/*.yaml as a byte array (see src/scenario/examples.cpp).
 file(GLOB files ${SCENARIO_DIR}/*.yaml)
 list(SORT files)
 set(arrays "")

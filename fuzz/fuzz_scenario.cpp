@@ -20,9 +20,9 @@
 #include <string>
 #include <vector>
 
-#include "towsim/io/commands.hpp"
-#include "towsim/io/scenario.hpp"
-#include "towsim/io/yaml_tree.hpp"
+#include "commands.hpp"
+#include "towsim/scenario/scenario.hpp"
+#include "towsim/scenario/yaml_tree.hpp"
 
 namespace {
 

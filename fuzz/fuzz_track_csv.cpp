@@ -18,7 +18,7 @@
 #include <filesystem>
 #include <string>
 
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/scenario.hpp"
 
 namespace {
 

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "towsim/io/commands.hpp"
-#include "towsim/io/examples.hpp"
-#include "towsim/io/output.hpp"
-#include "towsim/io/sweep.hpp"
+#include "commands.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/output/output.hpp"
+#include "sweep.hpp"
 #include "towsim/sim/statics.hpp"
 
 namespace py = pybind11;

@@ -14,9 +14,14 @@ if ! command -v npm >/dev/null 2>&1; then
   packages+=(nodejs npm)
 fi
 # --reliability: also what scripts/fuzz.sh and scripts/soak.sh need (clang + libFuzzer, GNU time).
-if [ "${1:-}" = "--reliability" ]; then
-  packages+=(clang libclang-rt-14-dev time)
-fi
+# --lint: also what scripts/tidy.sh and scripts/format.sh need.
+for arg in "$@"; do
+  case "$arg" in
+    --reliability) packages+=(clang libclang-rt-14-dev time) ;;
+    --lint) packages+=(clang-tidy clang-format) ;;
+    *) echo "setup: unknown option $arg (--reliability, --lint)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,4 +1,4 @@
-// Inertia and external loads of the towed body (MODEL.md 4; paper section 4).
+// Inertia and external loads of the towed body (docs/theory.md §4; paper section 4).
 #include <algorithm>
 #include <cmath>
 #include <numbers>

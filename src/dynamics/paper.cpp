@@ -1,5 +1,5 @@
 // The paper's formulation: dense Lagrange equations in independent angles
-// (paper sections 2-4), assembled in Kane's form (MODEL.md 8).
+// (paper sections 2-4), assembled in Kane's form (docs/theory.md §5.1).
 #include "towsim/dynamics/paper.hpp"
 
 #include <cmath>

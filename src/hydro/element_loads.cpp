@@ -1,4 +1,4 @@
-// Loads on a cable element (MODEL.md 3; paper 2.3-2.43).
+// Loads on a cable element (docs/theory.md §3; paper 2.3-2.43).
 #include <cmath>
 #include <numbers>
 

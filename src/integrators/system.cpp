@@ -135,7 +135,7 @@ class DefaultSystem final : public System {
 
  private:
   void unpack(const StateVector& y, PhysicalState& s) const {
-    s.r0 = CMap3(&y[0]);
+    s.r0 = CMap3(y.data());
     s.v0 = CMap3(&y[3]);
     for (int k = 0; k < n_; ++k) {
       s.e[k] = CMap3(&y[6 + 3 * k]);
@@ -238,7 +238,7 @@ class PaperSystem final : public System {
     Eigen::Map<Eigen::VectorXd>(&y[6 + na_], na_) = p.qd;
   }
   void unpack(const StateVector& y, PaperState& p) const {
-    p.r0 = CMap3(&y[0]);
+    p.r0 = CMap3(y.data());
     p.v0 = CMap3(&y[3]);
     p.q = Eigen::Map<const Eigen::VectorXd>(&y[6], na_);
     p.qd = Eigen::Map<const Eigen::VectorXd>(&y[6 + na_], na_);

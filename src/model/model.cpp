@@ -1,4 +1,4 @@
-// Derived quantities of the compiled model (MODEL.md 2-4).
+// Derived quantities of the compiled model (docs/theory.md §2-4).
 #include "towsim/model/model.hpp"
 #include "towsim/model/table.hpp"
 

@@ -1,4 +1,4 @@
-// The initial state of a run (INTERFACE.md `initial`).
+// The initial state of a run (docs/scenario.md "initial").
 #include "towsim/integrators/system.hpp"
 #include "towsim/sim/statics.hpp"
 

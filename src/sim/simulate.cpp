@@ -21,7 +21,7 @@ constexpr double kMaxRate = 1e4;  // an angular velocity beyond this [rad/s] mea
 /// Output sample of state y at time t; tracks the element length drift.
 Sample sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats) {
   const Workspace& ws = sys.evaluate(y, t);
-  const Sample out = make_sample(model, sys.physical(y), ws, t);
+  Sample out = make_sample(model, sys.physical(y), ws, t);
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
     const int b = ws.body_at[k + 1];
     const Vec3& bottom = b >= 0 ? ws.body[static_cast<std::size_t>(b)].Q : ws.P[k + 1];
@@ -163,7 +163,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       stats.message = "interrupted by signal at t = " + std::to_string(t) + " s";
       break;
     }
-    const double out_time = std::min(T, k * dT);
+    const double out_time = std::min(T, static_cast<double>(k) * dT);
     std::string err;
     // Land on every breakpoint of the tow law up to the output time; where
     // the tow velocity jumps, give the chain its impulsive response.

@@ -1,4 +1,4 @@
-// Steady-tow statics (issue 5): zero accelerations of the dynamics' own equations.
+// Steady-tow statics (docs/theory.md §7): zero accelerations of the dynamics' own equations.
 #include "towsim/sim/statics.hpp"
 
 #include <cmath>

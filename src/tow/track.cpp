@@ -25,10 +25,10 @@ std::vector<Vec3> spline_curvatures(const std::vector<double>& ts, const std::ve
 }
 }  // namespace
 
-Track Track::make(std::vector<double> t, std::vector<Vec3> x) {
+Track Track::make(std::vector<double> time, std::vector<Vec3> pos) {
   Track tr;
-  tr.time = std::move(t);
-  tr.pos = std::move(x);
+  tr.time = std::move(time);
+  tr.pos = std::move(pos);
   tr.prepare();
   return tr;
 }

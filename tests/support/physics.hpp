@@ -1,6 +1,6 @@
 // Independent physics for the validation tests: energies, loads and
 // measurements computed from public outputs (Samples) with formulas written
-// out here from MODEL.md, never by calling the code under test.
+// out here from docs/theory.md, never by calling the code under test.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -100,7 +100,7 @@ inline Energy cable_energy(const Model& m, const Sample& s) {
 }
 
 /// Body attitude (body axes -> R_g) from the sample's roll, pitch, yaw [deg]:
-/// R = Rz(yaw) Ry(pitch) Rx(roll) (MODEL.md 4).
+/// R = Rz(yaw) Ry(pitch) Rx(roll) (docs/theory.md §4).
 inline Mat3 body_rotation(const Sample& s) {
   const double d2r = std::numbers::pi / 180;
   const Vec3 a = s.bodies[0].rpy_deg * d2r;
@@ -158,7 +158,7 @@ inline Energy state_energy(const Model& m, const PhysicalState& s) {
 }
 
 /// Fluid and gravity loads on cable element k (1-based) written out from
-/// MODEL.md 3 with the sample's joint positions and velocities: apparent
+/// docs/theory.md §3 with the sample's joint positions and velocities: apparent
 /// weight, normal drag -1/2 rho Cd D L |u_n| u_n and Pode tangential friction
 /// -1/2 rho Cd f D L |u|^2 sgn_s(u.e) e. Still water; no added mass (use at
 /// steady state, where accelerations and de/dt vanish).

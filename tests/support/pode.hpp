@@ -1,5 +1,5 @@
 // Independent references for the statics and theory validation tests
-// (issue 5): the continuous cable of Pode (1951) integrated by Boost.Odeint,
+// (docs/validation.md §1): the continuous cable of Pode (1951) integrated by Boost.Odeint,
 // the linearised hanging chain, and small helpers. Nothing here calls the
 // code under test; formulas are derived in the comments and in
 // docs/validation.md.

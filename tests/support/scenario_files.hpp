@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/scenario.hpp"
 
 namespace towsim::testing {
 

@@ -1,6 +1,6 @@
-// Steady-tow helpers for the statics validation tests (issue 5): the paper's
+// Steady-tow helpers for the statics validation tests (docs/validation.md §5): the paper's
 // example models, and the fluid and gravity loads of a steady configuration
-// written out from MODEL.md 3-4 with the cable's primary coefficients (never
+// written out from docs/theory.md §3-4 with the cable's primary coefficients (never
 // read back from the compiled loads).
 #pragma once
 
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "towsim/dynamics/state.hpp"
-#include "towsim/io/examples.hpp"
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "towsim/model/model.hpp"
 #include "towsim/sim/simulate.hpp"
 
@@ -39,7 +39,7 @@ inline void straight_tow(Model& m, double V) {
   }
 }
 
-/// The cable's primary coefficients (MODEL.md 3), as a scenario gives them.
+/// The cable's primary coefficients (docs/theory.md §3), as a scenario gives them.
 struct CableCoefficients {
   double mass_per_length;  // [kg/m]
   double diameter;         // [m]
@@ -49,7 +49,7 @@ struct CableCoefficients {
 };
 
 /// My own current profile: linear in depth between the table's rows, held
-/// beyond its ends (MODEL.md 1 / scenario `current`).
+/// beyond its ends (docs/theory.md §1 / scenario `current`).
 inline Vec3 current_at(const Fluid& fl, double z) {
   const auto& d = fl.current_depth;
   const auto& U = fl.current_velocity;

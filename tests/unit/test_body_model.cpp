@@ -1,6 +1,6 @@
 // The towed body's model (finalize_body, body_loads, body_inertia,
 // lift_coefficient, surface_deflection) against hand calculations, energy
-// identities and finite differences of Kirchhoff's momenta (MODEL.md 4,
+// identities and finite differences of Kirchhoff's momenta (docs/theory.md §4,
 // theory.md 4).
 //
 // Tolerances: hand values to 1e-12 relative (a few roundings of O(1-1000)

@@ -1,4 +1,4 @@
-// Failure behaviour of the built program (TOWSIM_BINARY), INTERFACE.md:
+// Failure behaviour of the built program (TOWSIM_BINARY), docs/contract.md §U3:
 // a numerical failure exits 3, names the simulated time and the element or
 // body, and keeps what was computed up to then (complete rows, a summary with
 // status "failed"); SIGTERM during a run keeps complete rows and a summary

@@ -6,9 +6,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "towsim/io/examples.hpp"
-#include "towsim/io/output.hpp"
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/output/output.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "../support/cli.hpp"
 
 namespace fs = std::filesystem;

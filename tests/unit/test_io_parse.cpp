@@ -6,7 +6,7 @@
 #include <fstream>
 #include <string>
 
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "../support/scenario_files.hpp"
 
 namespace fs = std::filesystem;

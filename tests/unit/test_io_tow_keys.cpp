@@ -7,7 +7,7 @@
 #include <string>
 #include <variant>
 
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "../support/scenario_files.hpp"
 
 namespace {

@@ -7,8 +7,8 @@
 #include <random>
 
 #include "../support/scenario_files.hpp"
-#include "towsim/io/examples.hpp"
-#include "towsim/io/sea_statistics.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/output/sea_statistics.hpp"
 #include "towsim/waves/vessel.hpp"
 
 namespace {

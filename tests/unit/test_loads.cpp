@@ -1,6 +1,6 @@
 // Cable element loads (element_loads, element_mass, make_element) and the
 // current profile (Fluid::current, current_gradient) against hand
-// calculations, symmetry checks and finite differences (MODEL.md 3,
+// calculations, symmetry checks and finite differences (docs/theory.md §3,
 // theory.md 3).
 //
 // Tolerances: hand-calculated values are compared to 1e-12 relative (a few

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "../support/cli.hpp"
-#include "towsim/io/output.hpp"
+#include "towsim/output/output.hpp"
 
 namespace fs = std::filesystem;
 using towsim::testing::fresh_dir;

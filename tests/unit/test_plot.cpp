@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "towsim/io/plot.hpp"
+#include "plot.hpp"
 #include "../support/cli.hpp"
 
 namespace fs = std::filesystem;

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "../support/cli.hpp"
 #include "../support/scenario_files.hpp"
 

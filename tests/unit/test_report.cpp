@@ -10,7 +10,7 @@
 #include <string>
 
 #include "../support/cli.hpp"
-#include "towsim/io/report.hpp"
+#include "report.hpp"
 
 namespace fs = std::filesystem;
 using towsim::testing::fresh_dir;

@@ -1,5 +1,5 @@
 // Tow laws (tow_kinematics, tow_force, tow_breakpoints) against closed forms,
-// hand calculations and central finite differences (MODEL.md 6, theory 6.1).
+// hand calculations and central finite differences (docs/scenario.md "tow", docs/theory.md §6.1).
 //
 // Finite-difference tolerances. For a smooth f, the central difference
 //   D_h f(t) = [f(t+h) - f(t-h)] / (2h) = f'(t) + h^2/6 f'''(xi),

@@ -1,4 +1,4 @@
-// Physics validation of the towed body (issue 3): equilibrium, a linearised
+// Physics validation of the towed body (docs/contract.md §P4): equilibrium, a linearised
 // double pendulum solved by hand, energy conservation, steady towing loads,
 // and Newton's law for the body from its public outputs. The references are
 // derived here, independently of the code under test.
@@ -391,7 +391,7 @@ INSTANTIATE_TEST_SUITE_P(StillWater, SteadyTowedBody, ::testing::ValuesIn(testin
 // 11. Newton's law for the body. A body with an offset CG, an offset sphere
 // load and a user 6x6 added mass, towed so that it moves briskly.
 // Its loads are written out here (weight at G, buoyancy, drag at the sphere
-// centre C; MODEL.md 4); it is released tilted and towed into a turn. Total momentum of body + fluid about a fixed
+// centre C; docs/theory.md §4); it is released tilted and towed into a turn. Total momentum of body + fluid about a fixed
 // point X:
 //   p = m v_G + p_A,  h_X = (G - X) x m v_G + I_G w + h_A,
 // fluid impulse (Kirchhoff): sphere  p_s = ma v_C, moment (C - X) x p_s;

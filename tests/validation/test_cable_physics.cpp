@@ -1,8 +1,8 @@
-// Physics validation of the cable (issue 2): each test compares a run (or one
+// Physics validation of the cable (docs/contract.md §P2-P3): each test compares a run (or one
 // evaluation of the dynamics) with something independent of the code under
 // test: a closed-form solution, a conservation law, or a convergence rate.
 // Quantities are recomputed here from public outputs (Samples) with formulas
-// taken from MODEL.md, never by calling the code's own load routines.
+// taken from docs/theory.md, never by calling the code's own load routines.
 #include <gtest/gtest.h>
 
 #include <cmath>

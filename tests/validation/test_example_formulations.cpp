@@ -1,11 +1,11 @@
 // Whole runs of every built-in example: the default O(n) formulation and the
-// paper's dense formulation agree to the integrator's accuracy (issue 4).
+// paper's dense formulation agree to the integrator's accuracy (docs/contract.md §P8).
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
-#include "towsim/io/examples.hpp"
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim {

@@ -57,7 +57,7 @@ TEST_P(FormulationAgreement, SameAccelerationsAndForces) {
     // The paper's coordinates, with the paper's own pole z_g where possible.
     const PaperState p = to_paper(m, s);
     paper_dynamics(m, p, t, pw);
-    // Tolerance 1e-9 relative (issue 4): both are exact solutions of the same
+    // Tolerance 1e-9 relative (docs/contract.md §P8): both are exact solutions of the same
     // equations, so only round-off separates them. Errors are relative to the
     // system's own scale: the largest angular acceleration for rotations, the
     // largest joint acceleration for a0, the largest joint force for forces

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <string>
 
-#include "towsim/io/scenario.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace {

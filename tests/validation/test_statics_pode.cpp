@@ -49,7 +49,7 @@ Model chain_model(const PodeCase& c, int n) {
 }
 
 /// The continuous theory for the same cable: loads per length written from
-/// MODEL.md 3 (not read from the compiled model).
+/// docs/theory.md §3 (not read from the compiled model).
 PodeCable theory_of(const PodeCase& c, bool with_munk, double rho = 1025, double g = 9.81) {
   const double A = kPi * c.diameter * c.diameter / 4;
   PodeCable p;

@@ -1,4 +1,4 @@
-// Steady consistency of statics and dynamics (issue 5): a run started from
+// Steady consistency of statics and dynamics (docs/validation.md §5): a run started from
 // the statics equilibrium (initial: steady) stays there, and a run started
 // hanging settles to it; the paper's 5.1 and 5.2 models with a straight tow.
 // docs/validation.md section 5.
@@ -81,7 +81,7 @@ TEST_P(StaticsSteadyRun, StartedSteadyStaysStill) {
   std::cout << "[measured] steady start " << case_name(c) << ": over 60 s max|dP|/L=" << d.position
             << ", max|dF_R|/|F_R|=" << d.force << "; F_R(0)=" << s0.tow_force.transpose()
             << " N vs statics (rel " << dF0 << "), " << rs.steps << " steps\n";
-  // 1e-6 relative (issue 5): the statics equilibrium leaves |alpha| < 1e-10
+  // 1e-6 relative (docs/validation.md §5): the statics equilibrium leaves |alpha| < 1e-10
   // rad/s^2, a drift of 1/2 alpha t^2 ~ 2e-7 rad over 60 s at worst, and a
   // fixed point of the equations is one of RK4 and DOPRI5 too. Measured far
   // below (see the output line).

@@ -1,5 +1,5 @@
 // Forward dynamics of cable and body: the default O(n) recursion and the
-// paper's dense Lagrange formulation (MODEL.md 2-4, 8; docs/theory.md).
+// paper's dense Lagrange formulation (docs/theory.md §2-5).
 #pragma once
 
 #include "towsim/dynamics/state.hpp"

@@ -1,4 +1,4 @@
-// The paper's formulation (Jacquot & Marichal, sections 1-4; MODEL.md 2, 4, 8):
+// The paper's formulation (Jacquot & Marichal, sections 1-4; docs/theory.md §2, §4, §5.1):
 // independent parameters (tow point x, y, z; two angles theta_k, psi_k per
 // element; yaw, pitch, roll of the body), Lagrange's equations in the form
 // M(q) q'' = S(q, q'), assembled in Kane's form from element Jacobians and

@@ -1,4 +1,4 @@
-// Fluid and gravity loads on cable elements and on the towed body (MODEL.md 3-4).
+// Fluid and gravity loads on cable elements and on the towed body (docs/theory.md §3-4).
 #pragma once
 
 #include "towsim/dynamics/state.hpp"
@@ -26,14 +26,14 @@ inline double element_rot_inertia(const Element& el) { return el.inertia + el.ad
 /// Body inertia in R_g about O_t and the velocity-dependent inertial terms:
 /// d(momentum, moment of momentum about O_t)/dt = Mw [a_O; alpha] + hw.
 /// Rigid part with absolute velocities, added mass with velocities relative to
-/// the water (Kirchhoff's equations). Needs bw's kinematics (compute_kinematics).
+/// the water (Kirchhoff's equations). Needs ws's kinematics (compute_kinematics).
 /// t: time [s] (the water's velocity may depend on it; steady flows ignore it).
-void body_inertia(const Fluid& fluid, const Body& body, BodyWork& bw, double t = 0);
+void body_inertia(const Fluid& fluid, const Body& body, BodyWork& ws, double t = 0);
 
 /// External loads on the body except the link force: gravity, buoyancy,
-/// sphere, cylinder and lifting-surface loads, damping. Force bw.Fb [N] and
-/// moment about O_t bw.Mb [N m], both R_g.
-void body_loads(const Fluid& fluid, const Body& body, double t, BodyWork& bw);
+/// sphere, cylinder and lifting-surface loads, damping. Force ws.Fb [N] and
+/// moment about O_t ws.Mb [N m], both R_g.
+void body_loads(const Fluid& fluid, const Body& body, double t, BodyWork& ws);
 
 /// Loads of the attachments lumped at each joint: ws.Ma (mass + added mass)
 /// and ws.Fa (apparent weight, drag on the velocity relative to the water).

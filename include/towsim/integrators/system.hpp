@@ -1,5 +1,5 @@
 // A formulation as the time integrator sees it: a flat state vector, its time
-// derivative, and a projection after each accepted step (MODEL.md 5).
+// derivative, and a projection after each accepted step (docs/theory.md §6).
 #pragma once
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The immutable, compiled description of a towing system (MODEL.md 1-4).
+// The immutable, compiled description of a towing system (docs/theory.md §1-4).
 //
 // A Model is built once by `compile()` from a parsed scenario and never
 // changes during a run. Dynamics are free functions of (model, state, t,
@@ -17,13 +17,13 @@
 
 namespace towsim {
 
-/// Tangential (axial) friction law on a cable element (MODEL.md 3).
+/// Tangential (axial) friction law on a cable element (docs/theory.md §3).
 enum class TangentialLaw {
   Pode,  // F_t = -1/2 rho Cd f D L |u|^2 sgn_s(u.e) e   (paper 2.43)
   Skin,  // F_t = -1/2 rho pi D L Ct |u.e| (u.e) e       (lumped-mass codes)
 };
 
-/// How the fluid's added mass acts on a cable element (MODEL.md 3).
+/// How the fluid's added mass acts on a cable element (docs/theory.md §3).
 enum class AddedMassModel {
   IdealFluid,  // -dP/dt with P = ma (I - ee^T) u, plus the Munk moment (paper 2.42)
   Morison,     // acceleration term only: -ma (I - ee^T) du/dt, -Ia alpha
@@ -114,7 +114,7 @@ struct LiftingSurface {
 };
 
 /// A thruster on a body: a force along a fixed body-axes direction, applied
-/// at a body-axes point, its magnitude a table over time (MODEL.md 9: the
+/// at a body-axes point, its magnitude a table over time (docs/contract.md; the
 /// paper's "forces from propellers").
 struct Thruster {
   Vec3 point = Vec3::Zero();          // where it acts, body axes [m]
@@ -123,7 +123,7 @@ struct Thruster {
   std::vector<double> force;          // thrust at that time [N]; linear interpolation, held at the ends
 };
 
-/// A rigid body of the chain (MODEL.md 4, paper section 4): the towed body at
+/// A rigid body of the chain (docs/theory.md §4, paper section 4): the towed body at
 /// the end, or an in-line body (depressor) between two cable sections.
 struct Body {
   std::string name = "body"; // output column prefix ("body" = today's columns)
@@ -162,7 +162,7 @@ struct Initial {
 enum class Integrator { RK4, DOPRI5, CashKarp54 };
 enum class Formulation { Default, Paper };
 
-/// Time integration settings (MODEL.md 5).
+/// Time integration settings (docs/theory.md §6).
 struct Simulation {
   double duration = 100;        // [s]
   double time_step = 0.01;      // fixed step, or first step if adaptive [s]

@@ -1,5 +1,5 @@
 // Steady-tow statics: the equilibrium of cable and body for a steady tow
-// (issue 5; docs/theory.md "Statics").
+// (docs/theory.md §7 "Statics").
 #pragma once
 
 #include <string>

@@ -1,0 +1,82 @@
+// The subcommands of the `towsim` program, one function each, so that the
+// command-line front end (app/main.cpp) only parses arguments. To add a
+// subcommand, write a function here and register it in app/main.cpp.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "towsim/output/output.hpp"
+#include "towsim/scenario/scenario.hpp"
+#include "towsim/sim/simulate.hpp"
+#include "towsim/sim/statics.hpp"
+
+namespace towsim::io {
+
+/// Exit statuses of the program (docs/contract.md §U3).
+enum ExitStatus : int {
+  kExitOk = 0,            // success
+  kExitError = 1,         // I/O or internal error (e.g. the output directory cannot be created)
+  kExitInvalid = 2,       // invalid input: nothing written
+  kExitFailed = 3,        // the simulation failed numerically (files so far kept)
+  kExitInterrupted = 130, // stopped by SIGINT/SIGTERM (files so far kept)
+};
+
+/// What to load: a scenario file or a built-in example, with overrides.
+struct InputOptions {
+  std::string scenario;           // path of a scenario YAML file, or ""
+  std::string example;            // name of a built-in example, or ""
+  std::vector<std::string> sets;  // --set KEY=VALUE, in order
+};
+
+/// Options of `towsim run`.
+struct RunOptions {
+  InputOptions input;
+  std::string out_dir;    // output directory (created if missing)
+  bool quiet = false;     // print nothing but errors
+  bool progress = false;  // draw a progress bar on `err`
+};
+
+/// Options of `towsim statics`.
+struct StaticsOptions {
+  InputOptions input;
+  std::string out_dir;  // where to write timeseries.csv and nodes.csv of the configuration ("" = none)
+};
+
+/// Load, override, check and compile the scenario named by `in` (exactly one
+/// of a file or an example); every problem is in the result's diagnostics.
+LoadedScenario load_input(const InputOptions& in);
+
+/// `towsim run`: simulate and write timeseries.csv, nodes.csv and
+/// summary.json into the output directory. Invalid input writes nothing.
+/// `stop_flag` (may be null) interrupts the run when set. Returns an ExitStatus.
+int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err,
+                const volatile int* stop_flag = nullptr);
+
+/// `towsim statics`: the steady-tow equilibrium at the tow law's final
+/// velocity; prints tow force, end and body depth, link force, element
+/// angles; writes the configuration when an output directory is given.
+/// Returns an ExitStatus (3 when the solver does not converge).
+int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err);
+
+/// The line `towsim run` prints at the end of a successful run: final
+/// layback, depth of the body (or cable end) and tow tension, the maximum
+/// tow tension and when, then samples, steps and wall time.
+std::string end_of_run_line(const Model& model, const RunStats& stats, const nlohmann::ordered_json& final_row,
+                            const Extremes& ex, long samples, const std::string& out_dir);
+
+/// `towsim check`: validate and print the derived quantities. Returns an ExitStatus.
+int check_command(const InputOptions& in, std::ostream& out, std::ostream& err);
+
+/// `towsim examples [NAME]`: list the built-in examples ("" = all, one per
+/// line with a description), or print one as YAML. Returns an ExitStatus.
+int examples_command(const std::string& name, std::ostream& out, std::ostream& err);
+
+/// Print a compiled model's derived quantities (element length, masses,
+/// apparent weights, added mass, drag factors, body, tow law, run settings).
+void describe_model(const Model& model, std::ostream& out);
+
+}  // namespace towsim::io

@@ -1,0 +1,172 @@
+// `towsim check`: the derived quantities of a compiled model.
+#include <cmath>
+#include <numbers>
+#include <ostream>
+
+#include "commands.hpp"
+#include "describe_sea.hpp"
+
+namespace towsim::io {
+namespace {
+
+std::string vec(const Vec3& v) { return "[" + fmt_num(v[0]) + ", " + fmt_num(v[1]) + ", " + fmt_num(v[2]) + "]"; }
+
+/// One "  label   value" line.
+void line(std::ostream& out, const std::string& label, const std::string& value) {
+  out << "  " << label << std::string(label.size() < 28 ? 28 - label.size() : 1, ' ') << value << "\n";
+}
+
+/// "sinks", "floats" or "neutral" (|weight| below 1e-6 of the weight in air).
+std::string sinks(double weight, double weight_in_air) {
+  if (std::abs(weight) <= 1e-6 * std::abs(weight_in_air)) return "neutral";
+  return weight > 0 ? "sinks" : "floats";
+}
+
+/// "1 sphere", "2 spheres".
+std::string count(std::size_t n, const std::string& what) {
+  return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+}
+
+void describe_fluid(const Fluid& f, std::ostream& out) {
+  out << "fluid\n";
+  line(out, "water density", fmt_num(f.rho) + " kg/m^3" + (f.rho == 0 ? " (no fluid)" : ""));
+  line(out, "gravity", fmt_num(f.g) + " m/s^2");
+  if (!f.has_current()) {
+    line(out, "current", "none");
+    return;
+  }
+  for (std::size_t i = 0; i < f.current_velocity.size(); ++i)
+    line(out, i == 0 ? "current" : "", vec(f.current_velocity[i]) + " m/s at depth " + fmt_num(f.current_depth[i]) + " m");
+}
+
+/// The properties of one run of equal elements (e: its first element).
+void describe_elements(const Cable& c, const Element& e, int count, std::ostream& out) {
+  line(out, "element length", fmt_num(e.length) + " m");
+  line(out, "diameter", fmt_num(e.diameter) + " m");
+  line(out, "mass in air", fmt_num(e.mass / e.length) + " kg/m, " + fmt_num(e.mass) + " kg per element, " +
+                               fmt_num(e.mass * count) + " kg in all");
+  line(out, "apparent weight in water", fmt_num(e.weight / e.length) + " N/m, " + fmt_num(e.weight) +
+                                            " N per element (" + sinks(e.weight, e.mass * 9.81) + ")");
+  line(out, "added mass (normal)", fmt_num(e.added_mass / e.length) + " kg/m, " + fmt_num(e.added_mass) +
+                                       " kg per element (" +
+                                       (c.added_mass_model == AddedMassModel::Morison ? "morison" : "ideal_fluid") + ")");
+  line(out, "normal drag factor", "1/2 rho Cd D = " + fmt_num(e.drag_factor / e.length) + " kg/m^2");
+  line(out, "tangential drag", std::string(c.tangential_law == TangentialLaw::Skin ? "skin: 1/2 rho pi D Ct" : "pode: 1/2 rho Cd f D") +
+                                   " = " + fmt_num(e.friction_factor / e.length) + " kg/m^2");
+}
+
+/// Arc length from the tow point to joint k [m].
+double arc_length(const Cable& c, int k) {
+  double s = 0;
+  for (int i = 0; i < k; ++i) s += c.elements[static_cast<std::size_t>(i)].length;
+  return s;
+}
+
+void describe_cable(const Cable& c, std::ostream& out) {
+  const double total = c.total_length();
+  out << "cable: " << fmt_num(total) << " m in " << c.n() << " elements\n";
+  if (c.sections.size() <= 1) {
+    describe_elements(c, c.elements.front(), c.n(), out);
+  } else {
+    for (const Section& s : c.sections) {
+      out << "section " << s.name << ": " << fmt_num(s.length) << " m in " << s.elements << " elements, from "
+          << fmt_num(arc_length(c, s.first_element)) << " m\n";
+      describe_elements(c, c.elements[static_cast<std::size_t>(s.first_element)], s.elements, out);
+    }
+  }
+  for (const Section& s : c.sections)
+    if (s.breaking_load > 0) line(out, "breaking load (" + s.name + ")", fmt_num(s.breaking_load) + " N");
+  for (const Attachment& a : c.attachments)
+    line(out, "attachment at " + fmt_num(a.at) + " m",
+         "at joint " + std::to_string(a.joint) + " (" + fmt_num(arc_length(c, a.joint)) + " m): mass " +
+             fmt_num(a.mass) + " kg, volume " + fmt_num(a.volume) + " m^3, CdA " + fmt_num(a.drag_area) +
+             " m^2, added mass " + fmt_num(a.added_mass) + " kg");
+}
+
+void describe_body(const Body& b, const Cable& c, const Fluid& f, std::ostream& out) {
+  const double weight = (b.mass - f.rho * b.displaced_volume) * f.g;
+  if (b.inline_body)
+    out << "in-line body " << b.name << ": at joint " << b.joint << " (" << fmt_num(arc_length(c, b.joint)) << " m)\n";
+  else
+    out << "body\n";
+  line(out, "mass", fmt_num(b.mass) + " kg");
+  line(out, "displaced volume", fmt_num(b.displaced_volume) + " m^3");
+  line(out, "apparent weight in water", fmt_num(weight) + " N (" + sinks(weight, b.mass * f.g) + ")");
+  line(out, "centre of gravity", vec(b.cg) + " m (body axes)");
+  line(out, "centre of buoyancy", vec(b.buoyancy_center) + " m (body axes)");
+  line(out, "link point Q", vec(b.link_point) + " m (body axes)");
+  if (b.inline_body) line(out, "lower link point Q2", vec(b.lower_link_point) + " m (body axes)");
+  line(out, "load models", count(b.spheres.size(), "sphere") + ", " + count(b.cylinders.size(), "cylinder") + ", " +
+                               count(b.surfaces.size(), "surface"));
+}
+
+std::string piece_text(const Ramp& p) {
+  return "ramp along " + vec(p.direction) + " to " + fmt_num(p.speed) + " m/s in " + fmt_num(p.ramp_time) + " s";
+}
+std::string piece_text(const Heave& p) {
+  return "heave " + fmt_num(p.amplitude) + " m, period " + fmt_num(p.period) + " s, from t = " +
+         fmt_num(p.start_time) + " s";
+}
+std::string piece_text(const Turn& p) {
+  std::string s = std::string("turn to ") + (p.port ? "port" : "starboard") + ", radius " + fmt_num(p.radius) +
+                  " m, from t = " + fmt_num(p.start_time) + " s";
+  if (std::isfinite(p.angle)) s += ", by " + fmt_num(p.angle * 180 / std::numbers::pi) + " deg";
+  return s;
+}
+std::string piece_text(const SpeedChange& p) {
+  return "speed change to " + fmt_num(p.speed) + " m/s over " + fmt_num(p.ramp_time) + " s, from t = " +
+         fmt_num(p.start_time) + " s";
+}
+std::string piece_text(const Track& p) {
+  return "track of " + std::to_string(p.time.size()) + " points, t = " + fmt_num(p.time.front()) + " to " +
+         fmt_num(p.time.back()) + " s";
+}
+
+void describe_tow(const Tow& t, std::ostream& out) {
+  if (t.mode == Tow::Mode::Force) {
+    out << "tow: imposed force, starting at " << vec(t.start) << " m\n";
+    if (t.force_value.size() == 1)
+      line(out, "force", vec(t.force_value[0]) + " N, constant");
+    else
+      line(out, "force", "table of " + std::to_string(t.force_time.size()) + " rows, t = " +
+                             fmt_num(t.force_time.front()) + " to " + fmt_num(t.force_time.back()) + " s");
+    return;
+  }
+  out << "tow: imposed motion from " << vec(t.start) << " m\n";
+  if (t.pieces.empty()) line(out, "motion", "none (fixed tow point)");
+  for (const auto& p : t.pieces)
+    line(out, "motion", std::visit([](const auto& law) { return piece_text(law); }, p));
+}
+
+void describe_run(const Model& m, std::ostream& out) {
+  const char* integ[] = {"rk4", "dopri5", "cash_karp54"};
+  const auto& s = m.sim;
+  const char* init[] = {"hanging", "steady", "direction"};
+  out << "initial: " << init[static_cast<int>(m.initial.kind)];
+  if (m.initial.kind == Initial::Kind::Direction) out << " " << vec(m.initial.direction);
+  out << "\nsimulation\n";
+  line(out, "integrator", std::string(integ[static_cast<int>(s.integrator)]) +
+                              (s.integrator == Integrator::RK4 ? "" : ", tolerance " + fmt_num(s.tolerance) +
+                                                                           ", max step " + fmt_num(s.max_step) + " s"));
+  line(out, "formulation", s.formulation == Formulation::Paper ? "paper" : "default");
+  line(out, "time step", fmt_num(s.time_step) + " s");
+  line(out, "duration", fmt_num(s.duration) + " s");
+  const long samples = static_cast<long>(std::floor(s.duration / s.output_interval + 1e-9)) + 1;
+  line(out, "output interval", fmt_num(s.output_interval) + " s (" + std::to_string(samples) + " samples" +
+                                   (s.write_nodes ? ", with nodes.csv)" : ", no nodes.csv)"));
+}
+
+}  // namespace
+
+void describe_model(const Model& m, std::ostream& out) {
+  out << "scenario " << m.name << ": valid\n";
+  describe_fluid(m.fluid, out);
+  describe_cable(m.cable, out);
+  for (const Body& b : m.bodies) describe_body(b, m.cable, m.fluid, out);
+  if (!end_body(m)) out << "body: none (free cable end)\n";
+  describe_tow(m.tow, out);
+  describe_sea(m, out);
+  describe_run(m, out);
+}
+
+}  // namespace towsim::io

@@ -1,0 +1,47 @@
+#include "describe_sea.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "towsim/scenario/diagnostics.hpp"
+#include "towsim/waves/vessel.hpp"
+
+namespace towsim::io {
+namespace {
+
+void line(std::ostream& out, const std::string& label, const std::string& value) {
+  out << "  " << label << std::string(label.size() < 28 ? 28 - label.size() : 1, ' ') << value << "\n";
+}
+
+}  // namespace
+
+void describe_sea(const Model& m, std::ostream& out) {
+  const WaveField* w = m.fluid.waves.get();
+  if (w != nullptr) {
+    out << "waves\n";
+    line(out, "harmonics", std::to_string(w->components.size()));
+    line(out, "Hs = 4 sqrt(variance)", fmt_num(4 * std::sqrt(w->variance())) + " m");
+    double lo = 1e300, hi = 0, deepest = 0;
+    for (const auto& c : w->components) {
+      lo = std::min(lo, c.omega), hi = std::max(hi, c.omega);
+      if (std::isfinite(c.z_cut)) deepest = std::min(deepest, c.z_cut);
+    }
+    const double two_pi = 2 * std::numbers::pi;
+    line(out, "periods", fmt_num(two_pi / hi) + " .. " + fmt_num(two_pi / lo) + " s");
+    line(out, "travel direction (R_g)",
+         "[" + fmt_num(w->direction.x()) + ", " + fmt_num(w->direction.y()) + ", 0]");
+    line(out, "water depth", std::isfinite(w->depth) ? fmt_num(w->depth) + " m" : std::string("deep"));
+    line(out, "kinematics cut off below", fmt_num(-deepest) + " m depth (harmonics < 0.1 % of their surface value)");
+  }
+  if (const Vessel* v = m.tow.vessel.get()) {
+    out << "vessel\n";
+    const Vec3& s = v->sheave();
+    line(out, "tow point (sheave)", "[" + fmt_num(s.x()) + ", " + fmt_num(s.y()) + ", " + fmt_num(s.z()) +
+                                        "] m from the RAO origin (vessel axes)");
+    line(out, "motion", v->measured() ? "measured record (cubic spline)" : "RAOs at the encounter frequency");
+    line(out, "statistics from", fmt_num(statistics_start(m)) + " s");
+  }
+}
+
+}  // namespace towsim::io

@@ -1,0 +1,864 @@
+#include "plot.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <ostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "run_files.hpp"
+
+extern char** environ;
+
+namespace towsim::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kOk = 0;
+constexpr int kGnuplotFailed = 1;
+constexpr int kInvalid = 2;
+
+// ---------------------------------------------------------------- reading
+
+/// A CSV file's header and numeric rows (enough of it to plan the figures).
+struct Table {
+  std::vector<std::string> names;
+  std::map<std::string, int> index;
+  std::vector<std::vector<double>> rows;
+  bool has(const std::string& n) const { return index.count(n) != 0; }
+  /// Column `n` of row `r` (NaN when absent or short).
+  double at(std::size_t r, const std::string& n) const {
+    const auto it = index.find(n);
+    if (it == index.end() || r >= rows.size() || it->second >= static_cast<int>(rows[r].size()))
+      return std::nan("");
+    return rows[r][static_cast<std::size_t>(it->second)];
+  }
+};
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : line) {
+    if (c == ',') {
+      out.push_back(cur);
+      cur.clear();
+    } else if (c != '\r' && c != '\n') {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  for (auto& s : out) {  // trim blanks
+    const auto b = s.find_first_not_of(" \t");
+    const auto e = s.find_last_not_of(" \t");
+    s = b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+  }
+  return out;
+}
+
+/// Read a CSV file with a header row; `max_cols` (0 = all) limits the
+/// numeric columns kept per row. False when the file cannot be opened or has
+/// no header.
+bool read_csv(const fs::path& path, Table& t, std::size_t max_cols = 0) {
+  std::ifstream in(path);
+  if (!in) return false;
+  std::string line;
+  if (!std::getline(in, line)) return false;
+  t.names = split(line);
+  for (std::size_t i = 0; i < t.names.size(); ++i) t.index[t.names[i]] = static_cast<int>(i);
+  while (std::getline(in, line)) {
+    if (line.empty() || line == "\r") continue;
+    std::vector<double> row;
+    std::size_t pos = 0;
+    while (pos <= line.size() && (max_cols == 0 || row.size() < max_cols)) {
+      const std::size_t comma = line.find(',', pos);
+      const std::string cell = line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+      char* end = nullptr;
+      const double v = std::strtod(cell.c_str(), &end);
+      row.push_back(end == cell.c_str() ? std::nan("") : v);
+      if (comma == std::string::npos) break;
+      pos = comma + 1;
+    }
+    t.rows.push_back(std::move(row));
+  }
+  return true;
+}
+
+// --------------------------------------------------------------- gnuplot
+
+/// A gnuplot single-quoted string literal.
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'') out += "''";
+    else out += c;
+  }
+  return out + "'";
+}
+
+std::string num(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.12g", v == 0 ? 0.0 : v);
+  return b;
+}
+
+/// Run `prog args...` with stdout and stderr appended to `log_path`
+/// ("" = /dev/null). Returns the exit status, or -1 with `err` = errno when
+/// the program could not be started.
+int spawn(const std::string& prog, const std::vector<std::string>& args, const std::string& log_path, int& err) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  const std::string out = log_path.empty() ? "/dev/null" : log_path;
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  std::vector<std::string> all{prog};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawnp(&pid, prog.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) {
+    err = rc;
+    return -1;
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) {
+      err = errno;
+      return -1;
+    }
+  }
+  if (WIFEXITED(status)) {
+    // posix_spawnp may start a child that fails to exec with status 127.
+    if (WEXITSTATUS(status) == 127) {
+      err = ENOENT;
+      return -1;
+    }
+    return WEXITSTATUS(status);
+  }
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+std::string gnuplot_program() {
+  const char* env = std::getenv("TOWSIM_GNUPLOT");
+  return env != nullptr && *env != '\0' ? env : "gnuplot";
+}
+
+// ------------------------------------------------------------- the plan
+
+/// What plot_run knows about the run.
+struct Run {
+  std::string model;
+  std::string status = "ok";
+  bool has_body = false;
+  bool three_d = false;
+  bool has_nodes = true;
+  bool link_at_origin = true;      // body origin == cable lower end
+  bool second_sphere = false;      // plot the second sphere's centre
+  std::array<double, 3> sphere2{};  // its centre, body axes
+  double t0 = 0, t1 = 0;
+  double t_last = 0;               // the last row's time [s]
+  long rows = 0;                   // timeseries rows
+  double min_dt = 0;               // smallest output interval
+  std::vector<double> snapshot_times;
+  bool single = false;             // one output time: a statics configuration
+  bool has_layback = false;        // timeseries.csv has the layback column
+  double marker_every = 10;        // s between trajectory markers
+  int marker_rows = 1;             // the same in rows
+  // Data spans for the equal-scale decisions.
+  double x_span = 0, y_span = 0, z_span = 0;
+};
+
+/// A "nice" interval (1, 2, 5 x 10^k) close to `v`.
+double nice(double v) {
+  if (!(v > 0)) return 1;
+  const double p = std::pow(10.0, std::floor(std::log10(v)));
+  const double m = v / p;
+  return (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * p;
+}
+
+const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b"};
+
+/// Colour k of n along a dark-blue -> yellow ramp (viridis-like).
+std::string ramp(int k, int n) {
+  static const double stops[][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {220, 200, 30}};
+  const double s = n <= 1 ? 0 : 4.0 * k / (n - 1);
+  const int i = std::min(3, static_cast<int>(s));
+  const double f = s - i;
+  char b[8];
+  std::snprintf(b, sizeof b, "#%02x%02x%02x", static_cast<int>(stops[i][0] + f * (stops[i + 1][0] - stops[i][0])),
+                static_cast<int>(stops[i][1] + f * (stops[i + 1][1] - stops[i][1])),
+                static_cast<int>(stops[i][2] + f * (stops[i + 1][2] - stops[i][2])));
+  return b;
+}
+
+/// Script text common to every figure.
+std::string preamble(const Run& run, const std::string& name, const std::string& what) {
+  std::ostringstream s;
+  s << "# " << name << ".gp: " << what << " (" << run.model << ").\n"
+    << "# Written by `towsim plot`; re-render from this directory with: gnuplot " << name << ".gp\n"
+    << "# Data: the run's CSV files in the parent directory, read by column name.\n"
+    << "set datafile separator comma\n"
+    << "set datafile columnheaders\n"
+    << "set encoding utf8\n"
+    << "set style line 100 lt 1 lw 0.6 lc rgb '#d4d4d4'\n"
+    << "set grid ls 100\n"
+    << "set key outside right top vertical reverse Left samplen 2 spacing 1.1 width 1\n"
+    << "set border lw 1.2\n"
+    << "ts = '../timeseries.csv'\n"
+    << "# Node data: cable_shapes.dat and tension_map.dat beside this script, extracted\n"
+    << "# from ../nodes.csv in one pass by `towsim plot` (gnuplot never reads nodes.csv).\n";
+  return s.str();
+}
+
+/// Script text that renders the current plot (`plot_cmd`) as PNG and SVG.
+std::string render(const std::string& name, const std::string& plot_cmd, const PlotOptions& o) {
+  std::ostringstream s;
+  const int font = std::max(9, static_cast<int>(std::lround(o.width / 80.0)));
+  s << "set terminal pngcairo size " << o.width << "," << o.height << " noenhanced font 'Sans," << font
+    << "' linewidth 1.5\n"
+    << "set output '" << name << ".png'\n"
+    << plot_cmd << "\n"
+    << "set terminal svg size " << o.width << "," << o.height << " noenhanced font 'Sans," << font
+    << "' linewidth 1.5 background '#ffffff'\n"
+    << "set output '" << name << ".svg'\n"
+    << "replot\n"
+    << "unset output\n";
+  return s.str();
+}
+
+std::string title(const Run& run, const std::string& what) { return "set title " + quote(run.model + ": " + what) + "\n"; }
+
+/// Equal axis scale when the data's aspect allows a readable figure (then a
+/// wide figure gets its legend below and a lower canvas, `o.height`);
+/// returns the title suffix.
+std::string equal_scale(std::ostringstream& s, double hspan, double vspan, PlotOptions& o) {
+  const double a = (vspan > 0 ? vspan : 1e-3) / std::max(hspan, 1e-9);
+  if (hspan > 0 && vspan > 0 && (a < 1.0 / 12 || a > 4)) return " (axes NOT to the same scale)";
+  s << "set size ratio -1\nset autoscale fix\nset offsets graph 0.03, graph 0.03, graph 0.06, graph 0.06\n";
+  if (a < 0.6) {  // wide: legend below, canvas about as high as the plot needs
+    s << "set key below horizontal noreverse Right width 0\n";
+    const double plot_w = o.width - 130.0;
+    const int h = static_cast<int>(std::lround(plot_w * std::max(a, 0.05) * 1.15 + 190));
+    o.height = std::clamp(h, static_cast<int>(0.45 * o.width), o.height);
+  }
+  return " (equal scales)";
+}
+
+/// The second sphere's centre from the body origin and angles (R = Rz Ry Rx).
+std::string sphere2_functions(const Run& run) {
+  std::ostringstream s;
+  s << "# Centre of the body's second sphere, c = (" << num(run.sphere2[0]) << ", " << num(run.sphere2[1]) << ", "
+    << num(run.sphere2[2]) << ") m in body axes:\n"
+    << "# O_t + R c with R = Rz(yaw) Ry(pitch) Rx(roll) (angles in degrees in the CSV).\n"
+    << "d2r = pi/180\n"
+    << "cx = " << num(run.sphere2[0]) << "; cy = " << num(run.sphere2[1]) << "; cz = " << num(run.sphere2[2]) << "\n"
+    << "s2x(x,r,p,y) = x + cos(y*d2r)*cos(p*d2r)*cx"
+       " + (cos(y*d2r)*sin(p*d2r)*sin(r*d2r) - sin(y*d2r)*cos(r*d2r))*cy"
+       " + (cos(y*d2r)*sin(p*d2r)*cos(r*d2r) + sin(y*d2r)*sin(r*d2r))*cz\n"
+    << "s2y(v,r,p,y) = v + sin(y*d2r)*cos(p*d2r)*cx"
+       " + (sin(y*d2r)*sin(p*d2r)*sin(r*d2r) + cos(y*d2r)*cos(r*d2r))*cy"
+       " + (sin(y*d2r)*sin(p*d2r)*cos(r*d2r) - cos(y*d2r)*sin(r*d2r))*cz\n"
+    << "s2z(z,r,p,y) = z - sin(p*d2r)*cx + cos(p*d2r)*sin(r*d2r)*cy + cos(p*d2r)*cos(r*d2r)*cz\n"
+    << "ang = \"column('body_roll_deg'), column('body_pitch_deg'), column('body_yaw_deg')\"\n";
+  return s.str();
+}
+
+std::string markers_note(const Run& run) { return "markers every " + num(run.marker_every) + " s"; }
+
+// One function per figure: returns the script text.
+
+std::string fig_trajectories(const Run& run, const PlotOptions& opt) {
+  const std::string name = "trajectories_xz";
+  std::ostringstream s;
+  s << preamble(run, name, "trajectories in the vertical x-z plane");
+  PlotOptions o = opt;
+  const std::string scale = equal_scale(s, run.x_span, run.z_span, o);
+  s << title(run, "trajectories in the x-z plane" + scale);
+  s << "set xlabel 'x (m)'\nset ylabel 'z (m), up; surface z = 0'\n";
+  if (run.second_sphere) s << sphere2_functions(run);
+  const std::string every = " every " + std::to_string(run.marker_rows);
+  std::ostringstream p;
+  p << "plot ts using 'tow_x':'tow_z' with lines lw 2 lc rgb '" << kPalette[0] << "' title 'tow point O_r', \\\n"
+    << "  ts using 'tow_x':'tow_z'" << every << " with points pt 7 ps 0.6 lc rgb '" << kPalette[0]
+    << "' notitle, \\\n"
+    << "  ts using 'end_x':'end_z' with lines lw 2 lc rgb '" << kPalette[1] << "' title "
+    << quote(run.has_body && run.link_at_origin ? "cable lower end P_n (= body origin)" : "cable lower end P_n")
+    << ", \\\n"
+    << "  ts using 'end_x':'end_z'" << every << " with points pt 7 ps 0.6 lc rgb '" << kPalette[1] << "' notitle";
+  if (run.has_body && !run.link_at_origin) {
+    p << ", \\\n  ts using 'body_x':'body_z' with lines lw 1.5 dt 2 lc rgb '" << kPalette[3]
+      << "' title 'body origin O_t', \\\n"
+      << "  ts using 'body_x':'body_z'" << every << " with points pt 6 ps 0.6 lc rgb '" << kPalette[3]
+      << "' notitle";
+  }
+  if (run.second_sphere) {
+    p << ", \\\n  ts using (s2x(column('body_x'), @ang)):(s2z(column('body_z'), @ang)) with lines lw 2 lc rgb '"
+      << kPalette[2] << "' title 'second sphere centre', \\\n"
+      << "  ts using (s2x(column('body_x'), @ang)):(s2z(column('body_z'), @ang))" << every
+      << " with points pt 7 ps 0.6 lc rgb '" << kPalette[2] << "' notitle";
+  }
+  p << ", \\\n  NaN with points pt 7 ps 0.6 lc rgb '#606060' title " << quote(markers_note(run));
+  s << render(name, p.str(), o);
+  return s.str();
+}
+
+std::string fig_components(const Run& run, const PlotOptions& o, const std::string& name, const std::string& what,
+                           const std::string& prefix, const std::string& magnitude, const std::string& symbol) {
+  std::ostringstream s;
+  s << preamble(run, name, what);
+  s << title(run, what);
+  s << "set xlabel 'time (s)'\nset ylabel 'force (N)'\n"
+    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n";
+  std::ostringstream p;
+  p << "plot ts using 'time':'" << prefix << "x' with lines lw 1.5 lc rgb '" << kPalette[0] << "' title '" << symbol
+    << "x', \\\n";
+  if (run.three_d)
+    p << "  ts using 'time':'" << prefix << "y' with lines lw 1.5 lc rgb '" << kPalette[2] << "' title '" << symbol
+      << "y', \\\n";
+  p << "  ts using 'time':'" << prefix << "z' with lines lw 1.5 lc rgb '" << kPalette[1] << "' title '" << symbol
+    << "z', \\\n";
+  if (!magnitude.empty())
+    p << "  ts using 'time':'" << magnitude << "'";
+  else
+    p << "  ts using 'time':(sqrt(column('" << prefix << "x')**2 + column('" << prefix << "y')**2 + column('"
+      << prefix << "z')**2))";
+  p << " with lines lw 1 dt 2 lc rgb '#404040' title '|" << symbol << "|'";
+  s << render(name, p.str(), o);
+  return s.str();
+}
+
+std::string fig_paths(const Run& run, const PlotOptions& opt) {
+  const std::string name = "paths_xy";
+  std::ostringstream s;
+  s << preamble(run, name, "horizontal paths of the cable ends");
+  PlotOptions o = opt;
+  const std::string scale = equal_scale(s, run.x_span, run.y_span, o);
+  s << title(run, "horizontal paths of the cable ends" + scale);
+  s << "set xlabel 'x (m)'\nset ylabel 'y (m)'\n";
+  if (run.second_sphere) s << sphere2_functions(run);
+  const std::string every = " every " + std::to_string(run.marker_rows);
+  std::ostringstream p;
+  p << "plot ts using 'tow_x':'tow_y' with lines lw 1.5 lc rgb '" << kPalette[0] << "' title 'tow point O_r', \\\n"
+    << "  ts using 'tow_x':'tow_y'" << every << " with points pt 7 ps 0.6 lc rgb '" << kPalette[0] << "' notitle, \\\n"
+    << "  ts using 'end_x':'end_y' with lines lw 2 lc rgb '" << kPalette[1] << "' title 'cable lower end P_n', \\\n"
+    << "  ts using 'end_x':'end_y'" << every << " with points pt 7 ps 0.6 lc rgb '" << kPalette[1] << "' notitle";
+  if (run.second_sphere)
+    p << ", \\\n  ts using (s2x(column('body_x'), @ang)):(s2y(column('body_y'), @ang)) with lines lw 1.5 lc rgb '"
+      << kPalette[2] << "' title 'second sphere centre'";
+  p << ", \\\n  ts every ::0::0 using 'tow_x':'tow_y' with points pt 4 ps 1.5 lc rgb '#000000' title 'start', \\\n"
+    << "  NaN with points pt 7 ps 0.6 lc rgb '#606060' title " << quote(markers_note(run));
+  s << render(name, p.str(), o);
+  return s.str();
+}
+
+std::string fig_depth(const Run& run, const PlotOptions& o) {
+  const std::string name = "end_depth";
+  std::ostringstream s;
+  s << preamble(run, name, "depth of the cable's lower end");
+  s << title(run, "depth of the cable's lower end");
+  s << "set xlabel 'time (s)'\nset ylabel 'depth -z (m), downwards'\nset yrange [*:*] reverse\n"
+    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n"
+    << "";
+  std::ostringstream p;
+  p << "plot ts using 'time':(-column('end_z')) with lines lw 2 lc rgb '" << kPalette[1]
+    << "' title 'cable lower end P_n'";
+  if (run.has_body && !run.link_at_origin)
+    p << ", \\\n  ts using 'time':(-column('body_z')) with lines lw 1.5 dt 2 lc rgb '" << kPalette[3]
+      << "' title 'body origin O_t'";
+  s << render(name, p.str(), o);
+  return s.str();
+}
+
+std::string fig_angles(const Run& run, const PlotOptions& o) {
+  const std::string name = "body_angles";
+  std::ostringstream s;
+  s << preamble(run, name, "body roll, pitch and yaw");
+  s << title(run, "body attitude (angles drawn continuous, see body_angles.gp)");
+  s << "set xlabel 'time (s)'\nset ylabel 'angle (deg)'\n"
+    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n"
+    << "# The CSV gives roll, yaw in (-180, 180] and pitch in [-90, 90]. So that the curves\n"
+    << "# do not jump, each row's triple is replaced by the equivalent one closest to\n"
+    << "# the previous row's: (roll + 360 i, pitch + 360 j, yaw + 360 k) or the same\n"
+    << "# rotation as (roll + 180, 180 - pitch, yaw + 180) (pitch past +-90 deg).\n"
+    << "wrap(a) = a - 360.0*floor((a + 180.0)/360.0)\n"
+    << "near(a, ref) = ref + wrap(a - ref)\n"
+    << "cr = 0; cp = 0; cy = 0\n"
+    << "cont(i, r, p, y) = (i == 0 ? (cr = r, cp = p, cy = y) : \\\n"
+    << "  (ar = near(r, cr), ap = near(p, cp), ay = near(y, cy), \\\n"
+    << "   br = near(r + 180, cr), bp = near(180 - p, cp), by = near(y + 180, cy), \\\n"
+    << "   da = abs(ar - cr) + abs(ap - cp) + abs(ay - cy), db = abs(br - cr) + abs(bp - cp) + abs(by - cy), \\\n"
+    << "   cr = (da <= db ? ar : br), cp = (da <= db ? ap : bp), cy = (da <= db ? ay : by)), 0)\n"
+    << "upd = \"cont(column(0), column('body_roll_deg'), column('body_pitch_deg'), column('body_yaw_deg'))\"\n";
+  std::ostringstream p;
+  p << "plot ts using (@upd, column('time')):(cr) with lines lw 1.5 lc rgb '" << kPalette[0]
+    << "' title 'roll', \\\n"
+    << "  ts using (@upd, column('time')):(cp) with lines lw 1.5 lc rgb '" << kPalette[1]
+    << "' title 'pitch (+ = nose down)', \\\n"
+    << "  ts using (@upd, column('time')):(cy) with lines lw 1.5 lc rgb '" << kPalette[2]
+    << "' title 'yaw'";
+  s << render(name, p.str(), o);
+  return s.str();
+}
+
+std::string fig_shapes(const Run& run, const PlotOptions& opt, bool plan) {
+  const std::string name = plan ? "cable_shapes_xy" : "cable_shapes_xz";
+  const std::string v = plan ? "y" : "z";
+  std::ostringstream s;
+  s << preamble(run, name, plan ? "cable shapes, plan view" : "cable shapes, side view");
+  // Shapes span less than the trajectories; scale them on the nodes' spans.
+  PlotOptions o = opt;
+  const std::string scale = equal_scale(s, run.x_span, plan ? run.y_span : run.z_span, o);
+  s << title(run, std::string(plan ? "cable shapes, plan view (x-y)" : "cable shapes, side view (x-z)") + scale);
+  s << "set xlabel 'x (m)'\nset ylabel " << (plan ? "'y (m)'" : "'z (m), up; surface z = 0'") << "\n"
+    << "set key title 'time'\n"
+    << "# cable_shapes.dat: one block (index k) per snapshot, columns time, node, x, y, z, tension.\n"
+    << "shapes = 'cable_shapes.dat'\n";
+  std::ostringstream p;
+  p << "plot ";
+  const int n = static_cast<int>(run.snapshot_times.size());
+  for (int k = 0; k < n; ++k) {
+    const std::string T = num(run.snapshot_times[static_cast<std::size_t>(k)]);
+    if (k > 0) p << ", \\\n  ";
+    p << "shapes index " << k << " using 3:" << (plan ? 4 : 5) << " with linespoints lw 2 pt 7 ps 0.5 lc rgb '"
+      << ramp(k, n) << "' title '" << T << " s'";
+  }
+  if (n == 0) p << "NaN notitle";
+  if (plan)  // where the tow point went, for reference
+    p << ", \\\n  ts using 'tow_x':'tow_y' with lines lw 1 dt 3 lc rgb '#909090' title 'tow path'";
+  s << render(name, p.str(), o);
+  return s.str();
+}
+
+std::string fig_depth_layback(const Run& run, const PlotOptions& o) {
+  const std::string name = "depth_layback";
+  const std::string who = run.has_body ? "body origin O_t" : "cable lower end P_n";
+  const std::string p = run.has_body ? "body_" : "end_";
+  std::ostringstream s;
+  s << preamble(run, name, "depth of the " + who + " against layback");
+  s << title(run, "depth against layback of the " + who);
+  s << "set xlabel 'layback: horizontal distance from the tow point (m)'\n"
+    << "set ylabel 'depth -z (m), downwards'\nset yrange [*:*] reverse\n";
+  if (run.has_layback) s << "lay(dummy) = column('layback')\n";
+  else
+    s << "lay(dummy) = sqrt((column('" << p << "x') - column('tow_x'))**2 + (column('" << p
+      << "y') - column('tow_y'))**2)\n";
+  std::ostringstream q;
+  q << "plot ts using (lay(0)):(-column('" << p << "z')) with lines lw 2 lc rgb '" << kPalette[run.has_body ? 3 : 1]
+    << "' title " << quote(who) << ", \\\n"
+    << "  ts every ::0::0 using (lay(0)):(-column('" << p << "z')) with points pt 4 ps 1.5 lc rgb '#000000' title "
+    << quote("start, t = " + num(run.t0) + " s") << ", \\\n"
+    << "  ts using (lay(0)):(-column('" << p << "z')) every ::" << std::max<long>(0, run.rows - 1)
+    << " with points pt 7 ps 1.5 lc rgb '#000000' title " << quote("end, t = " + num(run.t_last) + " s");
+  s << render(name, q.str(), o);
+  return s.str();
+}
+
+std::string fig_tension_map(const Run& run, const PlotOptions& o) {
+  const std::string name = "tension_map";
+  std::ostringstream s;
+  s << preamble(run, name, "tension along the cable against time");
+  s << title(run, "tension along the cable against time");
+  s << "# tension_map.dat: one block per output time (at most 200, evenly spread), columns time,\n"
+    << "# distance along the cable from the tow point (m), tension (N).\n"
+    << "unset datafile columnheaders\n"
+    << "set view map\nset pm3d map corners2color c1\nunset key\nunset grid\n"
+    << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 '#fde725')\n"
+    << "set xlabel 'time (s)'\nset ylabel 'distance along the cable from the tow point (m)'\n"
+    << "set cblabel 'tension (N)'\nset autoscale fix\nset yrange [*:*] reverse\n"
+    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n";
+  s << render(name, "splot 'tension_map.dat' using 1:2:3 with pm3d notitle", o);
+  return s.str();
+}
+
+std::string fig_tension_along(const Run& run, const PlotOptions& o) {
+  const std::string name = "tension_along_cable";
+  std::ostringstream s;
+  s << preamble(run, name, "tension along the cable");
+  s << title(run, "tension along the cable" + (run.single ? std::string() : " (snapshots)"));
+  s << "unset datafile columnheaders\n"
+    << "set xlabel 'distance along the cable from the tow point (m)'\nset ylabel 'tension (N)'\n"
+    << "set key title 'time'\n";
+  std::ostringstream p;
+  p << "plot ";
+  const int n = static_cast<int>(run.snapshot_times.size());
+  for (int k = 0; k < n; ++k) {
+    if (k > 0) p << ", \\\n  ";
+    p << "'cable_shapes.dat' index " << k << " using 7:6 with linespoints lw 2 pt 7 ps 0.5 lc rgb '" << ramp(k, n)
+      << "' title '" << num(run.snapshot_times[static_cast<std::size_t>(k)]) << " s'";
+  }
+  if (n == 0) p << "NaN notitle";
+  s << render(name, p.str(), o);
+  return s.str();
+}
+
+/// Write the node data the figures read (cable_shapes.dat, tension_map.dat)
+/// from ONE pass over nodes.csv. False with `error` set on failure.
+bool write_node_data(const fs::path& root, const fs::path& plots, const Run& run, const std::vector<double>& times,
+                     std::string& error) {
+  // Wanted: the snapshots and up to 200 heat-map columns.
+  std::vector<double> map_times;
+  for (std::size_t i : spread_indices(times.size(), 200)) map_times.push_back(times[i]);
+  std::vector<double> wanted = map_times;
+  wanted.insert(wanted.end(), run.snapshot_times.begin(), run.snapshot_times.end());
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  std::vector<NodeFrame> frames;
+  if (!read_node_frames((root / "nodes.csv").string(), wanted, frames, error)) return false;
+  auto find = [&frames](double t) -> const NodeFrame* {
+    for (const auto& f : frames)
+      if (std::abs(f.t - t) <= 1e-9 * std::max(1.0, std::abs(t))) return &f;
+    return nullptr;
+  };
+  std::ofstream sh(plots / "cable_shapes.dat", std::ios::trunc);
+  sh << "# towsim plot: the cable at the snapshot times, one block per time (gnuplot index k)\n"
+     << "# time,node,x,y,z,tension,distance_along_cable\n";
+  for (double t : run.snapshot_times) {
+    const NodeFrame* f = find(t);
+    if (f != nullptr) {
+      const auto arc = arc_lengths(*f);
+      for (std::size_t k = 0; k < f->x.size(); ++k)
+        sh << num(f->t) << ',' << k << ',' << num(f->x[k]) << ',' << num(f->y[k]) << ',' << num(f->z[k]) << ','
+           << num(f->tension[k]) << ',' << num(arc[k]) << '\n';
+    }
+    sh << "\n\n";
+  }
+  std::ofstream tm(plots / "tension_map.dat", std::ios::trunc);
+  tm << "# towsim plot: tension along the cable, one block per output time\n"
+     << "# time,distance_along_cable,tension\n";
+  for (double t : map_times) {
+    const NodeFrame* f = find(t);
+    if (f == nullptr) continue;
+    const auto arc = arc_lengths(*f);
+    for (std::size_t k : spread_indices(f->x.size(), 100))
+      tm << num(f->t) << ',' << num(arc[k]) << ',' << num(f->tension[k]) << '\n';
+    tm << '\n';
+  }
+  if (!sh || !tm) {
+    error = "cannot write the node data in " + plots.string();
+    return false;
+  }
+  return true;
+}
+
+bool exists_file(const fs::path& p) {
+  std::error_code ec;
+  return fs::is_regular_file(p, ec);
+}
+
+std::string join(const std::vector<std::string>& v, const std::string& sep, const std::string& last) {
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (i > 0) out += (i + 1 == v.size() ? last : sep);
+    out += v[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> plot_names(bool has_body, bool three_d, bool single) {
+  if (single) {  // one configuration (towsim statics --out): no time histories
+    std::vector<std::string> names{"cable_shapes_xz"};
+    if (three_d) names.push_back("cable_shapes_xy");
+    names.push_back("tension_along_cable");
+    return names;
+  }
+  std::vector<std::string> names{"trajectories_xz", "tow_force"};
+  if (three_d) names.push_back("paths_xy");
+  names.push_back("end_depth");
+  names.push_back("depth_layback");
+  if (has_body) names.push_back("body_angles");
+  names.push_back("cable_shapes_xz");
+  if (three_d) names.push_back("cable_shapes_xy");
+  names.push_back("tension_map");
+  if (has_body) names.push_back("link_force");
+  return names;
+}
+
+int plot_run(const std::string& dir, std::ostream& log) { return plot_run(dir, log, PlotOptions{}); }
+
+int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) {
+  const fs::path root(dir);
+  const char* kUsage = "expected the output directory of `towsim run --out DIR` or `towsim statics --out DIR`";
+
+  // 1. The run's files.
+  std::error_code ec;
+  if (!fs::is_directory(root, ec)) {
+    log << "towsim plot: " << dir << ": no such directory (" << kUsage
+        << ", with timeseries.csv, nodes.csv and summary.json)\n";
+    return kInvalid;
+  }
+  nlohmann::json summary;
+  bool summary_ok = false;
+  if (exists_file(root / "summary.json")) {
+    try {
+      std::ifstream in(root / "summary.json");
+      summary = nlohmann::json::parse(in);
+      summary_ok = summary.is_object();
+    } catch (const std::exception& e) {
+      log << "towsim plot: " << (root / "summary.json").string() << ": not valid JSON: " << e.what() << "\n";
+      return kInvalid;
+    }
+  }
+  Run run;
+  if (summary_ok) {  // nodes.csv is optional when the run says it wrote none
+    const auto f = summary.find("files");
+    if (f != summary.end() && f->is_object() && f->contains("nodes") && (*f)["nodes"].is_null())
+      run.has_nodes = false;
+  }
+  std::vector<std::string> missing;
+  if (!exists_file(root / "timeseries.csv")) missing.push_back("timeseries.csv");
+  if (run.has_nodes && !exists_file(root / "nodes.csv")) missing.push_back("nodes.csv");
+  if (!missing.empty()) {
+    log << "towsim plot: " << dir << " has no " << join(missing, ", ", " and ") << " (" << kUsage << ")\n";
+    return kInvalid;
+  }
+  if (!summary_ok && exists_file(root / "summary.json")) {
+    log << "towsim plot: " << (root / "summary.json").string() << ": not a JSON object\n";
+    return kInvalid;
+  }
+  if (!summary_ok) summary = nlohmann::json::object();  // optional: e.g. an older `towsim statics --out`
+
+  // 2. What the run is.
+  run.model = summary.value("model", std::string());
+  if (run.model.empty()) run.model = root.filename().string();
+  if (run.model.empty()) run.model = "run";
+  run.status = summary.value("status", std::string("ok"));
+  try {
+    const auto sc = summary.find("scenario");
+    if (sc != summary.end() && sc->is_object() && sc->contains("body") && (*sc)["body"].is_object()) {
+      const auto& body = (*sc)["body"];
+      if (body.contains("link_point") && body["link_point"].is_array()) {
+        for (const auto& v : body["link_point"])
+          if (v.is_number() && v.get<double>() != 0) run.link_at_origin = false;
+      }
+      if (body.contains("spheres") && body["spheres"].is_array() && body["spheres"].size() >= 2) {
+        const auto& c = body["spheres"][1]["center"];
+        if (c.is_array() && c.size() == 3) {
+          for (int i = 0; i < 3; ++i) run.sphere2[static_cast<std::size_t>(i)] = c[static_cast<std::size_t>(i)].get<double>();
+          run.second_sphere = true;
+        }
+      }
+    }
+  } catch (const std::exception&) {
+    // An unusual echo: plot without the body details.
+  }
+
+  Table ts;
+  if (!read_csv(root / "timeseries.csv", ts)) {
+    log << "towsim plot: " << (root / "timeseries.csv").string() << ": cannot read it or it has no header\n";
+    return kInvalid;
+  }
+  run.has_body = ts.has("body_x");
+  run.has_layback = ts.has("layback");
+  std::vector<std::string> need{"time", "tow_x", "tow_y", "tow_z", "tow_force_x", "tow_force_y", "tow_force_z",
+                                "end_x", "end_y", "end_z"};
+  if (run.has_body)
+    for (const char* c : {"body_x", "body_y", "body_z", "body_roll_deg", "body_pitch_deg", "body_yaw_deg",
+                          "link_force_x", "link_force_y", "link_force_z"})
+      need.push_back(c);
+  std::vector<std::string> absent;
+  for (const auto& c : need)
+    if (!ts.has(c)) absent.push_back(c);
+  if (!absent.empty()) {
+    log << "towsim plot: " << (root / "timeseries.csv").string() << ": no column " << join(absent, ", ", " or ")
+        << " in its header\n";
+    return kInvalid;
+  }
+  if (ts.rows.empty()) {
+    log << "towsim plot: " << (root / "timeseries.csv").string() << ": no data rows\n";
+    return kInvalid;
+  }
+  if (run.has_nodes) {
+    std::ifstream in(root / "nodes.csv");
+    std::string header;
+    std::getline(in, header);
+    const auto names = split(header);
+    for (const char* c : {"time", "node", "x", "y", "z"})
+      if (std::find(names.begin(), names.end(), c) == names.end()) absent.push_back(c);
+    if (!absent.empty()) {
+      log << "towsim plot: " << (root / "nodes.csv").string() << ": no column " << join(absent, ", ", " or ")
+          << " in its header\n";
+      return kInvalid;
+    }
+  }
+  if (!run.has_body) run.second_sphere = false;
+
+  // Times, spans, planar or not.
+  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300;
+  std::vector<double> times;
+  for (std::size_t r = 0; r < ts.rows.size(); ++r) {
+    const double t = ts.at(r, "time");
+    if (!std::isfinite(t)) continue;
+    times.push_back(t);
+    for (const char* p : {"tow_", "end_", "body_"}) {
+      const double x = ts.at(r, std::string(p) + "x"), y = ts.at(r, std::string(p) + "y"),
+                   z = ts.at(r, std::string(p) + "z");
+      if (std::isfinite(x)) xmin = std::min(xmin, x), xmax = std::max(xmax, x);
+      if (std::isfinite(y)) ymin = std::min(ymin, y), ymax = std::max(ymax, y);
+      if (std::isfinite(z)) zmin = std::min(zmin, z), zmax = std::max(zmax, z);
+      if (std::isfinite(y) && std::abs(y) > 1e-9) run.three_d = true;
+    }
+  }
+  if (times.empty()) {
+    log << "towsim plot: " << (root / "timeseries.csv").string() << ": no valid time in its rows\n";
+    return kInvalid;
+  }
+  run.t0 = times.front();
+  run.t1 = times.back();
+  run.t_last = times.back();
+  run.rows = static_cast<long>(ts.rows.size());
+  run.single = times.size() == 1;
+  if (run.t1 <= run.t0) run.t1 = run.t0 + 1;  // a single row: still a valid range
+  run.min_dt = 0;
+  for (std::size_t i = 1; i < times.size(); ++i) {
+    const double d = times[i] - times[i - 1];
+    if (d > 0 && (run.min_dt == 0 || d < run.min_dt)) run.min_dt = d;
+  }
+  run.x_span = xmax > xmin ? xmax - xmin : 0;
+  run.y_span = ymax > ymin ? ymax - ymin : 0;
+  run.z_span = zmax > zmin ? zmax - zmin : 0;
+  run.marker_every = nice((run.t1 - run.t0) / 12);
+  const double dt_out = run.min_dt > 0 ? run.min_dt : 1;
+  run.marker_rows = std::max(1, static_cast<int>(std::lround(run.marker_every / dt_out)));
+  run.marker_every = run.marker_rows * dt_out;
+  // About opt.snapshots shapes, at a round time step from the first output.
+  const int ns = std::max(1, opt.snapshots);
+  const double span = times.back() - times.front();
+  double step = span;
+  if (ns > 1 && span > 0) {
+    int best = -1;
+    const double k0 = std::floor(std::log10(span / (ns - 1))) - 1;
+    for (int k = 0; k < 3; ++k)
+      for (double m : {1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0}) {
+        const double st = m * std::pow(10.0, k0 + k);
+        const int count = static_cast<int>(std::floor(span / st + 1e-9)) + 1;
+        const int miss = std::abs(count - ns);
+        if (best < 0 || miss < best || (miss == best && st > step)) best = miss, step = st;
+      }
+  }
+  const int count = span > 0 && step > 0 ? static_cast<int>(std::floor(span / step + 1e-9)) + 1 : 1;
+  for (int k = 0; k < count && run.has_nodes; ++k) {
+    const double target = times.front() + k * step;
+    const auto it = std::min_element(times.begin(), times.end(), [&](double a, double b) {
+      return std::abs(a - target) < std::abs(b - target);
+    });
+    if (run.snapshot_times.empty() || *it != run.snapshot_times.back()) run.snapshot_times.push_back(*it);
+  }
+
+  // 3. gnuplot, before writing anything.
+  const std::string prog = gnuplot_program();
+  int err = 0;
+  const int probe = spawn(prog, {"-e", "set terminal pngcairo; set terminal svg"}, "", err);
+  if (probe < 0) {
+    log << "towsim plot: cannot run the gnuplot program ('" << prog << "': " << std::strerror(err)
+        << "); install it (Debian/Ubuntu: apt-get install gnuplot-nox) or set TOWSIM_GNUPLOT to its path\n";
+    return kInvalid;
+  }
+  if (probe != 0) {
+    log << "towsim plot: '" << prog
+        << "' lacks the pngcairo or svg terminal; install a full gnuplot (Debian/Ubuntu: apt-get install "
+           "gnuplot-nox)\n";
+    return kInvalid;
+  }
+
+  // 4. Scripts, then figures.
+  const fs::path plots = root / "plots";
+  fs::remove_all(plots, ec);  // towsim's folder: no stale figure of an earlier run
+  fs::create_directories(plots, ec);
+  if (ec) {
+    log << "towsim plot: cannot create " << plots.string() << ": " << ec.message() << "\n";
+    return kGnuplotFailed;
+  }
+  if (run.status != "ok")
+    log << "towsim plot: note: the run ended with status '" << run.status << "'; plotting what it wrote\n";
+  if (run.has_nodes) {  // nodes.csv, read once
+    std::string error;
+    if (!write_node_data(root, plots, run, times, error)) {
+      log << "towsim plot: " << error << "\n";
+      return kInvalid;
+    }
+  }
+  const std::string mag_tow = ts.has("tow_tension") ? "tow_tension" : "";
+  const std::string mag_link = ts.has("link_tension") ? "link_tension" : "";
+  std::vector<std::pair<std::string, std::string>> scripts;
+  for (const auto& name : plot_names(run.has_body, run.three_d, run.single)) {
+    std::string text;
+    if (name == "trajectories_xz") text = fig_trajectories(run, opt);
+    else if (name == "tow_force")
+      text = fig_components(run, opt, name, "tow force on the cable at the tow point", "tow_force_", mag_tow, "F_R");
+    else if (name == "paths_xy") text = fig_paths(run, opt);
+    else if (name == "end_depth") text = fig_depth(run, opt);
+    else if (name == "body_angles") text = fig_angles(run, opt);
+    else if (name == "cable_shapes_xz" || name == "cable_shapes_xy") {
+      if (!run.has_nodes) {
+        log << "towsim plot: skipped " << name << " (the run wrote no nodes.csv)\n";
+        continue;
+      }
+      text = fig_shapes(run, opt, name == "cable_shapes_xy");
+    } else if (name == "tension_map" || name == "tension_along_cable") {
+      if (!run.has_nodes) {
+        log << "towsim plot: skipped " << name << " (the run wrote no nodes.csv)\n";
+        continue;
+      }
+      text = name == "tension_map" ? fig_tension_map(run, opt) : fig_tension_along(run, opt);
+    } else if (name == "depth_layback")
+      text = fig_depth_layback(run, opt);
+    else if (name == "link_force")
+      text = fig_components(run, opt, name, "link force exerted by the cable on the body", "link_force_", mag_link,
+                            "F_L");
+    scripts.emplace_back(name, text);
+  }
+  const std::string gp_log = (plots / "gnuplot.log").string();
+  std::ofstream(gp_log, std::ios::trunc).close();
+  const std::string plots_abs = fs::absolute(plots, ec).string();
+  int status = kOk;
+  for (const auto& [name, text] : scripts) {
+    const fs::path script = plots / (name + ".gp");
+    {
+      std::ofstream out(script, std::ios::trunc);
+      out << text;
+      if (!out) {
+        log << "towsim plot: cannot write " << script.string() << "\n";
+        return kGnuplotFailed;
+      }
+    }
+    const auto before = fs::file_size(gp_log, ec);
+    const int rc = spawn(prog, {"-e", "cd " + quote(plots_abs), name + ".gp"}, gp_log, err);
+    const bool png = exists_file(plots / (name + ".png")) && fs::file_size(plots / (name + ".png"), ec) > 0;
+    const bool svg = exists_file(plots / (name + ".svg")) && fs::file_size(plots / (name + ".svg"), ec) > 0;
+    if (rc != 0 || !png || !svg) {
+      log << "towsim plot: gnuplot failed on " << script.string();
+      if (rc < 0) log << " (" << std::strerror(err) << ")";
+      else if (rc != 0) log << " (exit status " << rc << ")";
+      log << ":\n";
+      std::ifstream in(gp_log);
+      in.seekg(static_cast<std::streamoff>(before));
+      log << in.rdbuf();
+      status = kGnuplotFailed;
+      continue;
+    }
+    log << "towsim plot: wrote " << (plots / (name + ".png")).string() << " and .svg\n";
+  }
+  return status;
+}
+
+}  // namespace towsim::io

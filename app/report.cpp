@@ -1,0 +1,388 @@
+#include "report.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "towsim/output/output.hpp"
+#include "plot.hpp"
+#include "run_files.hpp"
+
+namespace towsim::io {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+
+constexpr int kOk = 0;
+constexpr int kWriteFailed = 1;
+constexpr int kInvalid = 2;
+
+/// Text safe inside HTML elements and attribute values.
+std::string html(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+/// Text safe inside a <script> element: no "</" can close it early ("<\/" is
+/// the same in JSON strings and in JavaScript strings and regular expressions).
+std::string script_safe(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '<' && i + 1 < s.size() && s[i + 1] == '/') {
+      out += "<\\/";
+      ++i;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+
+std::string base64(const std::string& in) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((in.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < in.size(); i += 3) {
+    const unsigned v = (static_cast<unsigned char>(in[i]) << 16) | (static_cast<unsigned char>(in[i + 1]) << 8) |
+                       static_cast<unsigned char>(in[i + 2]);
+    out += {k[(v >> 18) & 63], k[(v >> 12) & 63], k[(v >> 6) & 63], k[v & 63]};
+  }
+  if (i + 1 == in.size()) {
+    const unsigned v = static_cast<unsigned char>(in[i]) << 16;
+    out += {k[(v >> 18) & 63], k[(v >> 12) & 63], '=', '='};
+  } else if (i + 2 == in.size()) {
+    const unsigned v = (static_cast<unsigned char>(in[i]) << 16) | (static_cast<unsigned char>(in[i + 1]) << 8);
+    out += {k[(v >> 18) & 63], k[(v >> 12) & 63], k[(v >> 6) & 63], '='};
+  }
+  return out;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A number for a person: 6 significant digits, 0 for round-off.
+std::string fmt(double v) {
+  if (!std::isfinite(v)) return "&ndash;";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", std::abs(v) < kZeroBelow ? 0.0 : v);
+  return b;
+}
+
+/// A number for the 3-D view as JSON (null when not finite): 7 significant
+/// digits (a millimetre on a kilometre of cable) keep the page small.
+json jnum(double v) {
+  if (!std::isfinite(v)) return nullptr;
+  if (std::abs(v) < kZeroBelow) return 0.0;
+  char b[32];
+  std::snprintf(b, sizeof b, "%.7g", v);
+  return std::strtod(b, nullptr);
+}
+
+/// What each figure shows, in page order.
+const std::vector<std::pair<std::string, std::string>>& figure_captions() {
+  static const std::vector<std::pair<std::string, std::string>> c{
+      {"trajectories_xz", "Trajectories of the tow point, cable end and body in the vertical x-z plane"},
+      {"paths_xy", "Horizontal paths (plan view)"},
+      {"depth_layback", "Depth of the body (or cable end) against layback"},
+      {"tension_map", "Tension along the cable against time"},
+      {"tension_along_cable", "Tension along the cable"},
+      {"tow_force", "Tow force at the tow point"},
+      {"end_depth", "Depth of the cable's lower end"},
+      {"body_angles", "Body roll, pitch and yaw"},
+      {"link_force", "Link force on the body"},
+      {"cable_shapes_xz", "Cable shapes, side view"},
+      {"cable_shapes_xy", "Cable shapes, plan view"},
+  };
+  return c;
+}
+
+/// The summary's key results as table rows (label, value, time or "").
+std::vector<std::array<std::string, 3>> summary_rows(const json& sm) {
+  std::vector<std::array<std::string, 3>> rows;
+  auto value = [](const json& j) { return j.is_number() ? fmt(j.get<double>()) : std::string("&ndash;"); };
+  const auto fin = sm.value("final", json::object());
+  auto final_row = [&](const char* key, const std::string& label) {
+    if (fin.is_object() && fin.contains(key)) rows.push_back({label, value(fin[key]), ""});
+  };
+  if (sm.contains("status")) rows.push_back({"status", html(sm["status"].is_string() ? sm["status"].get<std::string>() : ""), ""});
+  if (sm.contains("end_time")) rows.push_back({"simulated time [s]", value(sm["end_time"]), ""});
+  final_row("layback", "final layback [m]");
+  final_row("body_depth", "final body depth [m]");
+  final_row("end_depth", "final cable end depth [m]");
+  final_row("tow_tension", "final tow tension [N]");
+  final_row("link_tension", "final link tension [N]");
+  final_row("deployed_length", "deployed cable length [m]");
+  const auto ex = sm.value("extremes", json::object());
+  if (ex.is_object())
+    for (const auto& [k, v] : ex.items()) {
+      if (v.is_object() && v.contains("value")) {
+        rows.push_back({html(k), value(v["value"]), value(v.value("time", json()))});
+      } else if (v.is_object() && v.contains("min") && v.contains("max")) {
+        rows.push_back({html(k) + " min", value(v["min"].value("value", json())),
+                        value(v["min"].value("time", json()))});
+        rows.push_back({html(k) + " max", value(v["max"].value("value", json())),
+                        value(v["max"].value("time", json()))});
+      }
+    }
+  for (const char* k : {"steps", "rhs_evaluations", "wall_seconds", "samples"})
+    if (sm.contains(k)) rows.push_back({k, value(sm[k]), ""});
+  return rows;
+}
+
+/// The animation data: frames of node positions and tensions, body pose.
+bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, const ReportOptions& opt,
+                    json& data, std::string& error) {
+  const int ct = ts.col("time");
+  std::vector<double> times;
+  std::vector<std::size_t> rows;
+  for (std::size_t r = 0; r < ts.rows.size(); ++r)
+    if (std::isfinite(ts.at(r, ct))) times.push_back(ts.at(r, ct)), rows.push_back(r);
+  const auto pick = spread_indices(times.size(), static_cast<std::size_t>(std::max(1, opt.max_frames)));
+  std::vector<double> wanted;
+  for (std::size_t i : pick) wanted.push_back(times[i]);
+  std::vector<NodeFrame> frames;
+  if (!read_node_frames((root / "nodes.csv").string(), wanted, frames, error)) return false;
+  if (frames.empty()) {
+    error = (root / "nodes.csv").string() + ": no rows at the times of timeseries.csv";
+    return false;
+  }
+  // Every frame the same joints (the first frame's count).
+  const std::size_t n = frames.front().x.size();
+  const auto keep = spread_indices(n, static_cast<std::size_t>(std::max(2, opt.max_nodes)));
+  const bool body = ts.col("body_x") >= 0;
+  const int bx = ts.col("body_x"), by = ts.col("body_y"), bz = ts.col("body_z"), br = ts.col("body_roll_deg"),
+            bp = ts.col("body_pitch_deg"), byaw = ts.col("body_yaw_deg"), cl = ts.col("layback"),
+            cT = ts.col("tow_tension"), cd = body ? ts.col("body_depth") : ts.col("end_depth");
+  json jt = json::array(), jn = json::array(), jT = json::array(), jpos = json::array(), jrpy = json::array(),
+       jinfo = json::array();
+  double tmax = 0;
+  std::size_t w = 0;  // index into `pick` of the frame's timeseries row
+  for (const auto& f : frames) {
+    if (f.x.size() != n) continue;  // a frame of another cable (cannot happen in towsim's outputs)
+    while (w < pick.size() && std::abs(times[pick[w]] - f.t) > 1e-9 * std::max(1.0, std::abs(f.t))) ++w;
+    const std::size_t r = w < pick.size() ? rows[pick[w]] : rows.back();
+    json p = json::array(), T = json::array();
+    for (std::size_t k : keep) {
+      p.push_back(jnum(f.x[k]));
+      p.push_back(jnum(f.y[k]));
+      p.push_back(jnum(f.z[k]));
+      T.push_back(jnum(f.tension[k]));
+      if (std::isfinite(f.tension[k])) tmax = std::max(tmax, f.tension[k]);
+    }
+    jt.push_back(tidy_time(f.t));
+    jn.push_back(std::move(p));
+    jT.push_back(std::move(T));
+    std::string info;
+    if (cl >= 0) info += "layback " + fmt(ts.at(r, cl)) + " m";
+    if (cd >= 0) info += std::string(info.empty() ? "" : ", ") + "depth " + fmt(ts.at(r, cd)) + " m";
+    if (cT >= 0) info += std::string(info.empty() ? "" : ", ") + "tow tension " + fmt(ts.at(r, cT)) + " N";
+    jinfo.push_back(info);
+    if (body) {
+      jpos.push_back({jnum(ts.at(r, bx)), jnum(ts.at(r, by)), jnum(ts.at(r, bz))});
+      jrpy.push_back({jnum(ts.at(r, br)), jnum(ts.at(r, bp)), jnum(ts.at(r, byaw))});
+    }
+  }
+  data["times"] = jt;
+  data["nodes"] = jn;
+  data["tension"] = jT;
+  data["tension_max"] = jnum(tmax);
+  data["info"] = jinfo;
+  data["body"] = nullptr;
+  if (body) {
+    json spheres = json::array();
+    try {  // the model's load spheres, from the scenario echo
+      const auto& sp = sm.at("scenario").at("body").at("spheres");
+      for (const auto& s : sp)
+        spheres.push_back({{"center", s.at("center")}, {"radius", s.at("radius")}});
+    } catch (const std::exception&) {
+      spheres = json::array();  // no echo (statics of an older version): one marker sphere
+    }
+    data["body"] = {{"pos", jpos}, {"rpy", jrpy}, {"spheres", spheres}};
+  }
+  return true;
+}
+
+const char* kStyle = R"(
+body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;margin:0 auto;max-width:1200px;padding:0 16px 40px;color:#222}
+h1{font-size:1.5em;margin:18px 0 4px}h2{font-size:1.2em;margin:28px 0 8px;border-bottom:1px solid #ddd}
+.sub{color:#666;margin:0 0 12px}
+#view3d{width:100%;height:560px;background:#eef3f8;border:1px solid #ccd;position:relative}
+#controls{display:flex;gap:12px;align-items:center;margin:8px 0}
+#frame{flex:1}#frame-label{font-variant-numeric:tabular-nums;min-width:22em}
+.note{background:#fff6e0;border:1px solid #e8c76a;padding:10px 14px;border-radius:4px}
+.small{color:#666;font-size:.9em}
+table{border-collapse:collapse}td,th{border-bottom:1px solid #e4e4e4;padding:4px 12px;text-align:left}
+td.n{text-align:right;font-variant-numeric:tabular-nums}
+figure{margin:16px 0}figure img{max-width:100%;border:1px solid #eee}figcaption{color:#444;margin-top:4px}
+pre{background:#f6f6f6;padding:10px;overflow:auto;max-height:400px;font-size:.85em}
+)";
+
+}  // namespace
+
+ReportOptions default_report_options() {
+  ReportOptions o;
+  o.viewer_js = embedded_viewer_js();
+  o.viewer_note = embedded_viewer_note();
+  return o;
+}
+
+int report_run(const std::string& dir, std::ostream& log, const ReportOptions& opt) {
+  const fs::path root(dir);
+  std::error_code ec;
+  const char* kUsage = "expected the output directory of `towsim run --out DIR` or `towsim statics --out DIR`";
+  if (!fs::is_directory(root, ec)) {
+    log << "towsim report: " << dir << ": no such directory (" << kUsage << ")\n";
+    return kInvalid;
+  }
+  for (const char* f : {"timeseries.csv", "nodes.csv"})
+    if (!fs::is_regular_file(root / f, ec)) {
+      log << "towsim report: " << dir << " has no " << f << " (" << kUsage << ")\n";
+      return kInvalid;
+    }
+  json sm = json::object();
+  if (fs::is_regular_file(root / "summary.json", ec)) {
+    try {
+      std::ifstream in(root / "summary.json");
+      sm = json::parse(in);
+    } catch (const std::exception& e) {
+      log << "towsim report: " << (root / "summary.json").string() << ": not valid JSON: " << e.what() << "\n";
+      return kInvalid;
+    }
+    if (!sm.is_object()) sm = json::object();
+  }
+  CsvTable ts;
+  std::string error;
+  if (!read_csv_table((root / "timeseries.csv").string(), ts, error)) {
+    log << "towsim report: " << error << "\n";
+    return kInvalid;
+  }
+  if (ts.col("time") < 0 || ts.rows.empty()) {
+    log << "towsim report: " << (root / "timeseries.csv").string() << ": no time column or no rows\n";
+    return kInvalid;
+  }
+  json data;
+  if (!animation_data(root, ts, sm, opt, data, error)) {
+    log << "towsim report: " << error << "\n";
+    return kInvalid;
+  }
+  std::string model = sm.is_object() && sm.contains("model") && sm["model"].is_string() ? sm["model"].get<std::string>()
+                                                                                         : root.filename().string();
+  if (model.empty()) model = "run";
+
+  // The figures: `towsim plot` first (its messages kept for the page).
+  std::string plot_note;
+  if (opt.plots) {
+    std::ostringstream plog;
+    const int rc = plot_run(dir, plog);
+    if (rc != 0) {
+      plot_note = plog.str();
+      log << plot_note;
+    }
+  }
+
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+    << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+    << "<title>towsim report: " << html(model) << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
+  h << "<h1>towsim report: " << html(model) << "</h1>\n<p class=\"sub\">" << html(fs::absolute(root, ec).string())
+    << " &middot; " << ts.rows.size() << " output times";
+  if (sm.contains("status") && sm["status"].is_string()) h << " &middot; status " << html(sm["status"].get<std::string>());
+  h << "</p>\n";
+
+  // 1. The 3-D view.
+  h << "<h2>3-D view</h2>\n";
+  if (!opt.viewer_js.empty()) {
+    h << "<div id=\"view3d\"></div>\n<div id=\"controls\"><button id=\"play\" type=\"button\">Play</button>"
+      << "<input id=\"frame\" type=\"range\" min=\"0\" max=\"0\" value=\"0\" aria-label=\"time\">"
+      << "<span id=\"frame-label\"></span></div>\n<p class=\"small\" id=\"scale-note\"></p>\n";
+  } else {
+    h << "<p class=\"note\" id=\"no3d\">No 3-D view in this report: "
+      << html(opt.viewer_note.empty() ? std::string("the viewer was not built") : std::string(opt.viewer_note))
+      << ". The figures and the summary below are complete.</p>\n";
+  }
+
+  // 2. The summary.
+  h << "<h2>Summary</h2>\n<table>\n<tr><th>quantity</th><th>value</th><th>at t [s]</th></tr>\n";
+  for (const auto& r : summary_rows(sm))
+    h << "<tr><td>" << r[0] << "</td><td class=\"n\">" << r[1] << "</td><td class=\"n\">" << r[2] << "</td></tr>\n";
+  h << "</table>\n";
+  if (sm.empty()) h << "<p class=\"small\">No summary.json in this directory.</p>\n";
+
+  // 3. The figures, as PNG data URIs.
+  h << "<h2>Figures</h2>\n";
+  if (!plot_note.empty())
+    h << "<p class=\"note\">The figures could not all be rendered (towsim plot):</p><pre>" << html(plot_note)
+      << "</pre>\n";
+  int figures = 0;
+  for (const auto& [name, caption] : figure_captions()) {
+    const fs::path png = root / "plots" / (name + ".png");
+    if (!fs::is_regular_file(png, ec)) continue;
+    h << "<figure id=\"fig-" << name << "\"><img alt=\"" << html(caption) << "\" src=\"data:image/png;base64,"
+      << base64(read_file(png)) << "\"><figcaption>" << html(caption) << " (plots/" << name
+      << ".png)</figcaption></figure>\n";
+    ++figures;
+  }
+  if (figures == 0) h << "<p class=\"small\">No figures (run `towsim plot " << html(dir) << "`).</p>\n";
+
+  // 4. The scenario echo.
+  if (sm.contains("scenario")) {
+    h << "<h2>Scenario</h2>\n<pre>"
+      << html(sm["scenario"].dump(2, ' ', false, json::error_handler_t::replace)) << "</pre>\n";
+  }
+  h << "<p class=\"small\">Written by towsim report. Self-contained: no network access is needed to view it.</p>\n";
+
+  // 5. The data and the viewer.
+  if (!opt.viewer_js.empty()) {
+    h << "<script id=\"towsim-data\" type=\"application/json\">"
+      << script_safe(data.dump(-1, ' ', false, json::error_handler_t::replace)) << "</script>\n"
+      << "<script>\n" << script_safe(opt.viewer_js) << "\n</script>\n";
+  } else {
+    h << "<script>document.documentElement.setAttribute('data-ready','no-3d');</script>\n";
+  }
+  h << "</body>\n</html>\n";
+
+  const fs::path out = root / "report.html";
+  const fs::path tmp = root / "report.html.tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f << h.str();
+    if (!f) {
+      log << "towsim report: cannot write " << tmp.string() << "\n";
+      return kWriteFailed;
+    }
+  }
+  fs::rename(tmp, out, ec);
+  if (ec) {
+    log << "towsim report: cannot write " << out.string() << ": " << ec.message() << "\n";
+    return kWriteFailed;
+  }
+  log << "towsim report: wrote " << out.string() << " (" << (fs::file_size(out, ec) + 512) / 1024 << " KiB"
+      << (opt.viewer_js.empty() ? ", without the 3-D view" : "") << ")\n";
+  return kOk;
+}
+
+}  // namespace towsim::io

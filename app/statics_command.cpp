@@ -1,0 +1,98 @@
+// `towsim statics`: the steady-tow configuration of a scenario (docs/theory.md §7).
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+#include "towsim/dynamics/dynamics.hpp"
+#include "commands.hpp"
+#include "towsim/output/output.hpp"
+#include "towsim/sim/statics.hpp"
+
+namespace towsim::io {
+
+namespace {
+
+constexpr double kDeg = 180.0 / M_PI;
+
+/// Print the engineer's summary of a steady tow.
+void print_statics(const Model& model, const StaticsResult& r, const Sample& s, std::ostream& out) {
+  out << std::setprecision(6);
+  const Vec3 F = r.tow_force;
+  out << "steady tow at V = (" << r.tow_velocity.transpose() << ") m/s, |V| = " << r.tow_velocity.norm() << " m/s\n";
+  out << "  converged: " << (r.converged ? "yes" : "NO") << " (" << r.iterations
+      << " iterations, largest angular acceleration left " << r.residual << " rad/s^2)\n";
+  out << "  tow force F_R = (" << F.transpose() << ") N, tension " << F.norm() << " N, "
+      << std::atan2(F.z(), std::hypot(F.x(), F.y())) * kDeg << " deg above horizontal\n";
+  const Vec3 end = s.node_pos.back() - s.tow_pos;
+  out << "  cable end: depth " << -s.node_pos.back().z() << " m, " << std::hypot(end.x(), end.y())
+      << " m horizontally from the tow point\n";
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodySample& bs = s.bodies[b];
+    out << "  " << (model.bodies[b].inline_body ? "body " + model.bodies[b].name : std::string("body")) << ": depth " << -bs.pos.z() << " m, roll/pitch/yaw ("
+        << bs.rpy_deg.transpose() << ") deg\n";
+    out << "  link force F_L = (" << bs.link_force.transpose() << ") N, |F_L| = " << bs.link_force.norm() << " N\n";
+    if (model.bodies[b].inline_body)
+      out << "  lower link force = (" << bs.lower_link_force.transpose() << ") N, |F| = " << bs.lower_link_force.norm()
+          << " N\n";
+  }
+  out << "  element  angle below horizontal [deg]  heading [deg]  tension at top [N]\n";
+  for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
+    const Vec3& e = r.state.e[k];
+    out << "  " << std::setw(7) << k + 1 << "  " << std::setw(28) << std::asin(-e.z()) * kDeg << "  "
+        << std::setw(13) << std::atan2(e.y(), e.x()) * kDeg << "  " << std::setw(18) << r.joint_force[k].norm()
+        << "\n";
+  }
+}
+
+}  // namespace
+
+int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err) {
+  const LoadedScenario sc = load_input(opts.input);
+  if (!sc.ok()) {
+    err << sc.diags.str();
+    return kExitInvalid;
+  }
+  const Model& model = *sc.model;
+  if (model.tow.mode != Tow::Mode::Motion) {
+    // A rule between the command and the scenario, in the scenario's error format.
+    const Where& w = sc.spec.tow.mode.where;
+    err << Diagnostic{w.loc, w.path, "statics needs mode: motion (the steady speed comes from the tow law; got force)"}
+               .str()
+        << "\n";
+    return kExitInvalid;
+  }
+  const StaticsResult r = solve_statics(model, final_tow_velocity(model.tow));
+  const Sample& s = r.sample;
+  print_statics(model, r, s, out);
+  if (!opts.out_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(opts.out_dir, ec);
+    if (ec) {
+      err << "towsim: statics: " << opts.out_dir << ": cannot create the directory: " << ec.message() << "\n";
+      return kExitError;
+    }
+    remove_run_outputs(opts.out_dir);  // no stale file of a previous run
+    RunWriter writer(opts.out_dir, model, true);
+    writer.write(s);
+    writer.flush();
+    RunStats stats;  // a statics "run": one sample at t = 0
+    stats.status = r.converged ? "ok" : "failed";
+    stats.message = r.converged ? "" : r.message;
+    stats.steps = r.iterations;
+    const auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, true);
+    if (!write_summary(opts.out_dir, summary)) {
+      err << "towsim: statics: cannot write " << opts.out_dir << "/summary.json\n";
+      return kExitError;
+    }
+    out << "  written: " << opts.out_dir << "/timeseries.csv, " << opts.out_dir << "/nodes.csv, " << opts.out_dir
+        << "/summary.json\n";
+  }
+  if (!r.converged) {
+    err << "towsim: statics: " << r.message << "\n";
+    return kExitFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace towsim::io

@@ -1,0 +1,79 @@
+// Parameter sweeps (issue 16): many runs of one base scenario over a grid or
+// list of `--set` overrides, one row of key results per case. Used by
+// `towsim sweep` and by the Python module (towsim.sweep).
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "towsim/scenario/diagnostics.hpp"
+#include "towsim/scenario/scenario.hpp"
+#include "towsim/sim/simulate.hpp"
+
+namespace towsim::io {
+
+/// A summary figure: its name (the summary.json name, flattened) and value (NaN for null).
+using Figure = std::pair<std::string, double>;
+
+/// The numbers of a summary.json, flattened to one name each: `end_time`;
+/// each extreme by its name (its value; `body_roll_deg_min`/`_max` for the
+/// min/max pairs); any other top-level `max_*`/`min_*` figure; and each
+/// `final` value as `final_<column>`. Names in that order.
+std::vector<Figure> summary_figures(const nlohmann::ordered_json& summary);
+
+/// How one case ended and its figures.
+struct CaseResult {
+  std::string status;            // ok | failed | interrupted | invalid | not_run
+  std::string message;           // why it failed, or "" (invalid: every error, one per line)
+  std::vector<Figure> figures;   // summary_figures() of its summary (empty when invalid)
+};
+
+/// Simulate a loaded, valid scenario. With `out_dir` non-empty, write the
+/// files of `towsim run` there (created if missing); otherwise nothing is
+/// written. Never throws: internal errors become a failed case. `progress`
+/// is called after each output sample (as by simulate()).
+CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag,
+                    const ProgressFn& progress = {});
+
+/// One case of a sweep: its overrides as (dotted key, YAML value text).
+struct SweepCase {
+  std::vector<std::pair<std::string, std::string>> sets;
+};
+
+/// A sweep file as read: the base scenario, the overrides every case
+/// shares, the varied keys (in column order) and the cases.
+struct SweepSpec {
+  std::string scenario;              // scenario file path (relative to the working directory), or ""
+  std::string example;               // built-in example name, or ""
+  std::vector<std::string> common;   // `set`: KEY=VALUE for every case
+  std::vector<std::string> keys;     // the keys the cases vary, in order
+  std::vector<SweepCase> cases;
+  bool write_cases = false;          // also write each case's files into DIR/case-NNNN/
+};
+
+/// Most cases a sweep file may expand to.
+constexpr std::size_t kMaxSweepCases = 100000;
+
+/// Read a sweep file; every problem goes to `diags` as FILE:LINE:COL: key: problem.
+SweepSpec read_sweep(const std::string& path, Diagnostics& diags);
+
+/// Options of `towsim sweep`.
+struct SweepOptions {
+  std::string file;      // the sweep file
+  std::string out_dir;   // where sweep.csv (and case-NNNN/) go
+  int jobs = 0;          // parallel cases (0 = every core)
+  bool quiet = false;    // print nothing but errors
+};
+
+/// `towsim sweep`: run the cases on `jobs` threads, write DIR/sweep.csv (one
+/// row per case, in case order, flushed as they complete). A failing case is
+/// a row, not a failed sweep. `stop_flag` stops it: running cases end
+/// `interrupted`, the rest are `not_run` rows. Returns an ExitStatus.
+int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err,
+                  const volatile int* stop_flag = nullptr);
+
+}  // namespace towsim::io

@@ -1,0 +1,160 @@
+// Run outputs (docs/scenario.md "Output files"): timeseries.csv, nodes.csv,
+// summary.json. The columns depend on the model's chain: the end body keeps
+// the `body_*` / `link_*` columns, each in-line body adds columns prefixed
+// with its name.
+//
+// Number format (docs/scenario.md "Number format"): a magnitude below
+// kZeroBelow is written as 0 (round-off where 0 is meant, e.g. 1.6e-145);
+// other values with 12 significant digits in the shortest form that reads
+// back to them; times rounded to the nanosecond first (k * 0.1 s is written
+// 7088.4, not 7088.400000000001). summary.json holds the same values.
+#pragma once
+
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "towsim/output/sea_statistics.hpp"
+#include "towsim/sim/simulate.hpp"
+
+namespace towsim::io {
+
+/// A maximum (or minimum) over the run and the time it was reached.
+struct Extreme {
+  double value = std::numeric_limits<double>::quiet_NaN();
+  double time = std::numeric_limits<double>::quiet_NaN();
+  /// Keep (v, t) when v > value (or the first time).
+  void max(double v, double t);
+  /// Keep (v, t) when v < value (or the first time).
+  void min(double v, double t);
+};
+
+/// Extremes of one body.
+struct BodyExtremes {
+  Extreme max_link_force;         // |F_L| [N]
+  Extreme max_lower_link_force;   // |force at Q2| [N] (in-line body)
+  Extreme max_depth;              // -z of O_t [m]
+  Extreme min_deg[3], max_deg[3]; // roll, pitch, yaw [deg]
+};
+
+/// Extremes over all written samples.
+struct Extremes {
+  Extreme max_tow_tension;    // |F_R| [N]
+  Extreme max_cable_tension;  // largest joint tension anywhere [N]
+  Extreme max_end_depth;      // -z of the cable's end [m]
+  Extreme min_axial_force;    // smallest axial force in any joint, < 0 in compression [N]
+  Extreme min_depth, max_depth;  // -z of the end body's origin, or of the cable end without one [m]
+  Extreme max_layback;        // horizontal distance tow point -> end body origin (or cable end) [m]
+  Extreme max_utilisation;    // largest tension / breaking load at a node [-] (sections with breaking_load)
+  BodyExtremes end_body_extremes;           // the end body's (if any)
+  std::vector<BodyExtremes> inline_bodies;  // per Model::bodies entry (in-line ones used)
+  /// Update with one sample of `model`.
+  void add(const Model& model, const Sample& s);
+};
+
+/// Magnitudes below this are written as 0 [any unit: m, N, deg, m/s].
+/// 1e-9 is far below any physical resolution of these quantities (a
+/// nanometre, a nanonewton) and far above the round-off of exact zeros.
+inline constexpr double kZeroBelow = 1e-9;
+
+/// A value as written: 0 below kZeroBelow, else rounded to 12 significant digits.
+double tidy(double v);
+/// A time as written: rounded to the nanosecond [s].
+double tidy_time(double t);
+/// Append `v` as written (0 below kZeroBelow, else 12 significant digits) to `out`.
+void put_number(std::string& out, double v);
+/// The same, under the name the Python module uses.
+inline void append_number(std::string& out, double v) { put_number(out, v); }
+/// Append a time as written (tidy_time, shortest round-trip form) to `out`.
+void put_time(std::string& out, double t);
+
+/// The columns of timeseries.csv, in order, for the model's chain.
+std::vector<std::string> timeseries_columns(const Model& model);
+/// The timeseries.csv header (no newline).
+std::string timeseries_header(const Model& model);
+/// One sample's timeseries.csv values as written (tidied), in the order of
+/// timeseries_columns() (the files and the Python API both use this).
+void timeseries_values(const Model& model, const Sample& s, std::vector<double>& out);
+
+/// The per-node columns of nodes.csv (after `time,node`): x, y, z, vx, vy, vz, tension, axial_force.
+const std::vector<std::string>& node_columns();
+/// Node k's nodes.csv values of one sample as written (tidied), in the order of node_columns().
+void node_values(const Sample& s, std::size_t k, std::vector<double>& out);
+
+/// Horizontal distance from the tow point to the end body's origin (or to
+/// the cable's lower end without an end body) [m].
+double layback(const Model& model, const Sample& s);
+/// Largest tension / breaking load over the nodes of one sample (0 when no
+/// section gives a breaking load) [-].
+double utilisation(const Model& model, const Sample& s);
+
+/// Remove what towsim writes into an output directory (timeseries.csv,
+/// nodes.csv, summary.json, plots/, report.html) and nothing else, so that a
+/// reused directory keeps no stale file. Throws std::runtime_error on failure.
+void remove_run_outputs(const std::string& dir);
+
+/// A sink that keeps what summary.json needs: the extremes, the number of
+/// samples and the last timeseries row. The base of the file writer; used
+/// alone where no file is written (sweeps, Python).
+class RunRecord : public OutputSink {
+ public:
+  explicit RunRecord(const Model& model);
+  /// Account for one sample.
+  void write(const Sample& s) override;
+  void flush() override {}
+  /// Extremes of the samples written so far.
+  const Extremes& extremes() const { return extremes_; }
+  /// Number of samples written.
+  long samples() const { return samples_; }
+  /// The last sample's timeseries values as written (empty before the first).
+  const std::vector<double>& last_row() const { return last_row_; }
+  /// The last row's values by column name (null before any row).
+  nlohmann::ordered_json final_row() const;
+  const Model& model() const { return model_; }
+  /// Sea-state statistics of the samples so far (a model with waves or a vessel).
+  const SeaStatistics& sea_statistics() const { return sea_; }
+
+ private:
+  const Model& model_;
+  SeaStatistics sea_;
+  Extremes extremes_;
+  long samples_ = 0;
+  std::vector<double> last_row_;
+};
+
+/// Writes timeseries.csv (and nodes.csv) row by row, each sample's rows
+/// complete and flushed to the OS before the next, so that a crash leaves
+/// whole rows.
+class RunWriter : public RunRecord {
+ public:
+  /// Create the files in the existing directory `dir` and write their
+  /// headers; throws std::runtime_error when a file cannot be created.
+  RunWriter(const std::string& dir, const Model& model, bool write_nodes);
+  ~RunWriter() override;
+  RunWriter(const RunWriter&) = delete;
+  RunWriter& operator=(const RunWriter&) = delete;
+
+  /// Append the sample's rows and flush them.
+  void write(const Sample& s) override;
+  /// Flush both files.
+  void flush() override;
+
+ private:
+  std::FILE* series_ = nullptr;
+  std::FILE* nodes_ = nullptr;
+  std::string buf_;
+  std::vector<double> values_;
+};
+
+/// summary.json content: model name, RunStats, extremes, `final` (the last
+/// row by column name), the scenario echo.
+nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,
+                                    const RunStats& stats, const RunRecord& record, bool write_nodes);
+
+/// Write `summary` as DIR/summary.json (pretty-printed); false on I/O error.
+bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary);
+
+}  // namespace towsim::io

@@ -1,0 +1,19 @@
+// ScenarioSpec -> Model: range and consistency checks, then the build.
+#pragma once
+
+#include <optional>
+
+#include "towsim/scenario/diagnostics.hpp"
+#include "towsim/scenario/spec.hpp"
+#include "towsim/model/model.hpp"
+
+namespace towsim::io {
+
+/// Check every value of `spec` (ranges, unit vectors, inertia, tables, tow
+/// pieces) and report all problems to `diags`. When there are none, build and
+/// return the Model (elements through make_element, the body through
+/// finalize_body); otherwise return nothing. Values already reported by the
+/// parser (not `given`) are not checked again.
+std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags);
+
+}  // namespace towsim::io

@@ -1,0 +1,275 @@
+// The scenario as read from YAML, before validation: plain structs whose
+// every value remembers where it was written (file, line, column, key path).
+// `parse_scenario()` fills them; `compile()` checks them and builds a Model.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "towsim/scenario/diagnostics.hpp"
+#include "towsim/model/model.hpp"
+
+namespace towsim::io {
+
+/// Where a value came from: its source location and dotted key path.
+struct Where {
+  SourceLoc loc;
+  std::string path;
+};
+
+/// A scenario value with its origin. `given` is false when the key is absent
+/// (then `value` is the default) or could not be read (an error was reported).
+template <class T>
+struct Field {
+  T value{};
+  Where where;
+  bool given = false;
+
+  Field() = default;
+  Field(T v) : value(std::move(v)) {}  // NOLINT: implicit, for defaults
+};
+
+/// One row of a table: values (e.g. t, Fx, Fy, Fz) and where the row is.
+struct RowSpec {
+  std::vector<double> values;
+  Where where;
+};
+
+/// environment: water, gravity, current.
+struct EnvironmentSpec {
+  Field<double> water_density{1025.0};  // [kg/m^3], 0 = no fluid
+  Field<double> gravity{9.81};          // [m/s^2]
+  bool current_given = false;
+  Where current_where;
+  std::vector<RowSpec> current;  // rows {depth [m], ux, uy, uz [m/s]}; uniform = one row at depth 0
+};
+
+/// cable.sections item: a run of equal elements. Unset properties take the
+/// cable-level value (or its default).
+struct SectionSpec {
+  Where where;
+  Field<std::string> name;          // for messages [-]
+  Field<double> length;             // [m]
+  Field<long long> elements;        // [-]
+  Field<double> mass_per_length;    // in air [kg/m]
+  Field<double> diameter;           // [m]
+  Field<double> normal_drag;        // Cd [-]
+  Field<std::string> tangential_law;  // pode | skin
+  Field<double> tangential_coef;    // f or ct [-]
+  Field<double> added_mass;         // Ca [-]
+  Field<double> axial_stiffness;    // EA [N] (refused: the cable is inextensible in this version)
+  Field<double> breaking_load;      // [N], for utilisation
+};
+
+struct BodySpec;
+
+/// cable.attachments item: a point load lumped at the nearest joint.
+struct AttachmentSpec {
+  Where where;
+  Field<double> at;                 // arc length from the tow point [m]
+  Field<double> mass{0.0};          // [kg]
+  Field<double> volume{0.0};        // [m^3]
+  Field<double> drag_area{0.0};     // Cd A [m^2]
+  Field<double> added_mass{0.0};    // [kg]
+};
+
+/// cable: a chain of equal elements.
+struct CableSpec {
+  Where where;
+  Field<double> length;             // total [m]
+  Field<long long> elements;        // number of elements [-]
+  Field<double> mass_per_length;    // in air [kg/m]
+  Field<double> diameter;           // [m]
+  Field<double> normal_drag{1.8};   // Cd [-]
+  Field<std::string> tangential_law{"pode"};  // pode | skin
+  Field<double> tangential_coef{0.0};         // f (pode, default 0) or ct (skin, default 0.008) [-]
+  Field<double> added_mass{1.0};              // Ca [-]
+  Field<std::string> added_mass_model{"ideal_fluid"};  // ideal_fluid | morison
+  Field<double> sign_smoothing_speed{1e-3};   // [m/s]
+  Field<double> breaking_load;                // [N] (single-section form)
+  // cable.sections: items in order, each a section or an in-line body
+  // (index into `inline_bodies`); empty = the single-section form above.
+  Where sections_where;
+  std::vector<SectionSpec> sections;
+  std::vector<int> item_body;       // per sections item: -1 (a section) or body index
+  std::vector<Where> item_where;    // per sections item
+  std::vector<BodySpec> inline_bodies;
+  std::vector<AttachmentSpec> attachments;
+};
+
+/// body.spheres item.
+struct SphereSpec {
+  Where where;
+  Field<Vec3> center;             // body axes [m]
+  Field<double> radius;           // [m]
+  Field<double> drag{0.5};        // Cd [-]
+  Field<double> added_mass{0.5};  // Ca [-]
+};
+
+/// body.cylinders item.
+struct CylinderSpec {
+  Where where;
+  Field<Vec3> center;              // body axes [m]
+  Field<Vec3> axis;                // body axes, normalised by compile [-]
+  Field<double> length;            // [m]
+  Field<double> diameter;          // [m]
+  Field<double> normal_drag{1.2};  // Cd [-]
+  Field<double> axial_drag{0.0};   // Ct [-]
+  Field<double> added_mass{1.0};   // Ca [-]
+};
+
+/// body.surfaces item.
+struct SurfaceSpec {
+  Where where;
+  Field<Vec3> center;                    // centre of pressure, body axes [m]
+  Field<Vec3> chord;                     // body axes [-]
+  Field<Vec3> normal;                    // body axes [-]
+  Field<double> area;                    // [m^2]
+  Field<double> lift_slope{6.283185307179586};  // dCL/dalpha [1/rad]
+  Field<double> stall_angle_deg{15.0};   // [deg]
+  Field<double> drag0{0.01};             // CD0 [-]
+  Field<double> induced_drag{0.05};      // k [-]
+  Where deflection_where;
+  std::vector<RowSpec> deflection;       // rows {t [s], delta [deg]}; empty = 0
+};
+
+/// body.thrusters item.
+struct ThrusterSpec {
+  Where where;
+  Field<Vec3> point{Vec3::Zero()};       // body axes [m]
+  Field<Vec3> direction{Vec3::UnitX()};  // body axes, normalised by compile [-]
+  Where force_where;
+  std::vector<RowSpec> force;            // rows {t [s], thrust [N]}; a number = constant
+};
+
+/// body: the towed rigid body (optional).
+struct BodySpec {
+  bool present = false;
+  Where where;
+  Field<std::string> name;                  // output column prefix (in-line bodies) [-]
+  Field<Vec3> lower_link_point;             // in-line body: where the next section hangs, body axes [m]
+  Field<double> mass;                       // [kg]
+  Field<Mat3> inertia;                      // about the CG, body axes [kg m^2]
+  Field<Vec3> center_of_gravity{Vec3::Zero()};  // [m]
+  Field<Vec3> link_point;                   // [m]
+  Field<double> volume{0.0};                // [m^3]
+  Field<Vec3> center_of_buoyancy;           // [m], default = center_of_gravity
+  Field<Mat6> added_mass{Mat6::Zero()};     // about O_t, body axes [SI]
+  Field<Mat6> linear_damping{Mat6::Zero()};     // [SI]
+  Field<Mat6> quadratic_damping{Mat6::Zero()};  // [SI]
+  Field<Vec3> initial_attitude_deg{Vec3::Zero()};  // roll, pitch, yaw [deg]
+  std::vector<SphereSpec> spheres;
+  std::vector<CylinderSpec> cylinders;
+  std::vector<SurfaceSpec> surfaces;
+  std::vector<ThrusterSpec> thrusters;
+};
+
+/// tow.motion item: ramp, heave, turn, speed or track.
+struct PieceSpec {
+  Where where;
+  Field<std::string> type;        // ramp | heave | turn | speed | track
+  Field<Vec3> direction;          // ramp [-]
+  Field<double> speed;            // ramp, speed [m/s] (`speed_kn` in knots)
+  Field<double> ramp_time;        // ramp, speed [s]
+  Field<double> amplitude;        // heave [m]
+  Field<double> period;           // heave [s]
+  Field<double> start_time{0.0};  // heave, turn, speed [s]
+  Field<double> radius;           // turn [m]
+  Field<std::string> side{"port"};  // turn: port | starboard
+  Field<double> angle_deg;        // turn: change of heading at which it ends [deg]; absent = never ends
+  Where track_where;              // track: the `file` or `points` key
+  std::vector<RowSpec> track;     // track rows {t [s], x, y, z [m]}
+  Field<double> speed_scale{1.0}; // track: times are divided by it [-]
+
+  /// A piece that steers the course (turn, speed).
+  bool manoeuvre() const { return type.value == "turn" || type.value == "speed"; }
+};
+
+/// tow: the tow point's imposed motion or force.
+struct TowSpec {
+  Where where;
+  Field<std::string> mode{"motion"};  // motion | force
+  Field<Vec3> start{Vec3::Zero()};    // [m]
+  std::vector<PieceSpec> motion;
+  bool force_given = false;
+  Where force_where;
+  std::vector<RowSpec> force;         // rows {t [s], Fx, Fy, Fz [N]}
+};
+
+/// initial: hanging | steady | {direction: [x, y, z]}.
+struct InitialSpec {
+  Field<std::string> kind{"hanging"};
+  Field<Vec3> direction;
+};
+
+/// simulation: time integration and output settings.
+struct SimulationSpec {
+  Where where;
+  Field<double> duration;              // [s] (required)
+  Field<double> time_step{0.01};       // [s]
+  Field<std::string> integrator{"rk4"};  // rk4 | dopri5 | cash_karp54
+  Field<double> tolerance{1e-6};       // [-]
+  Field<double> max_step{1.0};         // [s]
+  Field<std::string> formulation{"default"};  // default | paper
+  Field<double> output_interval{0.1};  // [s]
+  Field<bool> write_nodes{true};
+};
+
+/// waves: a regular wave or a spectrum, optionally in finite depth.
+struct WavesSpec {
+  bool present = false;
+  Where where;
+  bool regular = false;               // `regular:` given (else `spectrum:`)
+  Where kind_where;                   // where `regular:` or `spectrum:` is
+  Field<double> height;               // regular: H [m]
+  Field<double> period;               // regular: T [s]
+  Field<double> heading_deg{180.0};   // direction of travel relative to the course [deg]
+  Field<std::string> type;            // spectrum: jonswap | pierson_moskowitz
+  Field<double> hs;                   // spectrum: significant wave height [m]
+  Field<double> tp;                   // spectrum: peak period [s]
+  Field<double> gamma{3.3};           // spectrum (jonswap): peak enhancement [-]
+  Field<long long> components{200};   // spectrum: number of harmonics [-]
+  Field<long long> seed{1};           // spectrum: phase seed [-]
+  Field<double> water_depth;          // [m]; absent = deep water
+  Field<double> statistics_start;     // [s]; absent = half the duration
+  Field<double> ramp_time{0.0};       // build-up of the waves and ship motion [s]
+};
+
+/// One RAO row: period [s], heading [deg], dof (0..5), amplitude, phase [deg].
+struct RaoRowSpec {
+  double period, heading, amplitude, phase;
+  int dof;
+  Where where;
+};
+
+/// vessel: RAOs (file or inline rows) or a measured motion record, and the sheave.
+struct VesselSpec {
+  bool present = false;
+  Where where;
+  Field<Vec3> tow_point{Vec3::Zero()};  // sheave in vessel axes from the RAO origin [m]
+  Field<std::string> rotations{"small_angle"};  // small_angle | exact
+  bool raos_given = false;
+  Where raos_where;
+  std::vector<RaoRowSpec> raos;
+  bool motions_given = false;
+  Where motions_where;
+  std::vector<RowSpec> motions;  // rows {t [s], surge, sway, heave [m], roll, pitch, yaw [deg]}
+};
+
+/// A whole scenario as written.
+struct ScenarioSpec {
+  std::string name;         // `name:` key, else the file stem or example name
+  std::string description;  // `description:` key (one line), may be empty
+  std::string base_dir;     // directory for relative files (track CSV)
+  Where root;
+  EnvironmentSpec environment;
+  CableSpec cable;
+  BodySpec body;
+  TowSpec tow;
+  InitialSpec initial;
+  SimulationSpec simulation;
+  WavesSpec waves;
+  VesselSpec vessel;
+};
+
+}  // namespace towsim::io

@@ -1,0 +1,381 @@
+// Run outputs: the columns, the number format, the writers and summary.json.
+#include "towsim/output/output.hpp"
+#include "towsim/waves/vessel.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "towsim/version.hpp"
+
+namespace towsim::io {
+namespace {
+
+std::FILE* open_file(const std::string& dir, const std::string& name) {
+  const std::string path = (std::filesystem::path(dir) / name).string();
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) throw std::runtime_error("cannot create " + path);
+  return f;
+}
+
+void write_all(std::FILE* f, const std::string& s) {
+  std::fwrite(s.data(), 1, s.size(), f);
+  std::fflush(f);
+}
+
+/// JSON for an extreme: {value, time}, null values when never set.
+nlohmann::ordered_json json_of(const Extreme& e) {
+  nlohmann::ordered_json j;
+  j["value"] = std::isnan(e.value) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(tidy(e.value));
+  j["time"] = std::isnan(e.time) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(tidy_time(e.time));
+  return j;
+}
+
+/// A finite number as JSON, anything else as null.
+nlohmann::ordered_json num(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+
+/// The end body's sample, or nullptr.
+const BodySample* end_sample(const Model& model, const Sample& s) {
+  return end_body(model) != nullptr && !s.bodies.empty() ? &s.bodies.back() : nullptr;
+}
+
+/// The point whose depth and layback users read: the end body's origin, or the cable's end.
+Vec3 reference_point(const Model& model, const Sample& s) {
+  if (const BodySample* b = end_sample(model, s)) return b->pos;
+  return s.node_pos.empty() ? Vec3::Constant(std::nan("")) : s.node_pos.back();
+}
+
+/// Breaking load of the section each node belongs to (the element above it;
+/// below it at a section's top) [N], 0 where none is given.
+std::vector<double> node_breaking_loads(const Model& model) {
+  std::vector<double> out;
+  const auto& els = model.cable.elements;
+  auto of = [&](std::size_t el) {
+    const auto sec = static_cast<std::size_t>(els[el].section);
+    return sec < model.cable.sections.size() ? model.cable.sections[sec].breaking_load : 0.0;
+  };
+  const std::size_t n = els.size();
+  std::vector<bool> inline_at(n + 1, false);
+  for (const Body& b : model.bodies)
+    if (b.inline_body) inline_at[static_cast<std::size_t>(body_joint(model, b))] = true;
+  for (std::size_t k = 0; k <= n; ++k) {
+    out.push_back(of(k == 0 ? 0 : k - 1));
+    if (inline_at[k]) out.push_back(of(k));
+  }
+  return out;
+}
+
+}  // namespace
+
+double tidy(double v) {
+  if (!std::isfinite(v)) return v;
+  if (std::abs(v) < kZeroBelow) return 0.0;  // also turns -0 into 0
+  char b[40];
+  const auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::general, 12);
+  double out = v;
+  std::from_chars(b, r.ptr, out);
+  return out;
+}
+
+double tidy_time(double t) {
+  if (!std::isfinite(t)) return t;
+  const double r = std::round(t * 1e9) / 1e9;  // nanoseconds
+  return r == 0 ? 0.0 : r;
+}
+
+void put_number(std::string& out, double v) {
+  char b[40];
+  // 12 significant digits (the shortest form of tidy(v)); std::to_chars is
+  // several times faster than snprintf.
+  const auto r = std::to_chars(b, b + sizeof b, std::abs(v) < kZeroBelow ? 0.0 : v, std::chars_format::general, 12);
+  out.append(b, r.ptr);
+}
+
+void put_time(std::string& out, double t) {
+  char b[40];
+  const auto r = std::to_chars(b, b + sizeof b, tidy_time(t));  // shortest round-trip form
+  out.append(b, r.ptr);
+}
+
+double layback(const Model& model, const Sample& s) {
+  const Vec3 p = reference_point(model, s);
+  return std::hypot(p.x() - s.tow_pos.x(), p.y() - s.tow_pos.y());
+}
+
+double utilisation(const Model& model, const Sample& s) {
+  const std::vector<double> limit = node_breaking_loads(model);
+  double u = 0;
+  for (std::size_t k = 0; k < s.tension.size() && k < limit.size(); ++k)
+    if (limit[k] > 0) u = std::max(u, s.tension[k] / limit[k]);
+  return u;
+}
+
+void remove_run_outputs(const std::string& dir) {
+  namespace fs = std::filesystem;
+  for (const char* name : {"timeseries.csv", "nodes.csv", "summary.json", "report.html", "plots"}) {
+    std::error_code ec;
+    fs::remove_all(fs::path(dir) / name, ec);
+    if (ec)
+      throw std::runtime_error("cannot remove the previous run's " + (fs::path(dir) / name).string() + ": " +
+                               ec.message());
+  }
+}
+
+void Extreme::max(double v, double t) {
+  if (std::isnan(value) || v > value) {
+    value = v;
+    time = t;
+  }
+}
+
+void Extreme::min(double v, double t) {
+  if (std::isnan(value) || v < value) {
+    value = v;
+    time = t;
+  }
+}
+
+void Extremes::add(const Model& model, const Sample& s) {
+  max_tow_tension.max(s.tow_force.norm(), s.t);
+  for (double T : s.tension) max_cable_tension.max(T, s.t);
+  for (double A : s.axial) min_axial_force.min(A, s.t);
+  if (!s.node_pos.empty()) max_end_depth.max(-s.node_pos.back().z(), s.t);
+  // What users read: layback and depth of the end body (or the cable's end).
+  max_layback.max(tidy(layback(model, s)), tidy_time(s.t));
+  const double depth = -reference_point(model, s).z();
+  if (!std::isnan(depth)) {
+    min_depth.min(tidy(depth), tidy_time(s.t));
+    max_depth.max(tidy(depth), tidy_time(s.t));
+  }
+  if (std::any_of(model.cable.sections.begin(), model.cable.sections.end(),
+                  [](const Section& sec) { return sec.breaking_load > 0; }))
+    max_utilisation.max(utilisation(model, s), s.t);
+  // Each body: its own extremes.
+  inline_bodies.resize(model.bodies.size());
+  for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b) {
+    const BodySample& bs = s.bodies[b];
+    BodyExtremes& e = model.bodies[b].inline_body ? inline_bodies[b] : end_body_extremes;
+    e.max_link_force.max(bs.link_force.norm(), s.t);
+    e.max_lower_link_force.max(bs.lower_link_force.norm(), s.t);
+    e.max_depth.max(-bs.pos.z(), s.t);
+    for (int i = 0; i < 3; ++i) {
+      e.min_deg[i].min(bs.rpy_deg[i], s.t);
+      e.max_deg[i].max(bs.rpy_deg[i], s.t);
+    }
+  }
+}
+
+std::vector<std::string> timeseries_columns(const Model& model) {
+  const bool has_body = end_body(model) != nullptr;
+  std::vector<std::string> c{"time",        "tow_x",       "tow_y", "tow_z", "tow_force_x",
+                             "tow_force_y", "tow_force_z", "end_x", "end_y", "end_z"};
+  if (has_body)
+    c.insert(c.end(), {"body_x", "body_y", "body_z", "body_roll_deg", "body_pitch_deg", "body_yaw_deg",
+                       "link_force_x", "link_force_y", "link_force_z"});
+  c.insert(c.end(), {"tow_tension", "end_depth", "tow_vx", "tow_vy", "tow_vz"});
+  if (has_body) c.insert(c.end(), {"body_depth", "link_tension"});
+  c.insert(c.end(), {"layback", "deployed_length"});
+  // In-line bodies, by name.
+  for (const Body& b : model.bodies) {
+    if (!b.inline_body) continue;
+    for (const char* s : {"_x", "_y", "_z", "_roll_deg", "_pitch_deg", "_yaw_deg", "_link_force_x", "_link_force_y",
+                          "_link_force_z", "_lower_link_force_x", "_lower_link_force_y", "_lower_link_force_z",
+                          "_depth", "_link_tension", "_lower_link_tension"})
+      c.push_back(b.name + s);
+  }
+  if (has_sea(model)) c.insert(c.end(), {"wave_elevation", "tow_wave_x", "tow_wave_y", "tow_wave_z"});
+  return c;
+}
+
+std::string timeseries_header(const Model& model) {
+  std::string h;
+  for (const auto& c : timeseries_columns(model)) h += (h.empty() ? "" : ",") + c;
+  return h;
+}
+
+void timeseries_values(const Model& model, const Sample& s, std::vector<double>& v) {
+  const Vec3 end = s.node_pos.empty() ? Vec3::Constant(std::nan("")) : s.node_pos.back();
+  const BodySample* eb = end_sample(model, s);
+  v.clear();
+  auto add3 = [&v](const Vec3& a) { v.insert(v.end(), {a.x(), a.y(), a.z()}); };
+  v.push_back(tidy_time(s.t));
+  add3(s.tow_pos);
+  add3(s.tow_force);
+  add3(end);
+  if (eb) {
+    add3(eb->pos);
+    add3(eb->rpy_deg);
+    add3(eb->link_force);
+  }
+  v.push_back(s.tow_force.norm());
+  v.push_back(-end.z());
+  add3(s.tow_vel);
+  if (eb) {
+    v.push_back(-eb->pos.z());
+    v.push_back(eb->link_force.norm());
+  }
+  v.push_back(layback(model, s));
+  v.push_back(model.cable.total_length());
+  for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b) {
+    if (!model.bodies[b].inline_body) continue;
+    const BodySample& bs = s.bodies[b];
+    add3(bs.pos);
+    add3(bs.rpy_deg);
+    add3(bs.link_force);
+    add3(bs.lower_link_force);
+    v.insert(v.end(), {-bs.pos.z(), bs.link_force.norm(), bs.lower_link_force.norm()});
+  }
+  if (has_sea(model)) {  // sea-state columns
+    v.push_back(s.wave_elevation);
+    add3(s.tow_wave);
+  }
+  for (std::size_t i = 1; i < v.size(); ++i) v[i] = tidy(v[i]);
+}
+
+const std::vector<std::string>& node_columns() {
+  static const std::vector<std::string> c{"x", "y", "z", "vx", "vy", "vz", "tension", "axial_force"};
+  return c;
+}
+
+void node_values(const Sample& s, std::size_t k, std::vector<double>& out) {
+  const double nan = std::nan("");
+  const Vec3 v = k < s.node_vel.size() ? s.node_vel[k] : Vec3::Constant(nan);
+  for (double x : {s.node_pos[k].x(), s.node_pos[k].y(), s.node_pos[k].z(), v.x(), v.y(), v.z(),
+                   k < s.tension.size() ? s.tension[k] : nan, k < s.axial.size() ? s.axial[k] : nan})
+    out.push_back(tidy(x));  // as written
+}
+
+RunRecord::RunRecord(const Model& model) : model_(model), sea_(statistics_start(model)) {}
+
+void RunRecord::write(const Sample& s) {
+  extremes_.add(model_, s);
+  if (has_sea(model_)) sea_.add(model_, s);
+  ++samples_;
+  timeseries_values(model_, s, last_row_);
+}
+
+nlohmann::ordered_json RunRecord::final_row() const {
+  if (last_row_.empty()) return nullptr;
+  nlohmann::ordered_json j;
+  const auto names = timeseries_columns(model_);
+  for (std::size_t i = 0; i < names.size() && i < last_row_.size(); ++i) j[names[i]] = num(last_row_[i]);
+  return j;
+}
+
+RunWriter::RunWriter(const std::string& dir, const Model& model, bool write_nodes) : RunRecord(model) {
+  series_ = open_file(dir, "timeseries.csv");
+  write_all(series_, timeseries_header(model) + "\n");
+  if (write_nodes) {
+    nodes_ = open_file(dir, "nodes.csv");
+    std::string h = "time,node";
+    for (const auto& c : node_columns()) h += "," + c;
+    write_all(nodes_, h + "\n");
+  }
+}
+
+RunWriter::~RunWriter() {
+  if (series_ != nullptr) std::fclose(series_);
+  if (nodes_ != nullptr) std::fclose(nodes_);
+}
+
+void RunWriter::write(const Sample& s) {
+  RunRecord::write(s);
+  // timeseries.csv: the row just recorded.
+  buf_.clear();
+  const auto& row = last_row();
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    if (i > 0) buf_ += ',';
+    if (i == 0)
+      put_time(buf_, row[i]);
+    else
+      put_number(buf_, row[i]);
+  }
+  buf_ += '\n';
+  write_all(series_, buf_);
+  if (nodes_ == nullptr) return;
+  // nodes.csv: one row per node.
+  buf_.clear();
+  for (std::size_t k = 0; k < s.node_pos.size(); ++k) {
+    put_time(buf_, s.t);
+    buf_ += ',' + std::to_string(k);
+    values_.clear();
+    node_values(s, k, values_);
+    for (double v : values_) {
+      buf_ += ',';
+      put_number(buf_, v);
+    }
+    buf_ += '\n';
+  }
+  write_all(nodes_, buf_);
+}
+
+void RunWriter::flush() {
+  if (series_ != nullptr) std::fflush(series_);
+  if (nodes_ != nullptr) std::fflush(nodes_);
+}
+
+nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,
+                                    const RunStats& stats, const RunRecord& record, bool write_nodes) {
+  const Model& model = record.model();
+  const Extremes& ex = record.extremes();
+  nlohmann::ordered_json j;
+  j["model"] = model_name;
+  j["version"] = kVersion;  // of the program that wrote the file
+  j["status"] = stats.status;
+  j["message"] = stats.message;
+  j["end_time"] = num(tidy_time(stats.end_time));
+  j["wall_seconds"] = num(std::round(stats.wall_seconds * 1e3) / 1e3);  // ms: the clock's useful resolution
+  j["steps"] = stats.steps;
+  j["rejected_steps"] = stats.rejected_steps;
+  j["rhs_evaluations"] = stats.rhs_evaluations;
+  j["max_element_drift"] = num(stats.max_element_drift);  // kept unrounded: it is a round-off measure
+  j["samples"] = record.samples();
+  j["files"] = {{"timeseries", "timeseries.csv"},
+                {"nodes", write_nodes ? nlohmann::ordered_json("nodes.csv") : nlohmann::ordered_json(nullptr)}};
+  nlohmann::ordered_json e;
+  e["max_tow_tension"] = json_of(ex.max_tow_tension);
+  e["max_cable_tension"] = json_of(ex.max_cable_tension);
+  e["max_end_depth"] = json_of(ex.max_end_depth);
+  e["min_axial_force"] = json_of(ex.min_axial_force);  // < 0: compression (a real cable would go slack)
+  e["min_depth"] = json_of(ex.min_depth);              // of the end body's origin, or of the cable end
+  e["max_depth"] = json_of(ex.max_depth);
+  e["max_layback"] = json_of(ex.max_layback);
+  // The end body under today's names, in-line bodies under their own.
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const Body& body = model.bodies[b];
+    const BodyExtremes& be =
+        body.inline_body && b < ex.inline_bodies.size() ? ex.inline_bodies[b] : ex.end_body_extremes;
+    const std::string name = body.inline_body ? body.name : "body";
+    const std::string p = body.inline_body ? body.name + "_" : "";
+    e["max_" + p + "link_force"] = json_of(be.max_link_force);
+    if (body.inline_body) e["max_" + p + "lower_link_force"] = json_of(be.max_lower_link_force);
+    e["max_" + name + "_depth"] = json_of(be.max_depth);
+    const char* names[3] = {"_roll_deg", "_pitch_deg", "_yaw_deg"};
+    for (int i = 0; i < 3; ++i)
+      e[name + names[i]] = {{"min", json_of(be.min_deg[i])}, {"max", json_of(be.max_deg[i])}};
+  }
+  j["extremes"] = e;
+  // With breaking loads: the largest tension / breaking load anywhere, and when.
+  if (!std::isnan(ex.max_utilisation.value)) {
+    j["max_utilisation"] = num(tidy(ex.max_utilisation.value));
+    j["max_utilisation_time"] = num(tidy_time(ex.max_utilisation.time));
+  }
+  j["final"] = record.final_row();  // the last timeseries.csv row by column name
+  j["scenario"] = scenario;
+  return j;
+}
+
+bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary) {
+  std::ofstream out(std::filesystem::path(dir) / "summary.json");
+  // Invalid UTF-8 in the scenario echo (e.g. a `name:` in another encoding)
+  // becomes U+FFFD instead of throwing after the whole run.
+  out << summary.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
+  out.flush();
+  return static_cast<bool>(out);
+}
+
+}  // namespace towsim::io

@@ -1,0 +1,115 @@
+#include "towsim/scenario/compile.hpp"
+
+#include <cstdio>
+
+#include "checks.hpp"
+
+namespace towsim::io {
+namespace {
+
+constexpr double kMaxSteps = 1e12;          // duration / time_step
+constexpr double kMaxSamples = 1e9;         // duration / output_interval
+
+void check_environment(const EnvironmentSpec& e, Diagnostics& d) {
+  check_non_negative(e.water_density, d);
+  check_non_negative(e.gravity, d);
+  for (const auto& row : e.current)
+    if (row.values[0] < 0)
+      d.error(row.where.loc, row.where.path, "depth must be >= 0 (got " + fmt_num(row.values[0]) + ")");
+  check_increasing(e.current, "depths", d);
+}
+
+/// Report `step` when duration / step exceeds `most` (counts that would
+/// overflow, or a step that vanishes next to the simulated time).
+/// A step left to its default is reported at the duration, under its own key.
+void check_count(const Field<double>& duration, const Field<double>& step, const std::string& key, double most,
+                 Diagnostics& d) {
+  if (!(duration.value > 0 && step.value > 0)) return;  // reported by check_positive
+  if (!(duration.value / step.value > most)) return;
+  char limit[32];
+  std::snprintf(limit, sizeof limit, "%g", most);
+  const std::string problem = "too small for the duration (duration / " + key + " is above " + limit;
+  if (step.given)
+    d.error(step.where.loc, step.where.path, problem + ")");
+  else
+    d.error(duration.where.loc, "simulation." + key, problem + "; default " + fmt_num(step.value) + ")");
+}
+
+void check_simulation(const SimulationSpec& s, Diagnostics& d) {
+  check_positive(s.duration, d);
+  check_positive(s.time_step, d);
+  check_positive(s.tolerance, d);
+  check_positive(s.max_step, d);
+  check_positive(s.output_interval, d);
+  check_count(s.duration, s.time_step, "time_step", kMaxSteps, d);
+  check_count(s.duration, s.output_interval, "output_interval", kMaxSamples, d);
+}
+
+/// Rules between `initial` and `tow`: a steady start takes its velocity from
+/// the tow's imposed motion, so it needs tow.mode: motion.
+void check_initial(const InitialSpec& init, const TowSpec& tow, Diagnostics& d) {
+  if (init.kind.given && init.kind.value == "steady" && tow.mode.value == "force")
+    d.error(init.kind.where.loc, init.kind.where.path,
+            "steady needs tow.mode: motion (the steady velocity comes from the tow's motion; tow.mode is force)");
+}
+
+Fluid build_fluid(const EnvironmentSpec& e) {
+  Fluid f;
+  f.rho = e.water_density.value;
+  f.g = e.gravity.value;
+  for (const auto& row : e.current) {
+    f.current_depth.push_back(row.values[0]);
+    f.current_velocity.emplace_back(row.values[1], row.values[2], row.values[3]);
+  }
+  return f;
+}
+
+Initial build_initial(const InitialSpec& s) {
+  Initial init;
+  if (s.kind.value == "steady") init.kind = Initial::Kind::Steady;
+  if (s.kind.value == "direction") {
+    init.kind = Initial::Kind::Direction;
+    init.direction = s.direction.value.normalized();
+  }
+  return init;
+}
+
+Simulation build_simulation(const SimulationSpec& s) {
+  Simulation sim;
+  sim.duration = s.duration.value;
+  sim.time_step = s.time_step.value;
+  sim.output_interval = s.output_interval.value;
+  sim.integrator = s.integrator.value == "dopri5"        ? Integrator::DOPRI5
+                   : s.integrator.value == "cash_karp54" ? Integrator::CashKarp54
+                                                         : Integrator::RK4;
+  sim.tolerance = s.tolerance.value;
+  sim.max_step = s.max_step.value;
+  sim.formulation = s.formulation.value == "paper" ? Formulation::Paper : Formulation::Default;
+  sim.write_nodes = s.write_nodes.value;
+  return sim;
+}
+
+}  // namespace
+
+std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
+  check_environment(spec.environment, diags);
+  check_cable(spec.cable, spec.body, spec.simulation, diags);
+  if (spec.body.present) check_body(spec.body, diags);
+  check_tow(spec.tow, diags);
+  check_nonzero(spec.initial.direction, diags);
+  check_initial(spec.initial, spec.tow, diags);
+  check_simulation(spec.simulation, diags);
+  check_waves(spec, diags);
+  if (!diags.ok()) return std::nullopt;
+  Model m;
+  m.name = spec.name;
+  m.fluid = build_fluid(spec.environment);
+  build_chain(spec.cable, spec.body, m);
+  m.tow = build_tow(spec.tow);
+  m.initial = build_initial(spec.initial);
+  m.sim = build_simulation(spec.simulation);
+  attach_waves(spec, m);
+  return m;
+}
+
+}  // namespace towsim::io
