@@ -13,7 +13,7 @@
 #include <set>
 #include <thread>
 
-#include "reader.hpp"
+#include "../src/scenario/reader.hpp"  // MapReader for the sweep file (scenario-internal)
 #include "commands.hpp"
 #include "towsim/output/output.hpp"
 
