@@ -23,24 +23,25 @@ PhysicalState PhysicalState::hanging(const Model& model) {
 
 Workspace::Workspace(const Model& model) {
   const std::size_t n = model.cable.elements.size();
-  for (auto* v : {&P, &vP, &b, &Fa}) v->resize(n + 1);
-  for (auto* v : {&G, &vG, &edot, &F, &Mom, &c}) v->resize(n);
-  Mt.resize(n);
-  Ma.resize(n + 1);
-  K.resize(n + 1);
-  T.resize(n);
-  GT.resize(n);
-  Phi.resize(n);
-  Tr0.resize(n);
+  // Every entry starts at zero: no evaluation ever reads an unset value.
+  for (auto* v : {&P, &vP, &b, &Fa}) v->assign(n + 1, Vec3::Zero());
+  for (auto* v : {&G, &vG, &edot, &F, &Mom, &c}) v->assign(n, Vec3::Zero());
+  Mt.assign(n, Mat3::Zero());
+  Ma.assign(n + 1, Mat3::Zero());
+  K.assign(n + 1, Mat3::Zero());
+  T.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
+  GT.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
+  Phi.assign(n, Eigen::Matrix2d::Zero());
+  Tr0.assign(n, Eigen::Vector2d::Zero());
   body.resize(model.bodies.size());
   body_at.assign(n + 1, -1);
   for (std::size_t i = 0; i < model.bodies.size(); ++i)
     body_at[static_cast<std::size_t>(body_joint(model, model.bodies[i]))] = static_cast<int>(i);
-  acc.alpha.resize(n);
-  acc.joint_force.resize(n + 1);
-  acc.alpha_b.resize(model.bodies.size());
-  acc.link_force.resize(model.bodies.size());
-  acc.lower_link_force.resize(model.bodies.size());
+  acc.alpha.assign(n, Vec3::Zero());
+  acc.joint_force.assign(n + 1, Vec3::Zero());
+  acc.alpha_b.assign(model.bodies.size(), Vec3::Zero());
+  acc.link_force.assign(model.bodies.size(), Vec3::Zero());
+  acc.lower_link_force.assign(model.bodies.size(), Vec3::Zero());
 }
 
 bool Workspace::fits(const Model& model) const {

@@ -41,8 +41,8 @@ struct SteadyProblem {
     model.tow.pieces.clear();  // a0 = 0; the velocity is set in the state
     model.tow.vessel.reset();  // calm water: no ship motion, no waves
     model.fluid.waves.reset();
-    t1.resize(n);
-    t2.resize(n);
+    t1.assign(static_cast<std::size_t>(n), Vec3::Zero());
+    t2.assign(static_cast<std::size_t>(n), Vec3::Zero());
     for (const Element& el : m.cable.elements)
       scale.push_back(element_rot_inertia(el) + 0.25 * (el.mass + el.added_mass) * el.length * el.length);
     for (const Body& b : m.bodies) {
