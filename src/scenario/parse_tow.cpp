@@ -39,7 +39,8 @@ bool parse_track_header(const std::string& line, const SourceLoc& at, const std:
   order.fill(kUnset);
   bool ok = true;
   for (std::size_t f = 0; f < fields.size(); ++f) {
-    const auto& [name, col] = fields[f];
+    const std::string& name = fields[f].first;  // no structured binding: clang 14 cannot capture one
+    const auto col = fields[f].second;
     const SourceLoc here{at.file, at.line, col};
     const auto it = std::find_if(kTrackColumns.begin(), kTrackColumns.end(),
                                  [&](const char* c) { return name == c; });
