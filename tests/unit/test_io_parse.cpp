@@ -169,7 +169,7 @@ TEST_F(ScenarioFile, SeveralErrorsAtOnce) {
                    "normal_drag, tangential_drag, added_mass, added_mass_model, sign_smoothing_speed, breaking_load, "
                    "sections, attachments)") +
                 at("8:13: simulation.duration: must be > 0 (got 0)") +
-                at("9:15: simulation.integrator: expected one of rk4, dopri5, cash_karp54 (got 'rk5'; did you mean "
+                at("9:15: simulation.integrator: expected one of rk4, dopri5, cash_karp54, rosenbrock (got 'rk5'; did you mean "
                    "'rk4'?)") +
                 "--set:1:22: simulation.time_step: must be > 0 (got 0)\n");
 }
