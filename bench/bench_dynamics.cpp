@@ -5,10 +5,12 @@
 //   paper_dynamics/{cable,sphere}    the paper's dense Lagrange form (n <= 300:
 //                                    its assembly is O(n^3) and 1000 elements
 //                                    take seconds per evaluation)
-//   stage_solve/{cable,sphere}       one linear stage solve of the rosenbrock
-//                                    integrator (implicit_stage_solve: the
-//                                    recursion with modified inertias), h gamma
-//                                    = 0.1 s, after its local Jacobian
+//   stage_factor/{cable,sphere}      the rosenbrock integrator's factorisation
+//                                    of M + hg C + hg^2 K (implicit_factor: the
+//                                    backward pass with modified inertias), once
+//                                    per step, hg = 0.1 s
+//   stage_solve/{cable,sphere}       one linear stage solve with it
+//                                    (implicit_stage_solve), 5 per step
 //   baseline_step/cable              one step of the earlier formulation
 //                                    (bench/baseline: Cartesian joints,
 //                                    multipliers, central differences)
@@ -91,7 +93,7 @@ void BM_paper(benchmark::State& state, bool body) {
                                                      benchmark::Counter::kInvert);
 }
 
-void BM_stage_solve(benchmark::State& state, bool body) {
+void BM_stage(benchmark::State& state, bool body, bool factor) {
   const int n = static_cast<int>(state.range(0));
   const Model m = bench_model(n, body);
   const PhysicalState s = bench_state(m);
@@ -104,8 +106,10 @@ void BM_stage_solve(benchmark::State& state, bool body) {
   for (int k = 0; k < n; ++k) r.dw.push_back(0.01 * s.w[k]), r.rot.push_back(0.001 * s.w[k]);
   r.dwb.assign(m.bodies.size(), Vec3(0.01, 0, 0));
   r.rotb.assign(m.bodies.size(), Vec3(0.001, 0, 0));
+  implicit_factor(m, s, ws, 0.1, iw);
   for (auto _ : state) {
-    implicit_stage_solve(m, s, ws, 0.1, r, iw);
+    if (factor) implicit_factor(m, s, ws, 0.1, iw);
+    else implicit_stage_solve(m, s, ws, 0.1, r, iw);
     benchmark::DoNotOptimize(iw.alpha.data());
     benchmark::ClobberMemory();
   }
@@ -151,8 +155,10 @@ int main(int argc, char** argv) {
   sizes(benchmark::RegisterBenchmark("forward_dynamics/sphere", BM_forward, true), 1000);
   sizes(benchmark::RegisterBenchmark("paper_dynamics/cable", BM_paper, false), 300);
   sizes(benchmark::RegisterBenchmark("paper_dynamics/sphere", BM_paper, true), 300);
-  sizes(benchmark::RegisterBenchmark("stage_solve/cable", BM_stage_solve, false), 1000);
-  sizes(benchmark::RegisterBenchmark("stage_solve/sphere", BM_stage_solve, true), 1000);
+  sizes(benchmark::RegisterBenchmark("stage_factor/cable", BM_stage, false, true), 1000);
+  sizes(benchmark::RegisterBenchmark("stage_factor/sphere", BM_stage, true, true), 1000);
+  sizes(benchmark::RegisterBenchmark("stage_solve/cable", BM_stage, false, false), 1000);
+  sizes(benchmark::RegisterBenchmark("stage_solve/sphere", BM_stage, true, false), 1000);
   sizes(benchmark::RegisterBenchmark("baseline_step/cable", BM_baseline), 1000);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

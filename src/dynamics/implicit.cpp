@@ -25,27 +25,32 @@ Eigen::Matrix<double, 3, 2> tangent_basis(const Vec3& e) {
   return T;
 }
 
-/// A body's elimination at zero velocity with modified inertia Me (the body's
-/// Mw plus its local terms) and loads (Fb, Mb about O_t); an in-line body
-/// first takes in the cable below, (K2, b2) at its lower link Q2.
-void body_backward(const Body& body, const BodyWork& bw, Mat6 Me, const Vec3& Fb, const Vec3& Mb, const Mat3* K2,
-                   const Vec3* b2, std::size_t b, ImplicitWorkspace& iw) {
-  Vec6 he = Vec6::Zero();
+/// A body's elimination at zero velocity, inertia part: modified inertia Me
+/// (the body's Mw plus its local terms); an in-line body first takes in the
+/// cable below, K2 at its lower link Q2.
+void body_factor(const Body& body, const BodyWork& bw, Mat6 Me, const Mat3* K2, std::size_t b,
+                 ImplicitWorkspace& iw) {
   if (body.inline_body) {
     Eigen::Matrix<double, 6, 3> J2t;
     J2t << Mat3::Identity(), skew(bw.rQ2);
     Me += J2t * *K2 * J2t.transpose();
-    he += J2t * *b2;
   }
-  const Vec3 r = bw.rQ;  // Q - O_t [m, R_g]
-  const Mat3 Rx = skew(r);
+  const Mat3 Rx = skew(bw.rQ);  // rQ = Q - O_t [m, R_g]
   const Mat3 Mll = Me.topLeftCorner<3, 3>(), Mla = Me.topRightCorner<3, 3>();
   const Mat3 Mal = Me.bottomLeftCorner<3, 3>(), Maa = Me.bottomRightCorner<3, 3>();
-  const Vec3 hl = he.head<3>(), ha = he.tail<3>();
   iw.bC[b] = Mal - Rx * Mll;
   iw.bPhi[b] = (iw.bC[b] * Rx + Maa - Rx * Mla).inverse();  // inertia about Q
-  iw.brhs[b] = Mb - r.cross(Fb) - ha + r.cross(hl);
   iw.bKQ[b] = Mll - iw.bC[b].transpose() * iw.bPhi[b] * iw.bC[b];
+}
+
+/// The same elimination, bias part: loads (Fb, Mb about O_t) and the cable
+/// below's bias b2 at Q2 (in-line body).
+void body_bias(const Body& body, const BodyWork& bw, const Vec3& Fb, const Vec3& Mb, const Vec3* b2, std::size_t b,
+               ImplicitWorkspace& iw) {
+  Vec3 hl = Vec3::Zero(), ha = Vec3::Zero();
+  if (body.inline_body) hl = *b2, ha = bw.rQ2.cross(*b2);  // J2^T b2
+  const Vec3& r = bw.rQ;
+  iw.brhs[b] = Mb - r.cross(Fb) - ha + r.cross(hl);
   iw.bbQ[b] = iw.bC[b].transpose() * iw.bPhi[b] * iw.brhs[b] + hl - Fb;
 }
 
@@ -171,6 +176,7 @@ ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
   T.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
   GT.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
   Phi.assign(n, Eigen::Matrix2d::Zero());
+  H.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
   Tr0.assign(n, Eigen::Vector2d::Zero());
   bPhi.assign(nb, Mat3::Zero());
   bC.assign(nb, Mat3::Zero());
@@ -182,8 +188,43 @@ ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
   alpha_b.assign(nb, Vec3::Zero());
 }
 
+void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
+                     ImplicitWorkspace& iw) {
+  const auto& els = model.cable.elements;
+  const std::size_t n = els.size();
+  const LocalJacobian& jac = iw.jac;
+  // Backward pass of fast.cpp (c = 0, w = 0), inertias only.
+  iw.K[n] = ws.Ma[n] + hg * jac.joint_damping[n];
+  for (std::size_t k = n; k-- > 0;) {
+    const int bi = ws.body_at[k + 1];
+    const Mat3* Kk = &iw.K[k + 1];
+    if (bi >= 0) {
+      const std::size_t b = idx(bi);
+      Mat6 Me = ws.body[b].Mw + hg * jac.body_damping[b];
+      Me.bottomRightCorner<3, 3>() += hg * hg * jac.body_stiffness[b];
+      body_factor(model.bodies[b], ws.body[b], Me, Kk, b, iw);
+      Kk = &iw.bKQ[b];
+    }
+    const Element& el = els[k];
+    const double L = el.length;
+    const Mat3 Mt = ws.Mt[k] + hg * jac.element_damping[k];
+    const auto& T = iw.T[k] = tangent_basis(s.e[k]);
+    const Eigen::Matrix<double, 3, 2> KT = *Kk * T;
+    iw.GT[k] = 0.5 * L * Mt * T + L * KT;
+    Eigen::Matrix2d D = T.transpose() * (0.25 * L * L * Mt * T + L * L * KT);
+    D.diagonal().array() += element_rot_inertia(el) + hg * hg * jac.element_stiffness[k];
+    iw.Phi[k] = D.inverse();
+    iw.H[k] = iw.GT[k] * iw.Phi[k];
+    const Mat3 Kn = Mt + *Kk - iw.H[k] * iw.GT[k].transpose();
+    iw.K[k] = 0.5 * (Kn + Kn.transpose());
+    iw.K[k] += ws.Ma[k] + hg * jac.joint_damping[k];
+  }
+  iw.hg = hg;
+}
+
 void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
                           const StageRhs& r, ImplicitWorkspace& iw) {
+  if (iw.hg != hg) implicit_factor(model, s, ws, hg, iw);
   const auto& els = model.cable.elements;
   const std::size_t n = els.size();
   const LocalJacobian& jac = iw.jac;
@@ -203,53 +244,35 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
     dv += L * de;
     const int bi = ws.body_at[k + 1];
     if (bi >= 0) {
-      const BodyWork& bw = ws.body[idx(bi)];
-      const Vec3& dwb = r.dwb[idx(bi)];
+      const std::size_t b = idx(bi);
+      const BodyWork& bw = ws.body[b];
+      const Vec3& dwb = r.dwb[b];
       const Vec3 dvO = dv - dwb.cross(bw.rQ);  // v_O = v_Q + omega x (O - Q)
       Vec6 dnu;
       dnu << dvO, dwb;
-      const Vec6 g = -hg * (jac.body_damping[idx(bi)] * dnu);
-      iw.Fb[idx(bi)] = g.head<3>();
-      iw.Mb[idx(bi)] = g.tail<3>() - hg * (jac.body_stiffness[idx(bi)] * (hg * dwb + r.rotb[idx(bi)]));
-      if (model.bodies[idx(bi)].inline_body) dv = dvO + dwb.cross(bw.rQ2);
+      const Vec6 g = -hg * (jac.body_damping[b] * dnu);
+      iw.Fb[b] = g.head<3>();
+      iw.Mb[b] = g.tail<3>() - hg * (jac.body_stiffness[b] * (hg * dwb + r.rotb[b]));
+      if (model.bodies[b].inline_body) dv = dvO + dwb.cross(bw.rQ2);
     }
     iw.dvP[k + 1] = dv;
   }
   for (std::size_t k = 0; k <= n; ++k) iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]);
 
-  // Backward pass with modified inertias (fast.cpp's, with c = 0, w = 0).
-  iw.K[n] = ws.Ma[n] + hg * jac.joint_damping[n];
+  // Bias sweep up the chain (the inertias are factorised).
   iw.b[n] = -iw.Fa[n];
   for (std::size_t k = n; k-- > 0;) {
     const int bi = ws.body_at[k + 1];
-    const Mat3* Kk = &iw.K[k + 1];
     const Vec3* bk = &iw.b[k + 1];
     if (bi >= 0) {
       const std::size_t b = idx(bi);
-      Mat6 Me = ws.body[b].Mw + hg * jac.body_damping[b];
-      Me.bottomRightCorner<3, 3>() += hg * hg * jac.body_stiffness[b];
-      body_backward(model.bodies[b], ws.body[b], Me, iw.Fb[b], iw.Mb[b], Kk, bk, b, iw);
-      Kk = &iw.bKQ[b];
+      body_bias(model.bodies[b], ws.body[b], iw.Fb[b], iw.Mb[b], bk, b, iw);
       bk = &iw.bbQ[b];
     }
-    const Element& el = els[k];
-    const Vec3& e = s.e[k];
-    const double L = el.length;
-    const Mat3 Mt = ws.Mt[k] + hg * jac.element_damping[k];
-    const auto& T = iw.T[k] = tangent_basis(e);
-    const Eigen::Matrix<double, 3, 2> KT = *Kk * T;
-    iw.GT[k] = 0.5 * L * Mt * T + L * KT;
-    Eigen::Matrix2d D = T.transpose() * (0.25 * L * L * Mt * T + L * L * KT);
-    D.diagonal().array() += element_rot_inertia(el) + hg * hg * jac.element_stiffness[k];
-    iw.Phi[k] = D.inverse();
-    const Vec3 r0 = 0.5 * L * iw.F[k] - L * *bk - e.cross(iw.Mom[k]);
-    iw.Tr0[k] = T.transpose() * r0;
-    const Eigen::Matrix<double, 3, 2> H = iw.GT[k] * iw.Phi[k];
-    Mat3 Kn = Mt + *Kk - H * iw.GT[k].transpose();
-    iw.K[k] = 0.5 * (Kn + Kn.transpose());
-    iw.b[k] = H * iw.Tr0[k] + *bk - iw.F[k];
-    iw.K[k] += ws.Ma[k] + hg * jac.joint_damping[k];
-    iw.b[k] -= iw.Fa[k];
+    const double L = els[k].length;
+    const Vec3 r0 = 0.5 * L * iw.F[k] - L * *bk - s.e[k].cross(iw.Mom[k]);
+    iw.Tr0[k] = iw.T[k].transpose() * r0;
+    iw.b[k] = iw.H[k] * iw.Tr0[k] + *bk - iw.F[k] - iw.Fa[k];
   }
 
   // Forward pass: the tow point is held (Motion) or free with no force.

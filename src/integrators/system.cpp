@@ -140,6 +140,7 @@ class DefaultSystem final : public System {
     jws_ = ws_;
     js_ = s_;
     local_jacobian(model_, js_, jws_, law_time(t), iw_.jac);
+    iw_.hg = -1;  // a new Jacobian: factorise again at the next stage solve
   }
 
   void stage_solve(double hg, const StateVector& r, StateVector& k) override {

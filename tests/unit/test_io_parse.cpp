@@ -174,6 +174,17 @@ TEST_F(ScenarioFile, SeveralErrorsAtOnce) {
                 "--set:1:22: simulation.time_step: must be > 0 (got 0)\n");
 }
 
+TEST_F(ScenarioFile, RosenbrockNeedsTheDefaultFormulation) {
+  const auto s = load(kCable + kSim + "  integrator: rosenbrock\n  formulation: paper\n");
+  EXPECT_FALSE(s.ok());
+  EXPECT_EQ(s.diags.str(),
+            at("8:15: simulation.integrator: rosenbrock needs formulation: default (its stage solves use the O(n) "
+               "recursion)"));
+  const auto ok = load(kCable + kSim + "  integrator: rosenbrock\n");
+  ASSERT_TRUE(ok.ok()) << ok.diags.str();
+  EXPECT_EQ(ok.model->sim.integrator, towsim::Integrator::Rosenbrock);
+}
+
 TEST_F(ScenarioFile, DuplicateKey) {
   const auto s = load(kCable + "  elements: 6\n" + kSim);
   EXPECT_EQ(s.diags.str(), at("6:3: cable.elements: duplicate key (first given at line 3)"));

@@ -56,10 +56,14 @@ struct ImplicitWorkspace {
   // Recursion with modified inertias (zero velocities: no centripetal terms).
   std::vector<Mat3> K;        // f_k = K_k a_k + b_k [kg] (k = 0..n)
   std::vector<Vec3> b;        // [N]
+  // Factorisation (implicit_factor: depends on hg and the Jacobian point only):
   std::vector<Eigen::Matrix<double, 3, 2>> T, GT;  // tangent basis [-], G T [kg m]
   std::vector<Eigen::Matrix2d> Phi;                // inverse rotational block [1/(kg m^2)]
-  std::vector<Eigen::Vector2d> Tr0;                // T^T r_0 [N m]
+  std::vector<Eigen::Matrix<double, 3, 2>> H;      // G T Phi [1/m]
   std::vector<Mat3> bPhi, bC, bKQ;                 // per body: as BodyWork, modified inertia
+  double hg = -1;                                  // h gamma of the factorisation [s]; < 0: none
+  // Right-hand-side sweeps (implicit_stage_solve):
+  std::vector<Eigen::Vector2d> Tr0;                // T^T r_0 [N m]
   std::vector<Vec3> brhs, bbQ;                     // per body [N m], [N]
   std::vector<Vec3> dvP;                           // velocity increments of the joints [m/s]
   // Solution: tow point (Force mode) and angular increments (z below).
@@ -78,12 +82,18 @@ struct StageRhs {
   std::vector<Vec3> rotb;         // per body: rotation vector of the attitude increment [rad]
 };
 
-/// Solve (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x) in O(n):
-/// the recursion of forward_dynamics at zero velocity with modified
-/// inertias and the right-hand side as loads. `ws` holds the evaluation at
-/// the state s the Jacobian belongs to (kinematics, inertias); jac is
-/// iw.jac. Result z in iw.a0, iw.alpha, iw.alpha_b; the stage increment of
-/// the velocities is then r_v + z.
+/// Factorise M + hg C + hg^2 K in O(n): the backward pass of the recursion
+/// (articulated inertias K_k, rotation blocks Phi) with modified inertias.
+/// `ws` holds the evaluation at the state s the Jacobian iw.jac belongs to
+/// (kinematics, inertias). Valid for every stage solve with the same hg.
+void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
+                     ImplicitWorkspace& iw);
+
+/// Solve (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x) in O(n)
+/// with the factorisation of implicit_factor (same hg, same s and ws): the
+/// right-hand side as loads, the bias sweep up the chain, the accelerations
+/// down. Result z in iw.a0, iw.alpha, iw.alpha_b; the stage increment of the
+/// velocities is then r_v + z.
 void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
                           const StageRhs& r, ImplicitWorkspace& iw);
 
