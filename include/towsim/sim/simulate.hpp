@@ -80,11 +80,13 @@ struct RunStats {
 };
 
 /// Estimated largest stable RK4 step for the state whose evaluation `ws`
-/// holds: the rocking mode of a short element under tension T,
+/// holds (at time t [s]): the rocking mode of a short element under tension T,
 /// omega_max = 2 sqrt(3) sqrt(T / (L (m + m_a))), h_max = 2 sqrt(2) / omega_max
-/// = sqrt(2/3) sqrt(L (m + m_a) / T) (docs/theory.md §6.4). Smallest over
-/// the elements; `element` (1-based) and `tension` [N] say where. [s]
-double rk4_step_limit(const Model& model, const Workspace& ws, int* element = nullptr, double* tension = nullptr);
+/// = sqrt(2/3) sqrt(L (m + m_a) / T), and the drag damping of an element,
+/// h_max = 2.785 / sigma, sigma = drag damping / inertia (docs/theory.md §6.4).
+/// Smallest over the elements; `element` (1-based) and `tension` [N] say where. [s]
+double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* element = nullptr,
+                      double* tension = nullptr);
 
 /// Progress callback: fraction done in [0, 1].
 using ProgressFn = std::function<void(double)>;
