@@ -41,13 +41,12 @@ PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, 
   return s;
 }
 
-/// Jump of the imposed pay-out speed at t: L'(t+) - L'(t-) [m/s] (zero unless length control).
-double winch_jump(const Model& m, double t) {
+/// Jump of the imposed pay-out speed at t from the state's (the left limit,
+/// or at rest at t = 0) to the schedule's right limit L'(t+) [m/s] (zero
+/// unless length control).
+double winch_jump(const Model& m, const PhysicalState& s, double t) {
   if (m.winch.mode != Winch::Mode::Imposed) return 0;
-  const double d = 1e-9 * std::max(1.0, std::abs(t));
-  // Before t = 0 the cable is at rest: a run starting at a pay-out speed starts with its jump.
-  const double before = t - d < 0 ? 0.0 : winch_kinematics(m.winch, t - d).rate;
-  return winch_kinematics(m.winch, t + d).rate - before;
+  return winch_kinematics(m.winch, t).rate - element_length_rate(s, 0);
 }
 
 /// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body,
@@ -129,7 +128,9 @@ class DefaultSystem final : public System {
     }
     if (!winch_) return;
     if (model_.winch.mode == Winch::Mode::Imposed) {
-      const WinchKinematics k = winch_kinematics(model_.winch, t);
+      // A step ending on a breakpoint ends on the piece before it (the
+      // jump, if any, comes next: apply_tow_jump).
+      const WinchKinematics k = winch_kinematics_before(model_.winch, t);
       y[winch_offset()] = k.length - fixed_length_;
       y[winch_offset() + 1] = k.rate;
       return;
@@ -165,11 +166,11 @@ class DefaultSystem final : public System {
     // The tow point's jump, plus the winch's: a jump dl' of the pay-out
     // speed is a jump dl' e_1 of the top material's velocity.
     PhysicalState s = physical(y);
-    const double dl = winch_ ? winch_jump(model_, t) : 0.0;
+    const double dl = winch_ ? winch_jump(model_, s, t) : 0.0;
     const Vec3 dv = tow_jump(model_, t) + (winch_ ? Vec3(dl * s.e[0]) : Vec3::Zero());
     if (dv.norm() == 0) return 0;
     s = jumped(model_, s, dv, t, ws_);
-    if (winch_) s.length_rate[0] += dl;
+    if (winch_ && model_.winch.mode == Winch::Mode::Imposed) s.length_rate[0] = winch_kinematics(model_.winch, t).rate;
     y = initial(s, t);
     return dv.norm();
   }

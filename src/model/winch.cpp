@@ -16,6 +16,16 @@ WinchKinematics winch_kinematics(const Winch& w, double t) {
   return {p.L0 + p.rate * tau + 0.5 * p.acc * tau * tau, p.rate + p.acc * tau, p.acc};
 }
 
+WinchKinematics winch_kinematics_before(const Winch& w, double t) {
+  if (w.schedule.empty()) return {};
+  // The last piece starting strictly before t.
+  auto it = std::lower_bound(w.schedule.begin(), w.schedule.end(), t,
+                             [](const WinchPiece& p, double x) { return p.t0 < x; });
+  const WinchPiece& p = it == w.schedule.begin() ? *it : *(it - 1);
+  const double tau = std::max(0.0, t - p.t0);
+  return {p.L0 + p.rate * tau + 0.5 * p.acc * tau * tau, p.rate + p.acc * tau, p.acc};
+}
+
 std::vector<double> winch_breakpoints(const Winch& w) {
   std::vector<double> out;
   if (w.mode != Winch::Mode::Imposed) return out;

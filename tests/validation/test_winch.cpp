@@ -3,6 +3,7 @@
 // hanging load), and the exactness of its events (split, removal).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -125,7 +126,9 @@ TEST(Winch, PendulumSplitThresholdInvariance) {
 /// Steady vertical lowering (c > 0) or raising (c < 0) of a cable with a
 /// sphere from a fixed tow point: tow tension = apparent weight of cable and
 /// body - body drag - cable tangential drag (skin law), signs with c.
-void lowering(double c) {
+/// length_table: the same from a length table that starts paying out at
+/// 10 s and stops at 40 s (jumps of the pay-out speed: impulses).
+void lowering(double c, bool length_table = false) {
   const double rho = 1025, g = 9.81, Le = 10, mpl = 2.0, D = 0.02, ct = 0.01;
   testing::CableSpec cs;
   cs.n = 5;
@@ -141,7 +144,8 @@ void lowering(double c) {
   m.winch.nominal_length = Le;
   m.winch.min_length = Le;
   m.winch.schedule = schedule_from_rate({0.0}, {c}, 5 * Le, Le, 1e9);
-  m.sim.duration = 40;
+  if (length_table) m.winch.schedule = schedule_from_length({0, 10, 40}, {5 * Le, 5 * Le, 5 * Le + 30 * c});
+  m.sim.duration = length_table ? 50 : 40;
   m.sim.time_step = 0.01;
   m.sim.output_interval = 1;
   MemorySink sink;
@@ -150,8 +154,16 @@ void lowering(double c) {
   EXPECT_GT(c > 0 ? st.winch_splits : st.winch_removals, 0);
   const double A = std::numbers::pi * D * D / 4, r = 0.3, Vb = 4.0 / 3 * std::numbers::pi * r * r * r;
   for (const Sample& s : sink.samples) {
-    if (s.t == 0) continue;  // before the first step: at rest, the pay-out starts as an impulse
-    const double L = 5 * Le + c * s.t;
+    if (s.t == 0 && !length_table) continue;  // before the first step: at rest, the pay-out starts as an impulse
+    const double paid = length_table ? c * std::clamp(s.t - 10, 0.0, 30.0) : c * s.t;  // [m]
+    const double L = 5 * Le + paid;
+    const double speed = length_table && (s.t < 10 || s.t >= 40) ? 0.0 : c;  // samples after each jump
+    EXPECT_DOUBLE_EQ(s.payout_speed, speed) << "t = " << s.t;
+    if (speed != c) {
+      const double W = (mpl - rho * std::numbers::pi * D * D / 4) * g * L + (200.0 - rho * 4.0 / 3 * std::numbers::pi * 0.027) * g;
+      EXPECT_NEAR(s.tow_force.z(), W, 1e-9 * W) << "t = " << s.t;
+      continue;
+    }
     const double weight = (mpl - rho * A) * g * L + (200.0 - rho * Vb) * g;
     const double body_drag = 0.5 * rho * 0.5 * std::numbers::pi * r * r * c * std::abs(c);
     const double cable_drag = 0.5 * rho * std::numbers::pi * D * L * ct * c * std::abs(c);
@@ -160,11 +172,11 @@ void lowering(double c) {
     // (1e-9 relative: sums of a few hundred terms of 1e4 N).
     EXPECT_NEAR(s.tow_force.z(), T, 1e-9 * T) << "t = " << s.t;
     EXPECT_NEAR(s.deployed_length, L, 1e-9 * L);
-    EXPECT_DOUBLE_EQ(s.payout_speed, c);
   }
 }
 
 TEST(Winch, SteadyVerticalLowering) { lowering(0.8); }
+TEST(Winch, LengthTableSpeedJumps) { lowering(0.8, true); }
 TEST(Winch, SteadyVerticalRaising) { lowering(-0.8); }
 
 /// A chain with a winch and a body, elements in random directions.

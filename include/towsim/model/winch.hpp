@@ -59,6 +59,10 @@ struct Winch {
 /// At a breakpoint, the piece starting there.
 WinchKinematics winch_kinematics(const Winch& w, double t);
 
+/// The same as the limit from the left at t: the piece before a breakpoint
+/// (at t = 0, the first piece). Steps ending on a breakpoint end on it.
+WinchKinematics winch_kinematics_before(const Winch& w, double t);
+
 /// Times > 0 where the schedule's speed or acceleration jumps (piece starts), sorted.
 std::vector<double> winch_breakpoints(const Winch& w);
 
