@@ -196,10 +196,6 @@ ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diag
   MapReader tow(r.get("tow"), "tow", d);
   parse_tow(tow, s.tow, base_dir, d);
   tow.finish();
-  MapReader winch(r.get("winch"), "winch", d);
-  s.winch.present = winch.present();
-  if (s.winch.present) parse_winch(winch, s.winch, d);
-  winch.finish();
   parse_initial(r.get("initial"), s.initial, d);
   MapReader sim(r.get("simulation", true), "simulation", d);
   parse_simulation(sim, s.simulation);
@@ -212,6 +208,10 @@ ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diag
   s.vessel.present = vessel.present();
   if (s.vessel.present) parse_vessel(vessel, s.vessel, base_dir, d);
   vessel.finish();
+  MapReader winch(r.get("winch"), "winch", d);
+  s.winch.present = winch.present();
+  if (s.winch.present) parse_winch(winch, s.winch, d);
+  winch.finish();
   r.finish();
   return s;
 }
