@@ -4,6 +4,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,7 @@ struct RunOptions {
 struct StaticsOptions {
   InputOptions input;
   std::string out_dir;  // where to write timeseries.csv and nodes.csv of the configuration ("" = none)
+  std::optional<double> target_depth;  // --target-depth D: find the deployed length for this depth [m]
 };
 
 /// Load, override, check and compile the scenario named by `in` (exactly one

@@ -114,6 +114,8 @@ void add_statics_command(CLI::App& app, int& status) {
   CLI::App* cmd = app.add_subcommand("statics", "Steady-tow equilibrium at the tow law's final speed");
   add_input_options(cmd, opts->input);
   cmd->add_option("--out,-o", opts->out_dir, "Write the configuration (timeseries.csv, nodes.csv) here");
+  cmd->add_option("--target-depth", opts->target_depth,
+                  "Find the deployed cable length that puts the body (or the cable end) at this depth [m]");
   cmd->callback([opts, &status] {
     require_one_input(opts->input);
     status = statics_command(*opts, std::cout, std::cerr);

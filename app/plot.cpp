@@ -180,6 +180,8 @@ struct Run {
   std::vector<double> snapshot_times;
   bool single = false;             // one output time: a statics configuration
   bool has_layback = false;        // timeseries.csv has the layback column
+  bool has_winch = false;          // timeseries.csv has payout_speed (a winch)
+  bool has_rating = false;         // and winch_load_ratio (a winch rating)
   double marker_every = 10;        // s between trajectory markers
   int marker_rows = 1;             // the same in rows
   // Data spans for the equal-scale decisions.
@@ -383,6 +385,26 @@ std::string fig_depth(const Run& run, const PlotOptions& o) {
   if (run.has_body && !run.link_at_origin)
     p << ", \\\n  ts using 'time':(-column('body_z')) with lines lw 1.5 dt 2 lc rgb '" << kPalette[3]
       << "' title 'body origin O_t'";
+  s << render(name, p.str(), o);
+  return s.str();
+}
+
+std::string fig_winch(const Run& run, const PlotOptions& o) {
+  const std::string name = "winch";
+  std::ostringstream s;
+  s << preamble(run, name, "deployed length and pay-out speed");
+  s << title(run, "winch: deployed length and pay-out speed" +
+                      std::string(run.has_rating ? " (tow tension / rating on the right, x 100)" : ""));
+  s << "set xlabel 'time (s)'\nset ylabel 'deployed length (m)'\nset y2label 'pay-out speed (m/s)" +
+           std::string(run.has_rating ? "; tow tension / rating (%)" : "") + "'\nset y2tics\nset ytics nomirror\n"
+    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n";
+  std::ostringstream p;
+  p << "plot ts using 'time':'deployed_length' with lines lw 2 lc rgb '" << kPalette[0]
+    << "' title 'deployed length', \\\n  ts using 'time':'payout_speed' axes x1y2 with lines lw 1.5 lc rgb '"
+    << kPalette[1] << "' title 'pay-out speed (< 0: hauling in)'";
+  if (run.has_rating)
+    p << ", \\\n  ts using 'time':(100*column('winch_load_ratio')) axes x1y2 with lines lw 1 dt 2 lc rgb '"
+      << kPalette[2] << "' title 'tow tension / winch rating (%)'";
   s << render(name, p.str(), o);
   return s.str();
 }
@@ -668,6 +690,8 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
     return kInvalid;
   }
   run.has_body = ts.has("body_x");
+  run.has_winch = ts.has("payout_speed");
+  run.has_rating = ts.has("winch_load_ratio");
   run.has_layback = ts.has("layback");
   std::vector<std::string> need{"time", "tow_x", "tow_y", "tow_z", "tow_force_x", "tow_force_y", "tow_force_z",
                                 "end_x", "end_y", "end_z"};
@@ -800,7 +824,9 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   const std::string mag_tow = ts.has("tow_tension") ? "tow_tension" : "";
   const std::string mag_link = ts.has("link_tension") ? "link_tension" : "";
   std::vector<std::pair<std::string, std::string>> scripts;
-  for (const auto& name : plot_names(run.has_body, run.three_d, run.single)) {
+  std::vector<std::string> names = plot_names(run.has_body, run.three_d, run.single);
+  if (run.has_winch && !run.single) names.push_back("winch");
+  for (const auto& name : names) {
     std::string text;
     if (name == "trajectories_xz") text = fig_trajectories(run, opt);
     else if (name == "tow_force")
@@ -822,6 +848,8 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
       text = name == "tension_map" ? fig_tension_map(run, opt) : fig_tension_along(run, opt);
     } else if (name == "depth_layback")
       text = fig_depth_layback(run, opt);
+    else if (name == "winch")
+      text = fig_winch(run, opt);
     else if (name == "link_force")
       text = fig_components(run, opt, name, "link force exerted by the cable on the body", "link_force_", mag_link,
                             "F_L");

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 
 #include "towsim/dynamics/dynamics.hpp"
 #include "commands.hpp"
@@ -62,9 +63,28 @@ int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream&
         << "\n";
     return kExitInvalid;
   }
-  const StaticsResult r = solve_statics(model, final_tow_velocity(model.tow));
+  // --target-depth: the deployed length for that depth, and the statics there.
+  std::optional<Model> deployed;
+  std::optional<TargetDepthResult> target;
+  if (opts.target_depth) {
+    const double D = *opts.target_depth;
+    if (!(D > 0)) {
+      err << "towsim: statics: --target-depth must be > 0 (got " << fmt_num(D) << ")\n";
+      return kExitInvalid;
+    }
+    target = length_for_depth(model, final_tow_velocity(model.tow), D);
+    if (!target->found) {
+      err << "towsim: statics: --target-depth " << fmt_num(D) << ": " << target->message << "\n";
+      return kExitFailed;
+    }
+    deployed = with_deployed_length(model, target->length);
+    out << std::setprecision(7) << "deployed length for a depth of " << fmt_num(D) << " m: " << target->length
+        << " m (" << (end_body(model) != nullptr ? "body" : "cable end") << " at " << target->depth << " m)\n";
+  }
+  const Model& used = deployed ? *deployed : model;
+  const StaticsResult r = target ? target->statics : solve_statics(model, final_tow_velocity(model.tow));
   const Sample& s = r.sample;
-  print_statics(model, r, s, out);
+  print_statics(used, r, s, out);
   if (!opts.out_dir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(opts.out_dir, ec);
@@ -73,14 +93,17 @@ int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream&
       return kExitError;
     }
     remove_run_outputs(opts.out_dir);  // no stale file of a previous run
-    RunWriter writer(opts.out_dir, model, true);
+    RunWriter writer(opts.out_dir, used, true);
     writer.write(s);
     writer.flush();
     RunStats stats;  // a statics "run": one sample at t = 0
     stats.status = r.converged ? "ok" : "failed";
     stats.message = r.converged ? "" : r.message;
     stats.steps = r.iterations;
-    const auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, true);
+    auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, true);
+    if (target)
+      summary["target_depth"] = {{"depth", *opts.target_depth}, {"deployed_length", target->length},
+                                 {"reached_depth", target->depth}};
     if (!write_summary(opts.out_dir, summary)) {
       err << "towsim: statics: cannot write " << opts.out_dir << "/summary.json\n";
       return kExitError;

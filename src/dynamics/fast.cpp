@@ -7,6 +7,7 @@
 // backward pass builds (K_k, b_k) from the bottom of the chain up; a forward
 // pass then gives each element's and body's angular acceleration from the
 // acceleration of the joint above it.
+#include <algorithm>
 #include <stdexcept>
 
 #include "towsim/dynamics/dynamics.hpp"
@@ -56,7 +57,7 @@ void body_articulated(const Body& body, BodyWork& bw, const Mat3* K2, const Vec3
 /// (T^T Mt T = (m + ma) I, Mt e = m e).
 void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat3& Kk, const Vec3& bk,
                       std::size_t k, Workspace& ws) {
-  const double L = el.length, m = el.mass, mn = el.mass + el.added_mass;
+  const double L = ws.L[k], m = el.mass, mn = el.mass + el.added_mass;
   // Tangent basis normal to e.
   Eigen::Index i;
   e.cwiseAbs().minCoeff(&i);
@@ -87,8 +88,7 @@ void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat
 /// below is the element under it plus any attachment there, or a body (which
 /// carries the cable hanging from its lower link, if any).
 void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
-  const auto& els = model.cable.elements;
-  const std::size_t n = els.size();
+  const std::size_t n = model.cable.elements.size();
   // Nothing hangs below the cable's end but its attachments.
   ws.K[n] = ws.Ma[n];
   ws.b[n] = -ws.Fa[n];
@@ -103,7 +103,7 @@ void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
       Kk = &bw.KQ;
       bk = &bw.bQ;
     }
-    element_backward(els[k], s.e[k], s.w[k], *Kk, *bk, k, ws);
+    element_backward(current_element(model, ws, k), s.e[k], s.w[k], *Kk, *bk, k, ws);
     // An attachment at joint k moves with it: its inertia and loads add on.
     ws.K[k] += ws.Ma[k];
     ws.b[k] -= ws.Fa[k];
@@ -125,25 +125,51 @@ void body_forward(const Body& body, const BodyWork& bw, const Mat3& K2, const Ve
   acc.lower_link_force[b] = K2 * a + b2;
 }
 
+/// Tension-controlled winch: the pay-out acceleration l'' from the drum's
+/// equation M_d l'' = T - T_set - c l', where the tension at the sheave
+/// T = -e_1 . f_0 is affine in l'': f_0 = K_0 (a + l'' e_1) + b_0 = f + l'' K_0 e_1
+/// (f the force at l'' = 0). Clamped to the acceleration limit, and to zero
+/// where the speed limit is reached and l'' would pass it.
+double drum_acceleration(const Winch& w, const Vec3& e1, double rate, const Mat3& K0, const Vec3& f) {
+  const double T0 = -e1.dot(f);             // tension at l'' = 0 [N]
+  const double k = e1.dot(K0 * e1);         // dT/dl'' = -k [kg]
+  double acc = (T0 - w.tension - w.damping * rate) / (w.drum_inertia + k);
+  acc = std::clamp(acc, -w.max_acceleration, w.max_acceleration);
+  if ((rate >= w.max_speed && acc > 0) || (rate <= -w.max_speed && acc < 0)) acc = 0;
+  return acc;
+}
+
 /// Forward pass: tow-point acceleration or tow force, then down the chain
 /// each element's angular acceleration and joint force, and each body's.
 void forward_pass(const Model& model, const PhysicalState& s, double t, Workspace& ws,
                   const Vec3* imposed_a0 = nullptr) {
   const auto& els = model.cable.elements;
   Accelerations& acc = ws.acc;
+  // Winch: the top element's material at the sheave accelerates at
+  // a_0 + l'' e_1 + 2 l' (omega_1 x e_1) (the tow point's, the pay-out's and
+  // the Coriolis term); the recursion runs from there unchanged.
+  Vec3 a_extra = Vec3::Zero();  // a_top - a_0 without the l'' term [m/s^2]
+  acc.length_acc = 0;
+  const bool winch = ws.winch && !imposed_a0;  // an impulse (imposed_a0) has no pay-out acceleration
+  if (winch) a_extra = 2 * element_length_rate(s, 0) * ws.edot[0];
+  const Vec3 e1 = s.e.empty() ? Vec3::UnitZ().eval() : s.e[0];  // [-, R_g]
+  if (winch && model.winch.mode == Winch::Mode::Imposed) acc.length_acc = winch_kinematics(model.winch, t).acc;
   if (imposed_a0 || model.tow.mode == Tow::Mode::Motion) {
     acc.a0 = imposed_a0 ? *imposed_a0 : tow_kinematics(model.tow, t).acc;
-    acc.tow_force = ws.K[0] * acc.a0 + ws.b[0];
+    if (winch && model.winch.mode == Winch::Mode::Tension)
+      acc.length_acc = drum_acceleration(model.winch, e1, element_length_rate(s, 0), ws.K[0],
+                                         ws.K[0] * (acc.a0 + a_extra) + ws.b[0]);
+    acc.tow_force = ws.K[0] * (acc.a0 + a_extra + acc.length_acc * e1) + ws.b[0];
   } else {
     acc.tow_force = tow_force(model.tow, t);
-    acc.a0 = ws.K[0].ldlt().solve(acc.tow_force - ws.b[0]);
+    acc.a0 = ws.K[0].ldlt().solve(acc.tow_force - ws.b[0]) - a_extra - acc.length_acc * e1;
   }
   acc.joint_force[0] = acc.tow_force;
-  Vec3 a = acc.a0;
+  Vec3 a = acc.a0 + a_extra + acc.length_acc * e1;
   for (std::size_t k = 0; k < els.size(); ++k) {
     const Vec3 beta = ws.T[k] * (ws.Phi[k] * (ws.Tr0[k] - ws.GT[k].transpose() * a));  // alpha x e
     acc.alpha[k] = s.e[k].cross(beta);
-    a += els[k].length * (beta + ws.c[k]);
+    a += ws.L[k] * (beta + ws.c[k]);
     const int bi = ws.body_at[k + 1];
     if (bi < 0) {
       acc.joint_force[k + 1] = ws.K[k + 1] * a + ws.b[k + 1];
@@ -167,8 +193,9 @@ void check_fits(const Model& model, const PhysicalState& s, const Workspace& ws)
 void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
   const auto& els = model.cable.elements;
   for (std::size_t k = 0; k < els.size(); ++k) {
-    element_loads(model, els[k], s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
-    ws.Mt[k] = element_mass(els[k], s.e[k]);
+    const Element& el = current_element(model, ws, k);
+    element_loads(model, el, s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
+    ws.Mt[k] = element_mass(el, s.e[k]);
   }
   attachment_loads(model, t, ws);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
@@ -184,6 +211,7 @@ void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& d
   PhysicalState s0 = s;
   s0.v0.setZero();
   for (auto& w : s0.w) w.setZero();
+  for (auto& r : s0.length_rate) r = 0;
   for (auto& bs : s0.bodies) bs.w.setZero();
   compute_kinematics(model, s0, ws);
   compute_loads(model, s0, 0.0, ws);

@@ -16,6 +16,8 @@ PhysicalState PhysicalState::hanging(const Model& model) {
   PhysicalState s;
   s.e.assign(model.cable.elements.size(), -Vec3::UnitZ());
   s.w.assign(model.cable.elements.size(), Vec3::Zero());
+  for (const Element& el : model.cable.elements) s.length.push_back(el.length);
+  s.length_rate.assign(model.cable.elements.size(), 0.0);
   s.bodies.resize(model.bodies.size());
   for (std::size_t b = 0; b < model.bodies.size(); ++b) s.bodies[b].q = model.bodies[b].initial_attitude;
   return s;
@@ -26,6 +28,7 @@ Workspace::Workspace(const Model& model) {
   // Every entry starts at zero: no evaluation ever reads an unset value.
   for (auto* v : {&P, &vP, &b, &Fa}) v->assign(n + 1, Vec3::Zero());
   for (auto* v : {&G, &vG, &edot, &F, &Mom, &c}) v->assign(n, Vec3::Zero());
+  L.assign(n, 0.0);
   Mt.assign(n, Mat3::Zero());
   Ma.assign(n + 1, Mat3::Zero());
   K.assign(n + 1, Mat3::Zero());
@@ -77,13 +80,21 @@ void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& w
   // the chain goes on from its lower link Q2 (in-line) or ends (end body).
   ws.P[0] = s.r0;
   ws.vP[0] = s.v0;
+  // Winch: the top element's material is fixed to its bottom joint and
+  // leaves the sheave at v_0 + l' e_1; its properties scale with l_1.
+  ws.winch = model.winch.active() && !els.empty();
+  if (ws.winch) {
+    ws.top = scaled_element(els[0], element_length(model, s, 0));
+    ws.v_top = s.v0 + element_length_rate(s, 0) * s.e[0];
+  }
   for (std::size_t i = 0; i < els.size(); ++i) {
-    const double L = els[i].length;
+    const double L = ws.L[i] = element_length(model, s, i);
+    const Vec3& v_up = i == 0 && ws.winch ? ws.v_top : ws.vP[i];  // material at the element's top
     ws.edot[i] = s.w[i].cross(s.e[i]);
     ws.G[i] = ws.P[i] + 0.5 * L * s.e[i];
-    ws.vG[i] = ws.vP[i] + 0.5 * L * ws.edot[i];
+    ws.vG[i] = v_up + 0.5 * L * ws.edot[i];
     ws.P[i + 1] = ws.P[i] + L * s.e[i];
-    ws.vP[i + 1] = ws.vP[i] + L * ws.edot[i];
+    ws.vP[i + 1] = v_up + L * ws.edot[i];
     const int b = ws.body_at[i + 1];
     if (b < 0) continue;
     BodyWork& bw = ws.body[static_cast<std::size_t>(b)];
@@ -93,6 +104,24 @@ void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& w
     ws.P[i + 1] = bw.O + bw.rQ2;
     ws.vP[i + 1] = bw.vO + bw.w.cross(bw.rQ2);
   }
+}
+
+double kinetic_energy(const Model& model, const PhysicalState& s, const Workspace& ws) {
+  double E = 0;
+  // Elements: translation of G (added mass normal to e) and rotation about G.
+  for (std::size_t k = 0; k < s.e.size(); ++k) {
+    const Element& el = current_element(model, ws, k);
+    E += 0.5 * ws.vG[k].dot(ws.Mt[k] * ws.vG[k]) + 0.5 * (el.inertia + el.added_inertia) * s.w[k].squaredNorm();
+  }
+  // Attachments move with their joint.
+  for (std::size_t k = 0; k < ws.Ma.size(); ++k) E += 0.5 * ws.vP[k].dot(ws.Ma[k] * ws.vP[k]);
+  // Bodies: 1/2 nu^T M nu about O_t (rigid and added mass, R_g).
+  for (std::size_t b = 0; b < ws.body.size(); ++b) {
+    Vec6 nu;
+    nu << ws.body[b].vO, ws.body[b].w;
+    E += 0.5 * nu.dot(ws.body[b].Mw * nu);
+  }
+  return E;
 }
 
 Vec3 roll_pitch_yaw(const Quat& q) {

@@ -35,19 +35,33 @@ PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, 
   tow_velocity_jump(m, s, dv, ws);
   for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
   for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws.acc.alpha_b[b];
+  if (m.tow.mode != Tow::Mode::Motion) return s;
   const double d = 1e-9 * std::max(1.0, std::abs(t));
   s.r0 = tow_kinematics(m.tow, t).pos;
   s.v0 = tow_kinematics(m.tow, t + d).vel;
   return s;
 }
 
-/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body].
+/// Jump of the imposed pay-out speed at t from the state's (the left limit,
+/// or at rest at t = 0) to the schedule's right limit L'(t+) [m/s] (zero
+/// unless length control).
+double winch_jump(const Model& m, const PhysicalState& s, double t) {
+  if (m.winch.mode != Winch::Mode::Imposed) return 0;
+  return winch_kinematics(m.winch, t).rate - element_length_rate(s, 0);
+}
+
+/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body,
+/// then with a winch l_1, l_1'].
 class DefaultSystem final : public System {
  public:
   explicit DefaultSystem(const Model& m)
       : model_(m), ws_(m), s_(PhysicalState::hanging(m)), jws_(m), js_(s_), iw_(m) {
     n_ = m.cable.n();
-    size_ = body_offset(m.bodies.size());
+    winch_ = m.winch.active() && n_ > 0;
+    size_ = body_offset(m.bodies.size()) + (winch_ ? 2 : 0);
+    // Length control: l_1 = L(t) - (the fixed elements below + cable drawn in by removals).
+    fixed_length_ = m.winch.length_offset;
+    for (int k = 1; k < n_; ++k) fixed_length_ += m.cable.elements[static_cast<std::size_t>(k)].length;
     rhs_.dw.assign(s_.e.size(), Vec3::Zero());
     rhs_.rot.assign(s_.e.size(), Vec3::Zero());
     rhs_.dwb.assign(s_.bodies.size(), Vec3::Zero());
@@ -68,6 +82,7 @@ class DefaultSystem final : public System {
       y[o] = q.w(), y[o + 1] = q.x(), y[o + 2] = q.y(), y[o + 3] = q.z();
       set3(y, o + 4, s.bodies[b].w);
     }
+    if (winch_) y[winch_offset()] = element_length(model_, s, 0), y[winch_offset() + 1] = element_length_rate(s, 0);
     return y;
   }
 
@@ -82,8 +97,10 @@ class DefaultSystem final : public System {
     unpack(y, s_);
     const double tl = law_time(t);
     impose_tow(model_, tl, s_.r0, s_.v0);
+    impose_winch(tl, s_);
     forward_dynamics(model_, s_, tl, ws_);
     dy.resize(size_);
+    if (winch_) dy[winch_offset()] = s_.length_rate[0], dy[winch_offset() + 1] = ws_.acc.length_acc;
     // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
     set3(dy, 0, s_.v0);
     set3(dy, 3, ws_.acc.a0);
@@ -115,6 +132,32 @@ class DefaultSystem final : public System {
       Eigen::Map<Eigen::Vector4d> q(&y[body_offset(b)]);
       q.normalize();
     }
+    if (!winch_) return;
+    if (model_.winch.mode == Winch::Mode::Imposed) {
+      // A step ending on a breakpoint ends on the piece before it (the
+      // jump, if any, comes next: apply_tow_jump).
+      const WinchKinematics k = winch_kinematics_before(model_.winch, t);
+      y[winch_offset()] = k.length - fixed_length_;
+      y[winch_offset() + 1] = k.rate;
+      return;
+    }
+    // Tension control: the winch stops at min_length and max_length (an
+    // impulse: the pay-out speed drops to zero) and at the speed limit.
+    double& l = y[winch_offset()];
+    double& rate = y[winch_offset() + 1];
+    rate = std::clamp(rate, -model_.winch.max_speed, model_.winch.max_speed);
+    const double L = l + fixed_length_;
+    const bool at_max = L >= model_.winch.max_length && rate > 0;
+    const bool at_min = L <= model_.winch.min_length && rate < 0;
+    if (!at_max && !at_min) return;
+    l = (at_max ? model_.winch.max_length : model_.winch.min_length) - fixed_length_;
+    PhysicalState s = physical(y);
+    const Vec3 dv = -rate * s.e[0];
+    tow_velocity_jump(model_, s, dv, ws_);
+    for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws_.acc.alpha[k];
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws_.acc.alpha_b[b];
+    s.length_rate[0] = 0;
+    y = initial(s, t);
   }
 
   const Workspace& evaluate(const StateVector& y, double t) override {
@@ -126,9 +169,15 @@ class DefaultSystem final : public System {
   }
 
   double apply_tow_jump(StateVector& y, double t) override {
-    const Vec3 dv = tow_jump(model_, t);
+    // The tow point's jump, plus the winch's: a jump dl' of the pay-out
+    // speed is a jump dl' e_1 of the top material's velocity.
+    PhysicalState s = physical(y);
+    const double dl = winch_ ? winch_jump(model_, s, t) : 0.0;
+    const Vec3 dv = tow_jump(model_, t) + (winch_ ? Vec3(dl * s.e[0]) : Vec3::Zero());
     if (dv.norm() == 0) return 0;
-    y = initial(jumped(model_, physical(y), dv, t, ws_), t);
+    s = jumped(model_, s, dv, t, ws_);
+    if (winch_ && model_.winch.mode == Winch::Mode::Imposed) s.length_rate[0] = winch_kinematics(model_.winch, t).rate;
+    y = initial(s, t);
     return dv.norm();
   }
 
@@ -175,12 +224,16 @@ class DefaultSystem final : public System {
       k[o] = r[o] + 0.5 * hg * dq.w(), k[o + 1] = r[o + 1] + 0.5 * hg * dq.x();
       k[o + 2] = r[o + 2] + 0.5 * hg * dq.y(), k[o + 3] = r[o + 3] + 0.5 * hg * dq.z();
     }
+    // The winch's l_1, l_1' rows are not stiff: identity in the W matrix.
+    if (winch_)
+      for (std::size_t i = winch_offset(); i < size_; ++i) k[i] = r[i];
   }
 
   const Accelerations* last_accelerations() const override { return &ws_.acc; }
 
   std::string describe(std::size_t i) const override {
     if (i < 6) return "tow point";
+    if (winch_ && i >= winch_offset()) return "winch";
     if (i < body_offset(0)) return "element " + std::to_string((i - 6) % (3 * n_) / 3 + 1);
     const std::size_t b = std::min((i - body_offset(0)) / 7, model_.bodies.size() - 1);
     return "body " + model_.bodies[b].name;
@@ -199,9 +252,19 @@ class DefaultSystem final : public System {
       s.bodies[b].q = Quat(y[o], y[o + 1], y[o + 2], y[o + 3]).normalized();
       s.bodies[b].w = CMap3(&y[o + 4]);
     }
+    if (winch_) s.length[0] = y[winch_offset()], s.length_rate[0] = y[winch_offset() + 1];
   }
-  /// Offset of body b's block in the flat state (b = count: the state's size).
+  /// Length control: the top element's length and rate at t from the schedule.
+  void impose_winch(double t, PhysicalState& s) const {
+    if (!winch_ || model_.winch.mode != Winch::Mode::Imposed) return;
+    const WinchKinematics k = winch_kinematics(model_.winch, t);
+    s.length[0] = k.length - fixed_length_;
+    s.length_rate[0] = k.rate;
+  }
+  /// Offset of body b's block in the flat state (b = count: the winch's block).
   std::size_t body_offset(std::size_t b) const { return 6 + 6 * static_cast<std::size_t>(n_) + 7 * b; }
+  /// Offset of the winch's block (l_1, l_1').
+  std::size_t winch_offset() const { return body_offset(model_.bodies.size()); }
 
   const Model& model_;
   Workspace ws_;
@@ -212,6 +275,8 @@ class DefaultSystem final : public System {
   StageRhs rhs_;         // one stage's right-hand side, per part
   int n_ = 0;
   std::size_t size_ = 0;
+  bool winch_ = false;       // the state carries the winch's l_1, l_1'
+  double fixed_length_ = 0;  // deployed length but l_1 [m]
 };
 
 /// Paper formulation: y = [r0, v0, q, q'] with q the angles in their charts.

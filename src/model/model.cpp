@@ -54,6 +54,16 @@ Element make_element(double length, double mass_per_length, double diameter, dou
   return e;
 }
 
+Element scaled_element(const Element& el, double length) {
+  const double r = length / el.length;  // [-]
+  Element e = el;
+  e.length = length;
+  for (double* x : {&e.mass, &e.added_mass, &e.weight, &e.drag_factor, &e.friction_factor}) *x *= r;
+  e.inertia *= r * r * r;
+  e.added_inertia *= r * r * r;
+  return e;
+}
+
 void finalize_body(Body& body, const Fluid& fluid) {
   const double rho = fluid.rho;
   // Rigid-body mass matrix about O_t: inertia about O_t = I_G - m [r_G]x [r_G]x.

@@ -109,8 +109,13 @@ double layback(const Model& model, const Sample& s) {
 double utilisation(const Model& model, const Sample& s) {
   const std::vector<double> limit = node_breaking_loads(model);
   double u = 0;
-  for (std::size_t k = 0; k < s.tension.size() && k < limit.size(); ++k)
-    if (limit[k] > 0) u = std::max(u, s.tension[k] / limit[k]);
+  // Nodes counted from the bottom: a winch adds or removes them at the top,
+  // in the top section (whose limit the extra top nodes take).
+  const std::size_t n = s.tension.size(), m = limit.size();
+  for (std::size_t k = 0; k < n && m > 0; ++k) {
+    const std::size_t j = n - k <= m ? m - (n - k) : 0;
+    if (limit[j] > 0) u = std::max(u, s.tension[k] / limit[j]);
+  }
   return u;
 }
 
@@ -179,6 +184,8 @@ std::vector<std::string> timeseries_columns(const Model& model) {
   c.insert(c.end(), {"tow_tension", "end_depth", "tow_vx", "tow_vy", "tow_vz"});
   if (has_body) c.insert(c.end(), {"body_depth", "link_tension"});
   c.insert(c.end(), {"layback", "deployed_length"});
+  if (model.winch.active()) c.push_back("payout_speed");
+  if (model.winch.active() && model.winch.rating > 0) c.push_back("winch_load_ratio");
   // In-line bodies, by name.
   for (const Body& b : model.bodies) {
     if (!b.inline_body) continue;
@@ -219,7 +226,9 @@ void timeseries_values(const Model& model, const Sample& s, std::vector<double>&
     v.push_back(eb->link_force.norm());
   }
   v.push_back(layback(model, s));
-  v.push_back(model.cable.total_length());
+  v.push_back(s.deployed_length);
+  if (model.winch.active()) v.push_back(s.payout_speed);
+  if (model.winch.active() && model.winch.rating > 0) v.push_back(s.tow_force.norm() / model.winch.rating);
   for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b) {
     if (!model.bodies[b].inline_body) continue;
     const BodySample& bs = s.bodies[b];
@@ -269,9 +278,10 @@ nlohmann::ordered_json RunRecord::final_row() const {
 RunWriter::RunWriter(const std::string& dir, const Model& model, bool write_nodes) : RunRecord(model) {
   series_ = open_file(dir, "timeseries.csv");
   write_all(series_, timeseries_header(model) + "\n");
+  node_ids_ = model.winch.active();
   if (write_nodes) {
     nodes_ = open_file(dir, "nodes.csv");
-    std::string h = "time,node";
+    std::string h = node_ids_ ? "time,node,node_id" : "time,node";
     for (const auto& c : node_columns()) h += "," + c;
     write_all(nodes_, h + "\n");
   }
@@ -302,6 +312,7 @@ void RunWriter::write(const Sample& s) {
   for (std::size_t k = 0; k < s.node_pos.size(); ++k) {
     put_time(buf_, s.t);
     buf_ += ',' + std::to_string(k);
+    if (node_ids_) buf_ += ',' + std::to_string(k < s.node_id.size() ? s.node_id[k] : static_cast<long>(k));
     values_.clear();
     node_values(s, k, values_);
     for (double v : values_) {
@@ -374,6 +385,17 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   if (!std::isnan(ex.max_utilisation.value)) {
     j["max_utilisation"] = num(tidy(ex.max_utilisation.value));
     j["max_utilisation_time"] = num(tidy_time(ex.max_utilisation.time));
+  }
+  // With a winch: its events and the largest tow tension against its rating.
+  if (model.winch.active()) {
+    nlohmann::ordered_json w;
+    w["splits"] = stats.winch_splits;
+    w["removals"] = stats.winch_removals;
+    w["energy_lost"] = num(tidy(stats.winch_energy_lost));  // [J] kinetic energy lost at removals
+    w["rating"] = model.winch.rating > 0 ? num(model.winch.rating) : nlohmann::ordered_json(nullptr);
+    w["max_load_ratio"] = model.winch.rating > 0 ? num(tidy(ex.max_tow_tension.value / model.winch.rating))
+                                                 : nlohmann::ordered_json(nullptr);
+    j["winch"] = w;
   }
   j["final"] = record.final_row();  // the last timeseries.csv row by column name
   j["scenario"] = scenario;

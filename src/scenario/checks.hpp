@@ -47,6 +47,16 @@ Tow build_tow(const TowSpec& t, bool include_manoeuvres = true);
 
 /// Check `waves:` and `vessel:` (src/io/compile_waves.cpp).
 void check_waves(const ScenarioSpec& s, Diagnostics& d);
+
+/// Check winch: against the cable, tow and simulation (src/scenario/compile_winch.cpp).
+void check_winch(const ScenarioSpec& s, Diagnostics& d);
+
+/// Build the model's winch (after the chain).
+void build_winch(const WinchSpec& w, Model& m);
+
+/// Checks of winch: against the built chain (initial length, limits,
+/// attachments); false when one failed.
+bool check_winch_model(const WinchSpec& w, const Model& m, Diagnostics& d);
 /// Build the waves (into m.fluid) and the vessel (into m.tow) from a checked
 /// spec; needs m.tow and m.fluid built.
 void attach_waves(const ScenarioSpec& s, Model& m);

@@ -105,12 +105,17 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   check_initial(spec.initial, spec.tow, diags);
   check_simulation(spec.simulation, diags);
   check_waves(spec, diags);
+  if (spec.winch.present) check_winch(spec, diags);
   if (!diags.ok()) return std::nullopt;
   Model m;
   m.name = spec.name;
   m.fluid = build_fluid(spec.environment);
   build_chain(spec.cable, spec.body, m);
   m.tow = build_tow(spec.tow);
+  if (spec.winch.present) {
+    build_winch(spec.winch, m);
+    if (!check_winch_model(spec.winch, m, diags)) return std::nullopt;
+  }
   m.initial = build_initial(spec.initial);
   m.sim = build_simulation(spec.simulation);
   attach_waves(spec, m);

@@ -208,6 +208,10 @@ ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diag
   s.vessel.present = vessel.present();
   if (s.vessel.present) parse_vessel(vessel, s.vessel, base_dir, d);
   vessel.finish();
+  MapReader winch(r.get("winch"), "winch", d);
+  s.winch.present = winch.present();
+  if (s.winch.present) parse_winch(winch, s.winch, d);
+  winch.finish();
   r.finish();
   return s;
 }

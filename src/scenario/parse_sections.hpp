@@ -19,5 +19,7 @@ void parse_waves(MapReader& r, WavesSpec& w, Diagnostics& d);
 void parse_vessel(MapReader& r, VesselSpec& v, const std::string& base_dir, Diagnostics& d);
 /// simulation: integration and output settings.
 void parse_simulation(MapReader& r, SimulationSpec& sim);
+/// winch: (src/scenario/parse_winch.cpp).
+void parse_winch(MapReader& r, WinchSpec& w, Diagnostics& d);
 
 }  // namespace towsim::io

@@ -1,6 +1,7 @@
 // The run loop: integrate, land on output times, check the state, write samples.
 #include "towsim/sim/simulate.hpp"
 
+#include <algorithm>
 #include <boost/numeric/odeint.hpp>
 #include <chrono>
 #include <limits>
@@ -10,6 +11,7 @@
 #include "towsim/dynamics/implicit.hpp"
 #include "towsim/integrators/rosenbrock.hpp"
 #include "towsim/integrators/system.hpp"
+#include "towsim/sim/winch_events.hpp"
 #include "towsim/waves/vessel.hpp"
 
 namespace towsim {
@@ -64,7 +66,7 @@ Sample sample_of(const Model& model, System& sys, const StateVector& y, double t
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
     const int b = ws.body_at[k + 1];
     const Vec3& bottom = b >= 0 ? ws.body[static_cast<std::size_t>(b)].Q : ws.P[k + 1];
-    const double L = model.cable.elements[k].length;
+    const double L = ws.L[k];
     stats.max_element_drift = std::max(stats.max_element_drift, std::abs((bottom - ws.P[k]).norm() / L - 1));
   }
   return out;
@@ -72,43 +74,15 @@ Sample sample_of(const Model& model, System& sys, const StateVector& y, double t
 
 }  // namespace
 
-double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* element, double* tension) {
-  double best = std::numeric_limits<double>::infinity();
-  const auto& els = model.cable.elements;
-  for (std::size_t k = 0; k < els.size(); ++k) {
-    const Element& el = els[k];
-    const int b = ws.body_at[k + 1];
-    const Vec3& fb = b >= 0 ? ws.acc.link_force[static_cast<std::size_t>(b)] : ws.acc.joint_force[k + 1];
-    const double T = std::max(ws.acc.joint_force[k].norm(), fb.norm());
-    const double mn = el.mass + el.added_mass;
-    // Rocking: omega^2 = 12 T / ((m + m_a) L). Drag damping at rate sigma
-    // (normal: C / (m + m_a), along e: C / m) shifts the fast modes to
-    // -sigma/2 +- i omega; RK4 is stable to |h lambda| ~ 2 sqrt(2) there.
-    const Vec3 e = (ws.G[k] - ws.P[k]) * (2 / el.length);  // G = P_{k-1} + (L/2) e
-    Mat3 C;
-    double K = 0;
-    element_local_jacobian(model, el, e, ws.vG[k], ws.G[k], t, ws.F[k], fb, C, K);
-    const Mat3 P = Mat3::Identity() - e * e.transpose();
-    const double sn = Eigen::SelfAdjointEigenSolver<Mat3>(P * C * P).eigenvalues().maxCoeff() / mn;
-    const double sigma = std::max(sn, e.dot(C * e) / el.mass);
-    const double w2 = 12 * T / (mn * el.length) + 0.25 * sigma * sigma;
-    if (!(w2 > 0)) continue;
-    const double h = 2 * std::sqrt(2.0) / std::sqrt(w2);
-    if (h < best) {
-      best = h;
-      if (element) *element = static_cast<int>(k) + 1;
-      if (tension) *tension = T;
-    }
-  }
-  return best;
-}
-
 Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, double t) {
   Sample out;
   out.t = t;
   out.tow_pos = ws.P.front();
   out.tow_vel = ws.vP.front();
   out.tow_force = ws.acc.tow_force;
+  out.deployed_length = 0;
+  for (double L : ws.L) out.deployed_length += L;
+  out.payout_speed = ws.winch ? element_length_rate(s, 0) : 0.0;
   // A node: position, velocity, force through it onto the part below, and
   // that force along the adjacent element e (tension pulls the part below
   // back along -e).
@@ -136,7 +110,40 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
                           ws.acc.lower_link_force[b]});
   }
   if (has_sea(model)) sea_sample(model, t, out);
+  out.node_id.resize(out.node_pos.size());
+  for (std::size_t k = 0; k < out.node_id.size(); ++k) out.node_id[k] = static_cast<long>(k);
   return out;
+}
+
+double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* element, double* tension) {
+  double best = std::numeric_limits<double>::infinity();
+  const auto& els = model.cable.elements;
+  for (std::size_t k = 0; k < els.size(); ++k) {
+    const Element& el = current_element(model, ws, k);
+    const int b = ws.body_at[k + 1];
+    const Vec3& fb = b >= 0 ? ws.acc.link_force[static_cast<std::size_t>(b)] : ws.acc.joint_force[k + 1];
+    const double T = std::max(ws.acc.joint_force[k].norm(), fb.norm());
+    const double mn = el.mass + el.added_mass;
+    // Rocking: omega^2 = 12 T / ((m + m_a) L). Drag damping at rate sigma
+    // (normal: C / (m + m_a), along e: C / m) shifts the fast modes to
+    // -sigma/2 +- i omega; RK4 is stable to |h lambda| ~ 2 sqrt(2) there.
+    const Vec3 e = (ws.G[k] - ws.P[k]) * (2 / el.length);  // G = P_{k-1} + (L/2) e
+    Mat3 C;
+    double K = 0;
+    element_local_jacobian(model, el, e, ws.vG[k], ws.G[k], t, ws.F[k], fb, C, K);
+    const Mat3 P = Mat3::Identity() - e * e.transpose();
+    const double sn = Eigen::SelfAdjointEigenSolver<Mat3>(P * C * P).eigenvalues().maxCoeff() / mn;
+    const double sigma = std::max(sn, e.dot(C * e) / el.mass);
+    const double w2 = 12 * T / (mn * el.length) + 0.25 * sigma * sigma;
+    if (!(w2 > 0)) continue;
+    const double h = 2 * std::sqrt(2.0) / std::sqrt(w2);
+    if (h < best) {
+      best = h;
+      if (element) *element = static_cast<int>(k) + 1;
+      if (tension) *tension = T;
+    }
+  }
+  return best;
 }
 
 namespace {
@@ -159,9 +166,14 @@ std::string check_state(const Model& model, const System& sys, const StateVector
 
 /// Advance y from t to `target` (an output time), by fixed RK4 steps or
 /// adaptive steps that land on `target`. Returns an error text or empty.
+/// True when the winch needs an event (split or removal) after this step.
+bool winch_due(const Model& model, const System& sys, const StateVector& y) {
+  return model.winch.active() && winch_event(model, sys.physical(y)) != WinchEvent::None;
+}
+
 template <class Stepper>
 std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVector& y, double& t, double target,
-                          RunStats& stats) {
+                          RunStats& stats, bool& event) {
   while (t < target - 1e-12 * std::max(1.0, target)) {
     const double h = std::min(model.sim.time_step, target - t);
     sys.set_window(t, t + h);
@@ -170,13 +182,14 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
     sys.project(y, t);
     ++stats.steps;
     if (auto err = check_state(model, sys, y); !err.empty()) return err;
+    if ((event = winch_due(model, sys, y))) return {};
   }
   return {};
 }
 
 template <class Controlled>
 std::string advance_adaptive(const Model& model, System& sys, Controlled& ctrl, StateVector& y, double& t,
-                             double target, double& h, RunStats& stats) {
+                             double target, double& h, RunStats& stats, bool& event) {
   const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
   while (t < target - 1e-12 * std::max(1.0, target)) {
     const double h_try = std::min({h, model.sim.max_step, target - t});
@@ -201,13 +214,14 @@ std::string advance_adaptive(const Model& model, System& sys, Controlled& ctrl, 
     if constexpr (requires { ctrl.reset(); }) ctrl.reset();  // projection changed y: no stale FSAL derivative
     ++stats.steps;
     if (auto err = check_state(model, sys, y); !err.empty()) return err;
+    if ((event = winch_due(model, sys, y))) return {};
   }
   return {};
 }
 
 /// Advance y to `target` by Rosenbrock-W steps (error control on state and forces).
 std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros, StateVector& y, double& t,
-                               double target, double& h, RunStats& stats) {
+                               double target, double& h, RunStats& stats, bool& event) {
   const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
   while (t < target - 1e-12 * std::max(1.0, target)) {
     const double h_try = std::min({h, model.sim.max_step, target - t});
@@ -228,8 +242,16 @@ std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros
     if (std::abs(target - t) < 1e-12 * std::max(1.0, target)) t = target;
     ++stats.steps;
     if (auto err = check_state(model, sys, y); !err.empty()) return err;
+    if ((event = winch_due(model, sys, y))) return {};
   }
   return {};
+}
+
+/// The largest error estimates so far, kept across winch events (which
+/// start a new stepper).
+void keep_ros_errors(const RosenbrockW& ros, RunStats& stats) {
+  stats.error_estimate = std::max(stats.error_estimate, ros.max_error);
+  stats.force_error_estimate = std::max(stats.force_error_estimate, ros.max_force_error);
 }
 
 /// Absolute force scale of the force error norm: the chain's apparent weight [N].
@@ -242,32 +264,95 @@ double force_scale(const Model& model) {
   return std::max(w, 1.0);
 }
 
+/// The run's current chain: the model given, or one derived from it by
+/// winch events (one element more or less in the top section), with its
+/// system and the material identities of its nodes.
+struct Chain {
+  const Model* model = nullptr;
+  std::unique_ptr<Model> owned;   // the derived model, when there is one
+  std::unique_ptr<System> sys;
+  std::vector<long> node_id;      // per output node row, stable across events [-]
+  long next_id = 0;               // the next new node's identity [-]
+};
+
+/// Split or remove the winch's top element of the state y at t; y becomes
+/// the state of the new chain.
+void winch_event_at(Chain& c, StateVector& y, double t, RunStats& stats) {
+  const PhysicalState s = c.sys->physical(y);
+  std::unique_ptr<Model> m;
+  PhysicalState s2;
+  switch (winch_event(*c.model, s)) {
+    case WinchEvent::None: return;
+    case WinchEvent::Split:
+      m = std::make_unique<Model>(split_model(*c.model));
+      s2 = split_state(*c.model, s);
+      c.node_id.insert(c.node_id.begin() + 1, c.next_id++);
+      ++stats.winch_splits;
+      break;
+    case WinchEvent::Remove: {
+      const Winch& w = c.model->winch;
+      const double rate = w.mode == Winch::Mode::Imposed ? winch_kinematics(w, t).rate : element_length_rate(s, 0);
+      Removal r = remove_top(*c.model, s, t, rate);
+      m = std::make_unique<Model>(std::move(r.model));
+      s2 = std::move(r.state);
+      c.node_id.erase(c.node_id.begin() + 1);
+      ++stats.winch_removals;
+      stats.winch_energy_lost += r.energy_lost;
+      break;
+    }
+  }
+  stats.rhs_evaluations += c.sys->rhs_evaluations;
+  c.sys = make_system(*m);  // before the old model goes: the old system refers to it
+  c.owned = std::move(m);
+  c.model = c.owned.get();
+  y = c.sys->initial(s2, t);
+}
+
 }  // namespace
 
 RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progress, const volatile int* stop_flag) {
   RunStats stats;
   stats.integrator = integrator_key(model.sim.integrator);
   const auto wall0 = std::chrono::steady_clock::now();
-  auto sys = make_system(model);
-  StateVector y = sys->initial(initial_state(model), 0.0);
-  if (model.initial.kind != Initial::Kind::Steady) sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
-  sys->project(y, 0.0);
+  Chain chain;
+  chain.model = &model;
+  chain.sys = make_system(model);
+  StateVector y = chain.sys->initial(initial_state(model), 0.0);
+  if (model.initial.kind != Initial::Kind::Steady) chain.sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
+  chain.sys->project(y, 0.0);
   double t = 0;
-  std::string check;
-  sink.write(sample_of(model, *sys, y, t, stats, &check));
+  std::string check;  // a refusal from the rk4 stability check
+  // One sample of the current chain, its nodes with their identities.
+  auto sample = [&]() {
+    Sample out = sample_of(*chain.model, *chain.sys, y, t, stats, &check);
+    if (chain.node_id.empty()) {
+      chain.node_id = out.node_id;
+      chain.next_id = static_cast<long>(out.node_id.size());
+    }
+    out.node_id = chain.node_id;
+    return out;
+  };
+  sink.write(sample());
 
   odeint::runge_kutta4<StateVector> rk4;
   auto dopri = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
                                        odeint::runge_kutta_dopri5<StateVector>());
   auto cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
                                           odeint::runge_kutta_cash_karp54<StateVector>());
+  // Rosenbrock-W holds its system: made again after a winch event.
   std::unique_ptr<RosenbrockW> ros;
-  if (model.sim.integrator == Integrator::Rosenbrock)
-    ros = std::make_unique<RosenbrockW>(*sys, model.sim.tolerance, force_scale(model));
+  auto make_ros = [&]() {
+    if (ros) keep_ros_errors(*ros, stats);
+    if (model.sim.integrator == Integrator::Rosenbrock)
+      ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model));
+  };
+  make_ros();
   double h = model.sim.time_step;
   const double T = model.sim.duration, dT = model.sim.output_interval;
   const long n_out = static_cast<long>(std::ceil(T / dT - 1e-9));
-  const std::vector<double> breaks = tow_breakpoints(model.tow);
+  std::vector<double> breaks = tow_breakpoints(model.tow);
+  for (double b : winch_breakpoints(model.winch)) breaks.push_back(b);
+  std::sort(breaks.begin(), breaks.end());
   auto next_break = breaks.begin();
   for (long k = 1; k <= n_out && check.empty(); ++k) {
     if (stop_flag && *stop_flag) {
@@ -284,18 +369,30 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       while (next_break != breaks.end() && *next_break < t - eps) ++next_break;
       const bool at_break = next_break != breaks.end() && std::abs(*next_break - t) <= eps;
       if (at_break) {
-        sys->apply_tow_jump(y, t);
+        chain.sys->apply_tow_jump(y, t);
         if (ros) ros->invalidate();  // the law's acceleration (and maybe y) jumps here
         ++next_break;
       }
       if (t >= out_time - 1e-12 * std::max(1.0, out_time)) break;
       const double target = (next_break != breaks.end() && *next_break < out_time) ? *next_break : out_time;
+      const Model& m = *chain.model;
+      System& sys = *chain.sys;
+      bool event = false;
       switch (model.sim.integrator) {
-        case Integrator::RK4: err = advance_fixed(model, *sys, rk4, y, t, target, stats); break;
-        case Integrator::DOPRI5: err = advance_adaptive(model, *sys, dopri, y, t, target, h, stats); break;
-        case Integrator::CashKarp54: err = advance_adaptive(model, *sys, cashkarp, y, t, target, h, stats); break;
-        case Integrator::Rosenbrock: err = advance_rosenbrock(model, *sys, *ros, y, t, target, h, stats); break;
+        case Integrator::RK4: err = advance_fixed(m, sys, rk4, y, t, target, stats, event); break;
+        case Integrator::DOPRI5: err = advance_adaptive(m, sys, dopri, y, t, target, h, stats, event); break;
+        case Integrator::CashKarp54: err = advance_adaptive(m, sys, cashkarp, y, t, target, h, stats, event); break;
+        case Integrator::Rosenbrock: err = advance_rosenbrock(m, sys, *ros, y, t, target, h, stats, event); break;
       }
+      if (!event || !err.empty()) continue;
+      // The state changes size: new chain, fresh steppers (sized on first use).
+      winch_event_at(chain, y, t, stats);
+      rk4 = odeint::runge_kutta4<StateVector>();
+      dopri = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
+                                      odeint::runge_kutta_dopri5<StateVector>());
+      cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
+                                         odeint::runge_kutta_cash_karp54<StateVector>());
+      make_ros();
     }
     if (!err.empty()) {
       std::ostringstream os;
@@ -304,16 +401,16 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       stats.message = os.str();
       break;
     }
-    sink.write(sample_of(model, *sys, y, t, stats, &check));
+    sink.write(sample());
     if (progress) progress(t / T);
   }
   if (!check.empty() && stats.status == "ok") {
     stats.status = "failed";
     stats.message = check;
   }
-  if (ros) stats.error_estimate = ros->max_error, stats.force_error_estimate = ros->max_force_error;
+  if (ros) keep_ros_errors(*ros, stats);
   stats.end_time = t;
-  stats.rhs_evaluations = sys->rhs_evaluations;
+  stats.rhs_evaluations += chain.sys->rhs_evaluations;
   stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   sink.flush();
   return stats;

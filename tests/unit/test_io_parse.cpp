@@ -46,7 +46,7 @@ TEST_F(ScenarioFile, UnknownKeyWithoutCloseMatchListsKeys) {
   const auto s = load(kCable + kSim + "initial: hanging\nzzz: 1\n");
   EXPECT_EQ(s.diags.str(),
             at("9:1: zzz: unknown key (expected one of: name, description, environment, cable, body, tow, "
-               "initial, simulation, waves, vessel)"));
+               "initial, simulation, waves, vessel, winch)"));
 }
 
 TEST_F(ScenarioFile, WrongType) {

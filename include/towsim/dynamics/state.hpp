@@ -22,6 +22,11 @@ struct PhysicalState {
   std::vector<Vec3> e;        // e_k, unit vector P_{k-1} -> P_k, k = 1..n at index k-1 [-, R_g]
   std::vector<Vec3> w;        // omega_k, angular velocity of element k, perpendicular to e_k [rad/s, R_g]
   std::vector<BodyState> bodies;  // one per Model::bodies entry, same order
+  // Current joint-to-joint length of each element and its rate (index k-1);
+  // Element::length and 0 unless a winch (the top element) or elasticity
+  // changes them. Empty = the model's lengths, at rest.
+  std::vector<double> length;       // l_k [m]
+  std::vector<double> length_rate;  // dl_k/dt [m/s]
 
   /// A state of the model's chain hanging straight down, at rest, bodies
   /// at their initial attitude.
@@ -34,6 +39,7 @@ struct Accelerations {
   std::vector<Vec3> alpha;        // element angular accelerations, perpendicular to e_k [rad/s^2, R_g]
   std::vector<Vec3> alpha_b;      // body angular accelerations, per body [rad/s^2, R_g]
   Vec3 tow_force = Vec3::Zero();  // F_R on the cable at O_r [N, R_g]
+  double length_acc = 0;          // winch: l'' of the top element (imposed or from the drum) [m/s^2]
   std::vector<Vec3> link_force;   // F_L on each body at its link point Q, from the cable above [N, R_g]
   std::vector<Vec3> lower_link_force;  // force of each in-line body on the cable below at Q2 [N, R_g]
                                        // (zero for the end body)
@@ -77,6 +83,12 @@ struct Workspace {
                                 // (at an in-line body's joint: its lower link Q2)
   std::vector<Vec3> G, vG;      // element centres G_k and velocities [m], [m/s], R_g
   std::vector<Vec3> edot;       // de_k/dt = omega_k x e_k [1/s, R_g]
+  std::vector<double> L;        // current length of element k (index k-1) [m]
+  // Winch: the top element at its current length (scaled_element), and the
+  // velocity of its material at the sheave, v_0 + l' e_1.
+  bool winch = false;           // true when element 1 is the winch's [-]
+  Element top{};                // element 1 scaled to l_1 [SI]
+  Vec3 v_top = Vec3::Zero();    // [m/s, R_g]
   // Loads on each element at G_k, added-mass acceleration terms excluded
   std::vector<Vec3> F, Mom;     // force [N] and moment about G_k [N m], R_g
   std::vector<Mat3> Mt;         // translational inertia m I + ma (I - ee^T) [kg]
@@ -111,6 +123,27 @@ Vec3 roll_pitch_yaw(const Quat& q);
 
 /// Quaternion from roll, pitch, yaw [rad], R = Rz(yaw) Ry(pitch) Rx(roll).
 Quat quat_from_rpy(double roll, double pitch, double yaw);
+
+/// Current length of element k (0-based): s.length[k], or the model's when s has none [m].
+inline double element_length(const Model& model, const PhysicalState& s, std::size_t k) {
+  return k < s.length.size() ? s.length[k] : model.cable.elements[k].length;
+}
+
+/// Current rate of the length of element k (0-based) [m/s].
+inline double element_length_rate(const PhysicalState& s, std::size_t k) {
+  return k < s.length_rate.size() ? s.length_rate[k] : 0.0;
+}
+
+/// The element k (0-based) as the dynamics use it: the model's, or the
+/// winch's top element at its current length (filled by compute_kinematics).
+inline const Element& current_element(const Model& model, const Workspace& ws, std::size_t k) {
+  return k == 0 && ws.winch ? ws.top : model.cable.elements[k];
+}
+
+/// Kinetic energy of cable and bodies, added mass included (the fluid's
+/// kinetic energy in the ideal-fluid model), from kinematics in ws [J].
+/// Needs compute_kinematics and compute_loads (inertias) for s.
+double kinetic_energy(const Model& model, const PhysicalState& s, const Workspace& ws);
 
 /// Skew-symmetric matrix: skew(a) b = a x b.
 Mat3 skew(const Vec3& a);

@@ -13,6 +13,7 @@
 
 #include "towsim/model/fluid.hpp"
 #include "towsim/model/types.hpp"
+#include "towsim/model/winch.hpp"
 #include "towsim/tow/tow.hpp"
 
 namespace towsim {
@@ -185,6 +186,7 @@ struct Model {
   Cable cable;
   std::vector<Body> bodies;
   Tow tow;
+  Winch winch;             // pay-out and haul-in at the tow point (Mode::None: fixed length)
   Initial initial;
   Simulation sim;
 };
@@ -194,6 +196,11 @@ struct Model {
 Element make_element(double length, double mass_per_length, double diameter,
                      double cd, double tangential_coef, TangentialLaw law,
                      double ca, const Fluid& fluid);
+
+/// Element `el` with its length changed to `length` and every per-length
+/// property scaled with it (the winch's top element: the material in it
+/// grows or shrinks; mass, weight, drag and added mass ~ length, inertias ~ length^3).
+Element scaled_element(const Element& el, double length);
 
 /// Fill Body's derived fields (rigid_mass, fluid_mass, displaced volume).
 void finalize_body(Body& body, const Fluid& fluid);

@@ -145,6 +145,7 @@ class RunWriter : public RunRecord {
  private:
   std::FILE* series_ = nullptr;
   std::FILE* nodes_ = nullptr;
+  bool node_ids_ = false;  // nodes.csv has a node_id column (a model with a winch)
   std::string buf_;
   std::vector<double> values_;
 };

@@ -256,6 +256,28 @@ struct VesselSpec {
   std::vector<RowSpec> motions;  // rows {t [s], surge, sway, heave [m], roll, pitch, yaw [deg]}
 };
 
+/// winch: pay-out and haul-in at the tow point (docs/scenario.md "winch").
+struct WinchSpec {
+  bool present = false;
+  Where where;
+  bool rate_given = false;
+  Where rate_where;
+  std::vector<RowSpec> rate;        // rows {t [s], pay-out speed [m/s]}; a number = one row at t = 0
+  bool length_given = false;
+  Where length_where;
+  std::vector<RowSpec> length;      // rows {t [s], deployed length [m]}
+  Field<double> tension;            // constant-tension set point [N]
+  Field<double> max_speed;          // [m/s]; absent = no limit
+  Field<double> max_acceleration;   // [m/s^2]; absent = no limit
+  Field<double> min_length{0.0};    // [m]
+  Field<double> max_length;         // drum capacity [m]; absent = no limit
+  Field<double> drum_inertia{0.0};  // tension mode: drum inertia as a mass at the rim [kg]
+  Field<double> damping{0.0};       // tension mode: drum damping [N s/m]
+  Field<double> rating;             // line pull rating [N]
+  Field<double> split_at{1.5};      // split above this many element lengths [-]
+  Field<double> remove_at{0.1};     // remove below this many element lengths [-]
+};
+
 /// A whole scenario as written.
 struct ScenarioSpec {
   std::string name;         // `name:` key, else the file stem or example name
@@ -266,6 +288,7 @@ struct ScenarioSpec {
   CableSpec cable;
   BodySpec body;
   TowSpec tow;
+  WinchSpec winch;
   InitialSpec initial;
   SimulationSpec simulation;
   WavesSpec waves;

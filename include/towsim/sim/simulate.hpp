@@ -27,6 +27,9 @@ struct Sample {
   double t = 0;                 // simulated time [s]
   Vec3 tow_pos, tow_vel;        // O_r = P_0 [m], [m/s], R_g
   Vec3 tow_force;               // F_R exerted by the vessel on the cable at O_r [N, R_g]
+  double deployed_length = 0;   // sum of the element lengths [m]
+  double payout_speed = 0;      // winch: l_1', cable leaving the sheave (< 0: hauled in) [m/s]
+  std::vector<long> node_id;    // per node: its material identity, stable across winch events [-]
   std::vector<Vec3> node_pos;   // cable nodes [m, R_g]
   std::vector<Vec3> node_vel;   // their velocities [m/s, R_g]
   std::vector<double> tension;  // |force carried through the node onto the part below| [N]
@@ -77,6 +80,9 @@ struct RunStats {
   double force_error_estimate = -1;  // rosenbrock: its part from the tow and link forces [-]; < 0: none
   double rk4_step_limit = -1;  // rk4: smallest estimated stability limit over the samples [s]; < 0: none
   std::vector<std::string> warnings;  // e.g. an rk4 step beyond the estimated stability limit
+  long winch_splits = 0;       // top elements split as cable was paid out [-]
+  long winch_removals = 0;     // top elements removed as cable was hauled in [-]
+  double winch_energy_lost = 0;// kinetic energy lost at removals (Removal::energy_lost, summed) [J]
 };
 
 /// Estimated largest stable RK4 step for the state whose evaluation `ws`

@@ -37,6 +37,25 @@ Vec3 final_tow_velocity(const Tow& tow);
 /// has a neutral rotation) then converges. The tow point sits at tow.start.
 StaticsResult solve_statics(const Model& model, const Vec3& V);
 
+/// `model` with a deployed length L: the top section's elements (their
+/// number kept) stretched or shortened together, per-length properties kept,
+/// everything below unchanged. L must exceed the length below the top section.
+Model with_deployed_length(const Model& model, double L);
+
+/// Deployed length for a target depth (`towsim statics --target-depth`).
+struct TargetDepthResult {
+  double length = 0;        // deployed length found [m]
+  double depth = 0;         // depth of the end body's origin (or the cable end) there [m]
+  bool found = false;
+  std::string message;      // why not
+  StaticsResult statics;    // the steady configuration at that length
+};
+
+/// The deployed length that puts the end body (or the cable end) at `depth`
+/// when the tow point moves steadily at V: bracketing then bisection-secant
+/// (Illinois) on the steady depth, to 1e-6 m of depth.
+TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double depth);
+
 /// Equilibrium at the tow's velocity at t = 0 (what `initial: steady` starts from).
 StaticsResult steady_state(const Model& model);
 

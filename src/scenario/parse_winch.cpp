@@ -1,0 +1,45 @@
+// Reading winch: (docs/scenario.md "winch").
+#include "parse_sections.hpp"
+
+namespace towsim::io {
+
+namespace {
+
+/// A number (constant, one row at t = 0) or a table [[t, value], ...].
+void read_number_or_table(MapReader& r, const std::string& key, bool& given, Where& where,
+                          std::vector<RowSpec>& rows, bool table_only, Diagnostics& d) {
+  const YNode* n = r.get(key);
+  if (n == nullptr) return;
+  given = true;
+  where = r.where(*n, key);
+  if (n->is_seq()) {
+    if (!read_table(*n, where.path, 2, d, rows)) rows.clear();
+    return;
+  }
+  if (table_only) {
+    d.error(n->loc, where.path, "expected a table [[t, value], ...] (got " + n->describe() + ")");
+    return;
+  }
+  double v = 0;
+  if (convert(*n, where.path, d, v)) rows.push_back(RowSpec{{0.0, v}, where});
+}
+
+}  // namespace
+
+void parse_winch(MapReader& r, WinchSpec& w, Diagnostics& d) {
+  w.where = r.where();
+  read_number_or_table(r, "rate", w.rate_given, w.rate_where, w.rate, false, d);
+  read_number_or_table(r, "length", w.length_given, w.length_where, w.length, true, d);
+  r.read("tension", w.tension);
+  r.read("max_speed", w.max_speed);
+  r.read("max_acceleration", w.max_acceleration);
+  r.read("min_length", w.min_length);
+  r.read("max_length", w.max_length);
+  r.read("drum_inertia", w.drum_inertia);
+  r.read("damping", w.damping);
+  r.read("rating", w.rating);
+  r.read("split_at", w.split_at);
+  r.read("remove_at", w.remove_at);
+}
+
+}  // namespace towsim::io

@@ -1,0 +1,125 @@
+// The winch's events: split and removal of the top element (docs/theory.md "Winch").
+#include "towsim/sim/winch_events.hpp"
+
+#include <cmath>
+
+#include "towsim/dynamics/dynamics.hpp"
+
+namespace towsim {
+
+namespace {
+
+/// Move the joints of bodies and attachments below the top element by `by`.
+void shift_joints(Model& m, int by) {
+  for (Attachment& a : m.cable.attachments)
+    if (a.joint >= 1) a.joint += by;
+  for (Body& b : m.bodies)
+    if (b.joint >= 1) b.joint += by;
+  for (std::size_t i = 1; i < m.cable.sections.size(); ++i) m.cable.sections[i].first_element += by;
+}
+
+/// Kinetic energy of state s of model m (fills ws) [J].
+double energy(const Model& m, const PhysicalState& s, Workspace& ws) {
+  compute_kinematics(m, s, ws);
+  compute_loads(m, s, 0.0, ws);
+  return kinetic_energy(m, s, ws);
+}
+
+}  // namespace
+
+WinchEvent winch_event(const Model& model, const PhysicalState& s) {
+  const Winch& w = model.winch;
+  if (!w.active() || model.cable.elements.empty()) return WinchEvent::None;
+  const double l = element_length(model, s, 0);
+  if (l > w.split_at * w.nominal_length) return WinchEvent::Split;
+  const bool more = !model.cable.sections.empty() ? model.cable.sections[0].elements > 1 : model.cable.n() > 1;
+  if (l < w.remove_at * w.nominal_length && more) return WinchEvent::Remove;
+  return WinchEvent::None;
+}
+
+Model split_model(const Model& model) {
+  Model m = model;
+  auto& els = m.cable.elements;
+  // The top element is the section's template (nominal length): copy it.
+  const Element nominal = scaled_element(els.front(), m.winch.nominal_length);
+  els.insert(els.begin() + 1, nominal);
+  if (!m.cable.sections.empty()) {
+    m.cable.sections[0].elements += 1;
+    m.cable.sections[0].length += m.winch.nominal_length;
+  }
+  shift_joints(m, 1);
+  return m;
+}
+
+PhysicalState split_state(const Model& model, const PhysicalState& s) {
+  PhysicalState out = s;
+  const double Le = model.winch.nominal_length;
+  const double l = element_length(model, s, 0);
+  out.length.assign(s.e.size(), 0.0);
+  out.length_rate.assign(s.e.size(), 0.0);
+  for (std::size_t k = 0; k < s.e.size(); ++k) out.length[k] = element_length(model, s, k);
+  out.length_rate[0] = element_length_rate(s, 0);
+  // Two collinear elements, same rotation: the material keeps its velocity.
+  out.e.insert(out.e.begin() + 1, s.e[0]);
+  out.w.insert(out.w.begin() + 1, s.w[0]);
+  out.length[0] = l - Le;
+  out.length.insert(out.length.begin() + 1, Le);
+  out.length_rate.insert(out.length_rate.begin() + 1, 0.0);
+  return out;
+}
+
+Removal remove_top(const Model& model, const PhysicalState& s, double t, double rate) {
+  (void)t;
+  Removal r;
+  Workspace ws_old(model);
+  const double E_old = energy(model, s, ws_old);
+  const Element& el = ws_old.top;
+  r.removed_energy = 0.5 * ws_old.vG[0].dot(ws_old.Mt[0] * ws_old.vG[0]) +
+                     0.5 * (el.inertia + el.added_inertia) * s.w[0].squaredNorm();
+  const double l = element_length(model, s, 0);
+  // The next element now spans the sheave P_0 to its own bottom joint P_2.
+  const Vec3 d = ws_old.P[2] - ws_old.P[0];
+  const double L = d.norm();  // [m]
+  const Vec3 e = d / L;
+  const Vec3 dv2 = ws_old.vP[2] - s.v0;  // P_2's velocity relative to the sheave [m/s]
+  const double r_star = dv2.dot(e);      // provisional pay-out speed [m/s]
+  const Vec3 w = e.cross(dv2 - r_star * e) / L;
+
+  r.model = model;
+  auto& els = r.model.cable.elements;
+  els.erase(els.begin() + 1);
+  if (!r.model.cable.sections.empty()) {
+    r.model.cable.sections[0].elements -= 1;
+    r.model.cable.sections[0].length -= model.winch.nominal_length;
+  }
+  shift_joints(r.model, -1);
+  // Cable drawn in by straightening the kink at P_1 (zero when collinear).
+  r.model.winch.length_offset += l + model.winch.nominal_length - L;
+
+  PhysicalState& n = r.state;
+  n = s;
+  n.e.erase(n.e.begin());
+  n.w.erase(n.w.begin());
+  n.length.assign(n.e.size(), 0.0);
+  n.length_rate.assign(n.e.size(), 0.0);
+  for (std::size_t k = 1; k < n.e.size(); ++k) n.length[k] = element_length(model, s, k + 1);
+  n.e[0] = e;
+  n.w[0] = w;
+  n.length[0] = L;
+  n.length_rate[0] = r_star;
+  // The pay-out speed jumps from r* to `rate`: the chain's impulsive response.
+  Workspace ws(r.model);
+  r.energy_before_impulse = energy(r.model, n, ws);
+  const Vec3 jump = (rate - r_star) * e;
+  tow_velocity_jump(r.model, n, jump, ws);
+  r.impulse = ws.acc.tow_force;
+  for (std::size_t k = 0; k < n.w.size(); ++k) n.w[k] += ws.acc.alpha[k];
+  for (std::size_t b = 0; b < n.bodies.size(); ++b) n.bodies[b].w += ws.acc.alpha_b[b];
+  n.length_rate[0] = rate;
+  const Vec3 v_before = s.v0 + r_star * e, v_after = s.v0 + rate * e;
+  r.impulse_work = r.impulse.dot(0.5 * (v_before + v_after));
+  r.energy_lost = E_old - energy(r.model, n, ws);
+  return r;
+}
+
+}  // namespace towsim

@@ -1,0 +1,60 @@
+// winch: keys: exact error texts ("FILE:LINE:COL: KEY.PATH: problem") and
+// what a valid winch compiles to (docs/scenario.md "winch").
+#include <gtest/gtest.h>
+
+#include "towsim/scenario/scenario.hpp"
+#include "../support/scenario_files.hpp"
+
+namespace {
+
+using WinchKeys = towsim::testing::ScenarioFiles;
+using towsim::testing::kCable;
+using towsim::testing::kSim;  // lines 6-7
+
+}  // namespace
+
+TEST_F(WinchKeys, NoModeAndUnknownKey) {
+  const auto s = load(kCable + kSim + "winch:\n  max_sped: 2\n");
+  EXPECT_EQ(s.diags.str(), at("9:3: winch.max_sped: unknown key (did you mean 'max_speed'?)") + at("9:3: winch: give one of rate, length or tension"));
+}
+
+TEST_F(WinchKeys, TwoModes) {
+  const auto s = load(kCable + kSim + "winch:\n  rate: 1\n  tension: 5000\n");
+  EXPECT_EQ(s.diags.str(), at("10:12: winch.tension: give only one of rate, length or tension"));
+}
+
+TEST_F(WinchKeys, SpeedsOverLimits) {
+  const auto s = load(kCable + kSim +
+                      "winch:\n  rate: [[0, 0], [10, 2.5], [11, 0]]\n  max_speed: 2\n  max_acceleration: 0.5\n");
+  EXPECT_EQ(s.diags.str(), at("9:18: winch.rate.1: pay-out speed 2.5 m/s exceeds winch.max_speed (2 m/s)") +
+                                at("9:29: winch.rate.2: pay-out acceleration -2.5 m/s^2 exceeds winch.max_acceleration (0.5 m/s^2)"));
+}
+
+TEST_F(WinchKeys, LengthTableMustStartAtTheCableLength) {
+  const auto s = load(kCable + kSim + "winch:\n  length: [[0, 90], [10, 120]]\n");
+  EXPECT_EQ(s.diags.str(), at("9:11: winch.length: the length at t = 0 (90 m) must be the cable's deployed length (100 m)"));
+}
+
+TEST_F(WinchKeys, RefusedCombinations) {
+  const auto s = load(kCable + kSim + "  formulation: paper\n" +
+                      "tow:\n  mode: force\n  force: [0, 0, 10]\nwinch:\n  tension: 5000\n  split_at: 1.05\n");
+  EXPECT_EQ(s.diags.str(), at("8:16: simulation.formulation: the paper formulation has a fixed cable length: winch: needs formulation: default") +
+                                at("13:12: winch.tension: a tension-controlled winch needs tow.mode: motion (tow.mode is force)") +
+                                at("14:13: winch.split_at: split_at (1.05) must be above 1 + remove_at (0.1) so that a split element is not removed at once"));
+}
+
+TEST_F(WinchKeys, ValidRateCompiles) {
+  const auto s = load(kCable + kSim + "winch:\n  rate: [[0, 0], [10, 1], [20, 1], [30, 0]]\n  max_length: 120\n" +
+                      "  rating: 1.0e4\n");
+  ASSERT_EQ(s.diags.str(), "");
+  ASSERT_TRUE(s.model.has_value());
+  const towsim::Winch& w = s.model->winch;
+  EXPECT_EQ(w.mode, towsim::Winch::Mode::Imposed);
+  EXPECT_DOUBLE_EQ(w.nominal_length, 20);
+  EXPECT_DOUBLE_EQ(w.min_length, 20);  // the top section's last element stays out
+  // 5 m in the ramp up, 10 m at 1 m/s, then stopped at the drum's capacity 120 m (t = 25 s... ).
+  EXPECT_DOUBLE_EQ(towsim::winch_kinematics(w, 10).length, 105);
+  EXPECT_DOUBLE_EQ(towsim::winch_kinematics(w, 20).length, 115);
+  EXPECT_NEAR(towsim::winch_kinematics(w, 100).length, 120, 1e-12);
+  EXPECT_DOUBLE_EQ(towsim::winch_kinematics(w, 100).rate, 0);
+}
