@@ -262,8 +262,10 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   auto cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
                                           odeint::runge_kutta_cash_karp54<StateVector>());
   std::unique_ptr<RosenbrockW> ros;
-  if (model.sim.integrator == Integrator::Rosenbrock)
+  if (model.sim.integrator == Integrator::Rosenbrock) {
+    if (!sys->has_stage_solve()) check = "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)";
     ros = std::make_unique<RosenbrockW>(*sys, model.sim.tolerance, force_scale(model));
+  }
   double h = model.sim.time_step;
   const double T = model.sim.duration, dT = model.sim.output_interval;
   const long n_out = static_cast<long>(std::ceil(T / dT - 1e-9));
