@@ -206,7 +206,8 @@ class DefaultSystem final : public System {
       rhs_.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * js_.bodies[b].q.conjugate()).vec();
     }
     implicit_stage_solve(model_, js_, jws_, hg, rhs_, iw_);
-    k.resize(size_);
+    // Rows without local terms keep k = r (W = I there: still a W-method).
+    k = r;
     // Position rows: k_x = r_x + hg B k_v (B: velocities -> position rates at the step's start).
     const Vec3 kv0 = CMap3(&r[3]) + iw_.a0;
     set3(k, 3, kv0);

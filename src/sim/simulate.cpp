@@ -46,13 +46,15 @@ std::string check_rk4_step(const Model& model, const Workspace& ws, double t, Ru
   if (stats.rk4_step_limit < 0 || lim < stats.rk4_step_limit) stats.rk4_step_limit = lim;
   const double h = model.sim.time_step;
   if (h <= 0.9 * lim) return {};
-  std::ostringstream os;
-  os << "rk4 time_step " << h << " s is above 0.9 times the estimated stability limit " << lim << " s at t = " << t
-     << " s (element " << k << ", tension " << T << " N): forces may be wrong; use simulation.time_step <= "
-     << 0.9 * lim << " or simulation.integrator: rosenbrock";
   // The estimate is within 10 % of the measured limit (tests): 1.5 times
   // it is clearly unstable.
-  if (h > 1.5 * lim) return "refused: " + os.str();
+  const bool refuse = h > 1.5 * lim;
+  std::ostringstream os;
+  os << (refuse ? "refused: " : "") << "rk4 time_step " << h << " s is above " << (refuse ? "1.5" : "0.9")
+     << " times the estimated stability limit " << lim << " s at t = " << t << " s (element " << k << ", tension "
+     << T << " N): " << (refuse ? "the run would diverge or be wrong" : "forces may be wrong")
+     << "; use simulation.time_step <= " << 0.9 * lim << " or simulation.integrator: rosenbrock";
+  if (refuse) return os.str();
   if (stats.warnings.empty() || stats.warnings.back().rfind("rk4 time_step", 0) != 0) stats.warnings.push_back(os.str());
   return {};
 }
@@ -343,8 +345,9 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   std::unique_ptr<RosenbrockW> ros;
   auto make_ros = [&]() {
     if (ros) keep_ros_errors(*ros, stats);
-    if (model.sim.integrator == Integrator::Rosenbrock)
-      ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model));
+    if (model.sim.integrator != Integrator::Rosenbrock) return;
+    if (!chain.sys->has_stage_solve()) check = "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)";
+    ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model));
   };
   make_ros();
   double h = model.sim.time_step;
