@@ -368,6 +368,29 @@ double tension_std(const Model& m, double t0, double* length_span) {
   return std::sqrt(std::max(0.0, s2 / n - (s / n) * (s / n)));
 }
 
+// A tension winch paying out a hanging load stops at the drum's capacity:
+// the speed drops to 0 there (an impulse), the length stays at max_length.
+TEST(Winch, TensionControlStopsAtMaxLength) {
+  const double Le = 10;
+  Model m = winch_model(3, Le, 2.0, 500, 0.0);
+  m.winch.mode = Winch::Mode::Tension;
+  m.winch.tension = 4000;
+  m.winch.drum_inertia = 300;
+  m.winch.max_length = 45;
+  m.winch.schedule.clear();
+  m.sim.duration = 10;
+  m.sim.time_step = 1e-3;
+  m.sim.output_interval = 0.5;
+  MemorySink sink;
+  const RunStats st = simulate(m, sink);
+  ASSERT_EQ(st.status, "ok") << st.message;
+  // (M_d + m'L + M) L'' ~ 1500 N / 860 kg: 15 m paid out after ~4.2 s.
+  const Sample& last = sink.samples.back();
+  EXPECT_NEAR(last.deployed_length, 45, 1e-9);
+  EXPECT_EQ(last.payout_speed, 0);
+  for (const Sample& s : sink.samples) EXPECT_LE(s.deployed_length, 45 + 1e-9);
+}
+
 // Heave compensation (a regression check of the tension mode, not a closed
 // form): fish-depth-change's fish at 4 kn with the sheave heaving 2 m at 8 s.
 // A constant-tension winch set at the steady tension (drum 200 kg, damping
