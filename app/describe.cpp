@@ -138,6 +138,24 @@ void describe_tow(const Tow& t, std::ostream& out) {
     line(out, "motion", std::visit([](const auto& law) { return piece_text(law); }, p));
 }
 
+void describe_winch(const Winch& w, std::ostream& out) {
+  if (!w.active()) return;
+  if (w.mode == Winch::Mode::Tension) {
+    out << "winch: constant tension " << fmt_num(w.tension) << " N\n";
+    line(out, "drum", fmt_num(w.drum_inertia) + " kg at the rim, damping " + fmt_num(w.damping) + " N s/m");
+  } else {
+    const WinchKinematics end = winch_kinematics(w, w.schedule.back().t0);
+    out << "winch: imposed length, " << w.schedule.size() << " pieces, " << fmt_num(end.length) << " m from t = "
+        << fmt_num(w.schedule.back().t0) << " s\n";
+  }
+  const auto lim = [](double v, const char* unit) { return std::isfinite(v) ? fmt_num(v) + " " + unit : "none"; };
+  line(out, "length limits", fmt_num(w.min_length) + " to " + lim(w.max_length, "m"));
+  line(out, "speed limit", lim(w.max_speed, "m/s"));
+  line(out, "elements", fmt_num(w.nominal_length) + " m, split above " + fmt_num(w.split_at * w.nominal_length) +
+                            " m, removed below " + fmt_num(w.remove_at * w.nominal_length) + " m");
+  if (w.rating > 0) line(out, "rating", fmt_num(w.rating) + " N");
+}
+
 void describe_run(const Model& m, std::ostream& out) {
   const char* integ[] = {"rk4", "dopri5", "cash_karp54", "rosenbrock"};
   const auto& s = m.sim;
@@ -166,6 +184,7 @@ void describe_model(const Model& m, std::ostream& out) {
   if (!end_body(m)) out << "body: none (free cable end)\n";
   describe_tow(m.tow, out);
   describe_sea(m, out);
+  describe_winch(m.winch, out);
   describe_run(m, out);
 }
 

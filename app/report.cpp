@@ -170,9 +170,12 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
     error = (root / "nodes.csv").string() + ": no rows at the times of timeseries.csv";
     return false;
   }
-  // Every frame the same joints (the first frame's count).
-  const std::size_t n = frames.front().x.size();
-  const auto keep = spread_indices(n, static_cast<std::size_t>(std::max(2, opt.max_nodes)));
+  // Every frame the same number of points (the viewer draws a fixed count):
+  // with a winch the joints per frame change, so each frame keeps as many of
+  // its joints, spread along it (ends included), as the smallest frame has.
+  std::size_t n = frames.front().x.size();
+  for (const auto& f : frames) n = std::min(n, f.x.size());
+  const std::size_t n_keep = spread_indices(n, static_cast<std::size_t>(std::max(2, opt.max_nodes))).size();
   const bool body = ts.col("body_x") >= 0;
   const int bx = ts.col("body_x"), by = ts.col("body_y"), bz = ts.col("body_z"), br = ts.col("body_roll_deg"),
             bp = ts.col("body_pitch_deg"), byaw = ts.col("body_yaw_deg"), cl = ts.col("layback"),
@@ -182,7 +185,7 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
   double tmax = 0;
   std::size_t w = 0;  // index into `pick` of the frame's timeseries row
   for (const auto& f : frames) {
-    if (f.x.size() != n) continue;  // a frame of another cable (cannot happen in towsim's outputs)
+    const auto keep = spread_indices(f.x.size(), n_keep);
     while (w < pick.size() && std::abs(times[pick[w]] - f.t) > 1e-9 * std::max(1.0, std::abs(f.t))) ++w;
     const std::size_t r = w < pick.size() ? rows[pick[w]] : rows.back();
     json p = json::array(), T = json::array();

@@ -158,6 +158,12 @@ Vec3 final_tow_velocity(const Tow& tow) {
 }
 
 StaticsResult solve_statics(const Model& model, const Vec3& V) {
+  // A steady tow holds the winch: the configuration at the current length.
+  if (model.winch.active()) {
+    Model held = model;
+    held.winch = Winch{};
+    return solve_statics(held, V);
+  }
   SteadyProblem p(model, V);
   sweep_from_bottom(p);
   const int N = p.size();

@@ -2,6 +2,8 @@
 // what a valid winch compiles to (docs/scenario.md "winch").
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "towsim/scenario/scenario.hpp"
 #include "../support/scenario_files.hpp"
 
@@ -57,4 +59,33 @@ TEST_F(WinchKeys, ValidRateCompiles) {
   EXPECT_DOUBLE_EQ(towsim::winch_kinematics(w, 20).length, 115);
   EXPECT_NEAR(towsim::winch_kinematics(w, 100).length, 120, 1e-12);
   EXPECT_DOUBLE_EQ(towsim::winch_kinematics(w, 100).rate, 0);
+}
+
+// The rate schedule's stops: paying out into max_length stops there (the
+// speed drops to 0) and resumes as soon as the table's speed turns back;
+// hauling in along a ramp through zero stops at min_length and resumes
+// where the ramp crosses zero. Exact quadratic pieces (1e-12).
+TEST(WinchSchedule, StopsAndResumes) {
+  using towsim::schedule_from_rate;
+  using towsim::Winch;
+  Winch w;
+  w.mode = Winch::Mode::Imposed;
+  // +1 m/s until 100 s, then -1 m/s: from 100 m with a 150 m drum.
+  w.schedule = schedule_from_rate({100, 100.001}, {1, -1}, 100, 10, 150);
+  EXPECT_NEAR(towsim::winch_kinematics(w, 25).length, 125, 1e-12);
+  EXPECT_NEAR(towsim::winch_kinematics(w, 50).length, 150, 1e-12);
+  EXPECT_NEAR(towsim::winch_kinematics(w, 80).length, 150, 1e-12);
+  EXPECT_EQ(towsim::winch_kinematics(w, 80).rate, 0);
+  EXPECT_NEAR(towsim::winch_kinematics(w, 120.001).length, 150 - 0.00025 - 20, 1e-9);  // the ramp, then 20 s back
+  // A ramp from -1 to +1 m/s over 0..20 s from 60 m with min_length 57 m:
+  // L = 60 - t + t^2/20 reaches 57 at t = 10 - sqrt(40) = 3.675 s, stops,
+  // resumes at t = 10 s (speed 0), then L = 57 + (t-10)^2/20.
+  w.schedule = schedule_from_rate({0, 20}, {-1, 1}, 60, 57, 1e9);
+  const double hit = 10 - std::sqrt(40.0);
+  EXPECT_NEAR(towsim::winch_kinematics(w, hit - 1e-6).length, 57, 1e-5);
+  EXPECT_NEAR(towsim::winch_kinematics(w, 8).length, 57, 1e-12);
+  EXPECT_EQ(towsim::winch_kinematics(w, 8).rate, 0);
+  EXPECT_NEAR(towsim::winch_kinematics(w, 16).length, 57 + 36.0 / 20, 1e-12);
+  EXPECT_NEAR(towsim::winch_kinematics(w, 16).rate, 0.6, 1e-12);
+  EXPECT_NEAR(towsim::winch_breakpoints(w).front(), hit, 1e-12);
 }

@@ -348,3 +348,80 @@ TEST(Winch, TargetDepthMatchesTheHeldRun) {
 
 }  // namespace
 }  // namespace towsim
+
+namespace towsim {
+namespace {
+
+/// Standard deviation of the tow tension after t0 in a run of m [N].
+double tension_std(const Model& m, double t0, double* length_span) {
+  MemorySink sink;
+  const RunStats st = simulate(m, sink);
+  EXPECT_EQ(st.status, "ok") << st.message;
+  double s = 0, s2 = 0, n = 0, lo = 1e300, hi = -1e300;
+  for (const Sample& x : sink.samples) {
+    if (x.t < t0) continue;
+    const double T = x.tow_force.norm();
+    s += T, s2 += T * T, n += 1;
+    lo = std::min(lo, x.deployed_length), hi = std::max(hi, x.deployed_length);
+  }
+  *length_span = hi - lo;
+  return std::sqrt(std::max(0.0, s2 / n - (s / n) * (s / n)));
+}
+
+// A tension winch paying out a hanging load stops at the drum's capacity:
+// the speed drops to 0 there (an impulse), the length stays at max_length.
+TEST(Winch, TensionControlStopsAtMaxLength) {
+  const double Le = 10;
+  Model m = winch_model(3, Le, 2.0, 500, 0.0);
+  m.winch.mode = Winch::Mode::Tension;
+  m.winch.tension = 4000;
+  m.winch.drum_inertia = 300;
+  m.winch.max_length = 45;
+  m.winch.schedule.clear();
+  m.sim.duration = 10;
+  m.sim.time_step = 1e-3;
+  m.sim.output_interval = 0.5;
+  MemorySink sink;
+  const RunStats st = simulate(m, sink);
+  ASSERT_EQ(st.status, "ok") << st.message;
+  // (M_d + m'L + M) L'' ~ 1500 N / 860 kg: 15 m paid out after ~4.2 s.
+  const Sample& last = sink.samples.back();
+  EXPECT_NEAR(last.deployed_length, 45, 1e-9);
+  EXPECT_EQ(last.payout_speed, 0);
+  for (const Sample& s : sink.samples) EXPECT_LE(s.deployed_length, 45 + 1e-9);
+}
+
+// Heave compensation (a regression check of the tension mode, not a closed
+// form): fish-depth-change's fish at 4 kn with the sheave heaving 2 m at 8 s.
+// A constant-tension winch set at the steady tension (drum 200 kg, damping
+// 500 N s/m) pays out and hauls in ~2 m and cuts the tension's standard
+// deviation by more than half (measured 448 -> 142 N).
+TEST(Winch, TensionControlCompensatesHeave) {
+  const io::Example* ex = io::find_example("fish-depth-change");
+  ASSERT_NE(ex, nullptr);
+  io::LoadedScenario sc = io::load_scenario_text(ex->yaml, "fish-depth-change.yaml", "fish-depth-change", ".");
+  ASSERT_TRUE(sc.ok()) << sc.diags.str();
+  Model fixed = *sc.model;
+  fixed.sim.duration = 300;
+  fixed.tow.pieces.push_back(Heave{2.0, 8.0, 10.0});
+  fixed.winch = Winch{};
+  Model comp = fixed;
+  comp.winch = sc.model->winch;
+  comp.winch.mode = Winch::Mode::Tension;
+  comp.winch.schedule.clear();
+  comp.winch.tension = 2713;
+  comp.winch.drum_inertia = 200;
+  comp.winch.damping = 500;
+  comp.winch.max_speed = 2;
+  comp.winch.max_acceleration = 3;
+  double span_fixed = 0, span_comp = 0;
+  const double s_fixed = tension_std(fixed, 100, &span_fixed), s_comp = tension_std(comp, 100, &span_comp);
+  EXPECT_EQ(span_fixed, 0);
+  EXPECT_GT(span_comp, 0.5);
+  EXPECT_LT(s_comp, 0.5 * s_fixed);
+  std::printf("heave 2 m / 8 s: tension std %.1f N fixed, %.1f N with the tension winch (length span %.2f m)\n",
+              s_fixed, s_comp, span_comp);
+}
+
+}  // namespace
+}  // namespace towsim
