@@ -103,7 +103,11 @@ void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
       Kk = &bw.KQ;
       bk = &bw.bQ;
     }
-    element_backward(els[k], s.e[k], s.w[k], *Kk, *bk, k, ws);
+    if (is_elastic(els[k]))
+      elastic_backward(s.e[k], s.length_of(model, k), ws.Mt[k], ws.F[k], ws.Mom[k], *Kk, *bk, ws.elastic[k], ws.K[k],
+                       ws.b[k]);
+    else
+      element_backward(els[k], s.e[k], s.w[k], *Kk, *bk, k, ws);
     // An attachment at joint k moves with it: its inertia and loads add on.
     ws.K[k] += ws.Ma[k];
     ws.b[k] -= ws.Fa[k];
@@ -141,9 +145,15 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   acc.joint_force[0] = acc.tow_force;
   Vec3 a = acc.a0;
   for (std::size_t k = 0; k < els.size(); ++k) {
-    const Vec3 beta = ws.T[k] * (ws.Phi[k] * (ws.Tr0[k] - ws.GT[k].transpose() * a));  // alpha x e
-    acc.alpha[k] = s.e[k].cross(beta);
-    a += els[k].length * (beta + ws.c[k]);
+    if (is_elastic(els[k])) {
+      // Elastic element: d'' from the top joint's acceleration (§5.4).
+      a += elastic_forward(ws.elastic[k], s.e[k], s.w[k], s.length_of(model, k), s.length_rate_of(k), a,
+                           acc.alpha[k], acc.length_acc[k]);
+    } else {
+      const Vec3 beta = ws.T[k] * (ws.Phi[k] * (ws.Tr0[k] - ws.GT[k].transpose() * a));  // alpha x e
+      acc.alpha[k] = s.e[k].cross(beta);
+      a += els[k].length * (beta + ws.c[k]);
+    }
     const int bi = ws.body_at[k + 1];
     if (bi < 0) {
       acc.joint_force[k + 1] = ws.K[k + 1] * a + ws.b[k + 1];
@@ -169,6 +179,7 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
   for (std::size_t k = 0; k < els.size(); ++k) {
     element_loads(model, els[k], s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
     ws.Mt[k] = element_mass(els[k], s.e[k]);
+    ws.elastic[k].T = element_tension(els[k], s.length_of(model, k), s.length_rate_of(k));
   }
   attachment_loads(model, t, ws);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
@@ -184,11 +195,13 @@ void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& d
   PhysicalState s0 = s;
   s0.v0.setZero();
   for (auto& w : s0.w) w.setZero();
+  for (auto& r : s0.length_rate) r = 0;
   for (auto& bs : s0.bodies) bs.w.setZero();
   compute_kinematics(model, s0, ws);
   compute_loads(model, s0, 0.0, ws);
   for (std::size_t k = 0; k < ws.F.size(); ++k) ws.F[k].setZero(), ws.Mom[k].setZero();
   for (auto& f : ws.Fa) f.setZero();
+  for (auto& ew : ws.elastic) ew.T = 0;  // a finite tension gives no impulse
   for (auto& bw : ws.body) bw.Fb.setZero(), bw.Mb.setZero(), bw.hw.setZero();
   backward_pass(model, s0, ws);
   forward_pass(model, s0, 0.0, ws, &dv);

@@ -33,6 +33,7 @@ Vec3 tow_jump(const Model& m, double t) {
 PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws) {
   tow_velocity_jump(m, s, dv, ws);
   for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
+  for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws.acc.length_acc[k];
   for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws.acc.alpha_b[b];
   const double d = 1e-9 * std::max(1.0, std::abs(t));
   s.r0 = tow_kinematics(m.tow, t).pos;
@@ -40,12 +41,14 @@ PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, 
   return s;
 }
 
-/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body].
+/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body],
+/// then, when the cable has elastic elements, [l_1..l_n, l'_1..l'_n].
 class DefaultSystem final : public System {
  public:
   explicit DefaultSystem(const Model& m) : model_(m), ws_(m), s_(PhysicalState::hanging(m)) {
     n_ = m.cable.n();
-    size_ = body_offset(m.bodies.size());
+    lengths_ = lengths_in_state(m);
+    size_ = body_offset(m.bodies.size()) + (lengths_ ? 2 * static_cast<std::size_t>(n_) : 0);
   }
 
   StateVector initial(const PhysicalState& s, double) override {
@@ -61,6 +64,13 @@ class DefaultSystem final : public System {
       const Quat& q = s.bodies[b].q;
       y[o] = q.w(), y[o + 1] = q.x(), y[o + 2] = q.y(), y[o + 3] = q.z();
       set3(y, o + 4, s.bodies[b].w);
+    }
+    if (lengths_) {
+      const std::size_t o = length_offset();
+      for (int k = 0; k < n_; ++k) {
+        y[o + k] = s.length_of(model_, k);
+        y[o + n_ + k] = s.length_rate_of(k);
+      }
     }
     return y;
   }
@@ -91,6 +101,14 @@ class DefaultSystem final : public System {
       const Quat dq = Quat(0, bs.w.x(), bs.w.y(), bs.w.z()) * bs.q;
       dy[o] = 0.5 * dq.w(), dy[o + 1] = 0.5 * dq.x(), dy[o + 2] = 0.5 * dq.y(), dy[o + 3] = 0.5 * dq.z();
       set3(dy, o + 4, ws_.acc.alpha_b[b]);
+    }
+    // dl/dt = l', dl'/dt = l''.
+    if (lengths_) {
+      const std::size_t o = length_offset();
+      for (int k = 0; k < n_; ++k) {
+        dy[o + k] = s_.length_rate[k];
+        dy[o + n_ + k] = ws_.acc.length_acc[k];
+      }
     }
   }
 
@@ -129,6 +147,7 @@ class DefaultSystem final : public System {
   std::string describe(std::size_t i) const override {
     if (i < 6) return "tow point";
     if (i < body_offset(0)) return "element " + std::to_string((i - 6) % (3 * n_) / 3 + 1);
+    if (lengths_ && i >= length_offset()) return "element " + std::to_string((i - length_offset()) % n_ + 1) + " (length)";
     const std::size_t b = std::min((i - body_offset(0)) / 7, model_.bodies.size() - 1);
     return "body " + model_.bodies[b].name;
   }
@@ -146,14 +165,24 @@ class DefaultSystem final : public System {
       s.bodies[b].q = Quat(y[o], y[o + 1], y[o + 2], y[o + 3]).normalized();
       s.bodies[b].w = CMap3(&y[o + 4]);
     }
+    if (lengths_) {
+      const std::size_t o = length_offset();
+      for (int k = 0; k < n_; ++k) {
+        s.length[k] = y[o + k];
+        s.length_rate[k] = y[o + n_ + k];
+      }
+    }
   }
   /// Offset of body b's block in the flat state (b = count: the state's size).
   std::size_t body_offset(std::size_t b) const { return 6 + 6 * static_cast<std::size_t>(n_) + 7 * b; }
+  /// Offset of the element lengths' block (when lengths_).
+  std::size_t length_offset() const { return body_offset(model_.bodies.size()); }
 
   const Model& model_;
   Workspace ws_;
   PhysicalState s_;
   int n_ = 0;
+  bool lengths_ = false;  // the state carries element lengths and rates
   std::size_t size_ = 0;
 };
 

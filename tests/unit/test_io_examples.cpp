@@ -131,7 +131,7 @@ TEST(IoOutput, TimeseriesColumnsAndExtremes) {
   EXPECT_EQ(ts[2].rfind("0.5,0.5,0,0,3,0,4,0.5,0,-10,0.5,0,-10.5,0,-0.5,0,0,0,2,5,10,", 0), 0u) << ts[2];
   const auto nodes = lines_of(dir / "nodes.csv");
   ASSERT_EQ(nodes.size(), 5u);
-  EXPECT_EQ(nodes[0], "time,node,x,y,z,vx,vy,vz,tension,axial_force");
+  EXPECT_EQ(nodes[0], "time,node,x,y,z,vx,vy,vz,tension,axial_force,strain");
   EXPECT_EQ(nodes[4], "0.5,1,0.5,0,-10,1,0,0,2,-2");
   std::ifstream in(dir / "summary.json");
   const auto j = nlohmann::json::parse(in);

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "towsim/dynamics/elastic.hpp"
 #include "towsim/model/model.hpp"
 
 namespace towsim {
@@ -22,9 +23,20 @@ struct PhysicalState {
   std::vector<Vec3> e;        // e_k, unit vector P_{k-1} -> P_k, k = 1..n at index k-1 [-, R_g]
   std::vector<Vec3> w;        // omega_k, angular velocity of element k, perpendicular to e_k [rad/s, R_g]
   std::vector<BodyState> bodies;  // one per Model::bodies entry, same order
+  std::vector<double> length;       // l_k, current joint-to-joint length of element k (index k-1) [m]
+                                    // (Element::length for an inextensible element)
+  std::vector<double> length_rate;  // l_k' [m/s] (0 for an inextensible element)
+
+  /// Length of element i (0-based): length[i], or the element's own when the
+  /// state carries no lengths [m].
+  double length_of(const Model& model, std::size_t i) const {
+    return i < length.size() ? length[i] : model.cable.elements[i].length;
+  }
+  /// Its rate [m/s] (0 when the state carries none).
+  double length_rate_of(std::size_t i) const { return i < length_rate.size() ? length_rate[i] : 0.0; }
 
   /// A state of the model's chain hanging straight down, at rest, bodies
-  /// at their initial attitude.
+  /// at their initial attitude, elements at their unstretched lengths.
   static PhysicalState hanging(const Model& model);
 };
 
@@ -32,6 +44,7 @@ struct PhysicalState {
 struct Accelerations {
   Vec3 a0 = Vec3::Zero();         // tow point acceleration [m/s^2, R_g]
   std::vector<Vec3> alpha;        // element angular accelerations, perpendicular to e_k [rad/s^2, R_g]
+  std::vector<double> length_acc; // l_k'', element length accelerations (0: inextensible) [m/s^2]
   std::vector<Vec3> alpha_b;      // body angular accelerations, per body [rad/s^2, R_g]
   Vec3 tow_force = Vec3::Zero();  // F_R on the cable at O_r [N, R_g]
   std::vector<Vec3> link_force;   // F_L on each body at its link point Q, from the cable above [N, R_g]
@@ -92,6 +105,7 @@ struct Workspace {
   std::vector<Eigen::Matrix2d> Phi;             // (T^T (L^2/4 Mt + L^2 K_k) T + Ir)^-1 [1/(kg m^2)]
   std::vector<Eigen::Vector2d> Tr0;             // T^T r_0 (moment of the known loads) [N m]
   std::vector<Vec3> c;                          // centripetal part of d2e/dt2: -|w|^2 e [1/s^2]
+  std::vector<ElasticWork> elastic;             // elastic elements' articulated quantities and tension
   std::vector<BodyWork> body;   // per Model::bodies entry
   std::vector<int> body_at;     // index of the body hanging at joint k, or -1 (k = 0..n)
   Accelerations acc;            // result of the last evaluation
@@ -101,6 +115,10 @@ struct Workspace {
   /// True when this workspace was sized for `model`'s chain.
   bool fits(const Model& model) const;
 };
+
+/// True when the model's state carries element lengths and their rates
+/// (an elastic element anywhere).
+bool lengths_in_state(const Model& model);
 
 /// Positions and velocities of joints, centres and body from a physical state.
 void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& ws);
