@@ -398,6 +398,40 @@ TEST(ElasticWave, TowPointStartingUpSendsTheImpedanceStepAtTheWaveSpeed) {
   EXPECT_NEAR(t_cross, x_probe / wave, 0.05 * x_probe / wave);
 }
 
+// The fixed RK4 step's bound for the axial mode (docs/theory.md §5.4): the
+// consistent-mass chain's highest frequency is 2 sqrt(3) c / L (less by
+// 0.2 % for 20 elements, fixed top, free end), RK4 is stable up to
+// |h w| = 2 sqrt(2): h* = 0.8165 L / c. A hanging chain at its static
+// stretch under a 500 kg end weight (strain >= 4e-4 everywhere), its highest
+// mode seeded by alternating length perturbations of 1e-12: 5 % below h* the
+// perturbation stays bounded, 5 % above it grows by |R(i h w)| ~ 1.38 per
+// step (1e7 over 50 steps; still far from slack, which would clip it).
+TEST(ElasticWave, Rk4AxialStepBoundIsSharp) {
+  CableSpec c;
+  c.n = 20;
+  c.length = 200;
+  c.mass_per_length = 1.12;
+  Model m = cable_model(c, 0.0);
+  make_elastic(m, 1.27e7);
+  m.cable.attachments.push_back({c.n, c.length, 500.0, 0.0, 0.0, 0.0});
+  constexpr double kSeed = 1e-12;
+  PhysicalState s = initial_state(m);
+  const std::vector<double> rest = s.length;
+  for (int k = 0; k < c.n; ++k) s.length[k] += (k % 2 ? kSeed : -kSeed) * m.cable.elements[k].length;
+  const double L = m.cable.elements[0].length, hstar = std::sqrt(2.0 / 3.0) * L / axial_wave_speed(m.cable.elements[0]);
+  auto growth = [&](double h) {
+    const PhysicalState p = integrate(m, s, 50 * h, h);
+    double a = 0;
+    for (int k = 0; k < c.n; ++k) a = std::max(a, std::abs(p.length[k] - rest[k]) / L / kSeed);
+    return std::isfinite(a) ? a : 1e300;
+  };
+  const double below = growth(0.95 * hstar), above = growth(1.05 * hstar);
+  std::printf("perturbation after 50 steps: x%.3g at 0.95 h*, x%.3g at 1.05 h*\n", below, above);
+  EXPECT_LT(below, 2.0);   // no growth (the mode's energy is conserved or damped)
+  EXPECT_GT(above, 1e4);   // unmistakable growth
+  EXPECT_NEAR(rk4_axial_step_limit(m.cable.elements[0]), 0.98 * hstar, 0.01 * hstar);  // the refusal's margin
+}
+
 // --- 5. Slack under a heaving tow point ----------------------------------------
 
 TEST(ElasticSlack, LightCableUnderHeaveGoesSlackWithZeroTension) {
