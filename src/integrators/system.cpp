@@ -1,6 +1,8 @@
 // The default and paper formulations as flat-state systems for the integrators.
 #include "towsim/integrators/system.hpp"
 
+#include <stdexcept>
+
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/paper.hpp"
 
@@ -283,6 +285,8 @@ class PaperSystem final : public System {
 }  // namespace
 
 std::unique_ptr<System> make_system(const Model& model) {
+  if (model.sim.formulation == Formulation::Paper && lengths_in_state(model))
+    throw std::invalid_argument("towsim: the paper formulation has inextensible elements only (elastic cable given)");
   if (model.sim.formulation == Formulation::Paper) return std::make_unique<PaperSystem>(model);
   return std::make_unique<DefaultSystem>(model);
 }
