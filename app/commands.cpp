@@ -109,6 +109,20 @@ std::string end_of_run_line(const Model& model, const RunStats& stats, const nlo
 
 namespace {
 
+/// An elastic cable that went slack: how often, where first, the snap after it.
+void elastic_warnings(const SlackRecord& r, std::ostream& err) {
+  if (r.episodes == 0 || r.events().empty()) return;
+  const SlackEvent& ev = r.events().front();
+  err << "towsim: warning: the cable went slack " << r.episodes << (r.episodes == 1 ? " time" : " times") << " ("
+      << fmt_num(tidy_time(r.slack_time)) << " s in all); first at t = " << fmt_num(tidy_time(ev.start))
+      << " s, elements " << ev.first_element << "-" << ev.last_element << " (" << fmt_num(tidy(ev.from)) << "-"
+      << fmt_num(tidy(ev.to)) << " m from the tow point), for " << fmt_num(tidy_time(ev.end - ev.start)) << " s";
+  if (ev.ended)
+    err << ", snap " << fmt_num(tidy(ev.snap_tension)) << " N at t = " << fmt_num(tidy_time(ev.snap_time)) << " s";
+  err << "; peak element tension " << fmt_num(tidy(r.max_tension)) << " N at t = "
+      << fmt_num(tidy_time(r.max_tension_time)) << " s (see elastic in summary.json)\n";
+}
+
 /// Print the outcome and map RunStats.status to an exit status.
 int report_run(const RunStats& stats, const Model& model, const RunOptions& opts, long samples,
                const nlohmann::ordered_json& final_row, const Extremes& ex, std::ostream& out, std::ostream& err) {
@@ -173,9 +187,12 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     if (!write_summary(opts.out_dir, summary)) throw std::runtime_error("cannot write summary.json");
     if (!opts.quiet)
       for (const std::string& w : stats.warnings) err << "towsim: warning: " << w << "\n";
-    // Rigid elements can push; a real cable would go slack there.
+    // Rigid elements can push; a real cable would go slack there. An
+    // elastic cable goes slack instead: its episodes are reported.
     const Extreme& comp = writer.extremes().min_axial_force;
-    if (!opts.quiet && comp.value < 0)
+    const bool all_elastic = std::all_of(model.cable.elements.begin(), model.cable.elements.end(), is_elastic);
+    if (!opts.quiet && lengths_in_state(model)) elastic_warnings(stats.slack, err);
+    if (!opts.quiet && comp.value < 0 && !all_elastic)
       err << "towsim: warning: the cable was in compression (axial force " << fmt_num(comp.value) << " N at t = "
           << fmt_num(comp.time) << " s; see axial_force in nodes.csv): a real cable would go slack there\n";
     return report_run(stats, model, opts, writer.samples(), writer.final_row(), writer.extremes(), out, err);

@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "describe_sea.hpp"
+#include "towsim/dynamics/elastic.hpp"
 
 namespace towsim::io {
 namespace {
@@ -53,6 +54,12 @@ void describe_elements(const Cable& c, const Element& e, int count, std::ostream
   line(out, "normal drag factor", "1/2 rho Cd D = " + fmt_num(e.drag_factor / e.length) + " kg/m^2");
   line(out, "tangential drag", std::string(c.tangential_law == TangentialLaw::Skin ? "skin: 1/2 rho pi D Ct" : "pode: 1/2 rho Cd f D") +
                                    " = " + fmt_num(e.friction_factor / e.length) + " kg/m^2");
+  if (is_elastic(e))
+    line(out, "axial stiffness", "EA = " + fmt_num(e.axial_stiffness) + " N, damping " + fmt_num(e.axial_damping) +
+                                     " N s; wave speed " + fmt_num(axial_wave_speed(e)) + " m/s, rk4 step <= " +
+                                     fmt_num(rk4_axial_step_limit(e)) + " s");
+  else
+    line(out, "axial stiffness", "inextensible");
 }
 
 /// Arc length from the tow point to joint k [m].

@@ -60,7 +60,7 @@ class Result(Mapping):
     timeseries.csv column (r["time"], r["tow_tension"], ...).
 
     nodes: array time x joint x component (components `node_columns`: the
-    nodes.csv columns x, y, z, vx, vy, vz, tension, axial_force), or None when
+    nodes.csv columns x, y, z, vx, vy, vz, tension, axial_force, strain), or None when
     simulation.write_nodes is false. summary: summary.json as a dict.
     status and message: as in summary.json. integration_interval: (start,
     end) of the integration on time.monotonic()'s clock [s]."""

@@ -103,7 +103,11 @@ void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
       Kk = &bw.KQ;
       bk = &bw.bQ;
     }
-    element_backward(current_element(model, ws, k), s.e[k], s.w[k], *Kk, *bk, k, ws);
+    if (is_elastic(model.cable.elements[k]))
+      elastic_backward(s.e[k], s.length_of(model, k), ws.Mt[k], ws.F[k], ws.Mom[k], *Kk, *bk, ws.elastic[k], ws.K[k],
+                       ws.b[k]);
+    else
+      element_backward(current_element(model, ws, k), s.e[k], s.w[k], *Kk, *bk, k, ws);
     // An attachment at joint k moves with it: its inertia and loads add on.
     ws.K[k] += ws.Ma[k];
     ws.b[k] -= ws.Fa[k];
@@ -149,27 +153,33 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   // a_0 + l'' e_1 + 2 l' (omega_1 x e_1) (the tow point's, the pay-out's and
   // the Coriolis term); the recursion runs from there unchanged.
   Vec3 a_extra = Vec3::Zero();  // a_top - a_0 without the l'' term [m/s^2]
-  acc.length_acc = 0;
+  acc.top_length_acc = 0;
   const bool winch = ws.winch && !imposed_a0;  // an impulse (imposed_a0) has no pay-out acceleration
   if (winch) a_extra = 2 * element_length_rate(s, 0) * ws.edot[0];
   const Vec3 e1 = s.e.empty() ? Vec3::UnitZ().eval() : s.e[0];  // [-, R_g]
-  if (winch && model.winch.mode == Winch::Mode::Imposed) acc.length_acc = winch_kinematics(model.winch, t).acc;
+  if (winch && model.winch.mode == Winch::Mode::Imposed) acc.top_length_acc = winch_kinematics(model.winch, t).acc;
   if (imposed_a0 || model.tow.mode == Tow::Mode::Motion) {
     acc.a0 = imposed_a0 ? *imposed_a0 : tow_kinematics(model.tow, t).acc;
     if (winch && model.winch.mode == Winch::Mode::Tension)
-      acc.length_acc = drum_acceleration(model.winch, e1, element_length_rate(s, 0), ws.K[0],
+      acc.top_length_acc = drum_acceleration(model.winch, e1, element_length_rate(s, 0), ws.K[0],
                                          ws.K[0] * (acc.a0 + a_extra) + ws.b[0]);
-    acc.tow_force = ws.K[0] * (acc.a0 + a_extra + acc.length_acc * e1) + ws.b[0];
+    acc.tow_force = ws.K[0] * (acc.a0 + a_extra + acc.top_length_acc * e1) + ws.b[0];
   } else {
     acc.tow_force = tow_force(model.tow, t);
-    acc.a0 = ws.K[0].ldlt().solve(acc.tow_force - ws.b[0]) - a_extra - acc.length_acc * e1;
+    acc.a0 = ws.K[0].ldlt().solve(acc.tow_force - ws.b[0]) - a_extra - acc.top_length_acc * e1;
   }
   acc.joint_force[0] = acc.tow_force;
-  Vec3 a = acc.a0 + a_extra + acc.length_acc * e1;
+  Vec3 a = acc.a0 + a_extra + acc.top_length_acc * e1;
   for (std::size_t k = 0; k < els.size(); ++k) {
-    const Vec3 beta = ws.T[k] * (ws.Phi[k] * (ws.Tr0[k] - ws.GT[k].transpose() * a));  // alpha x e
-    acc.alpha[k] = s.e[k].cross(beta);
-    a += ws.L[k] * (beta + ws.c[k]);
+    if (is_elastic(els[k])) {
+      // Elastic element: d'' from the top joint's acceleration (§5.4).
+      a += elastic_forward(ws.elastic[k], s.e[k], s.w[k], s.length_of(model, k), s.length_rate_of(k), a,
+                           acc.alpha[k], acc.length_acc[k]);
+    } else {
+      const Vec3 beta = ws.T[k] * (ws.Phi[k] * (ws.Tr0[k] - ws.GT[k].transpose() * a));  // alpha x e
+      acc.alpha[k] = s.e[k].cross(beta);
+      a += ws.L[k] * (beta + ws.c[k]);
+    }
     const int bi = ws.body_at[k + 1];
     if (bi < 0) {
       acc.joint_force[k + 1] = ws.K[k + 1] * a + ws.b[k + 1];
@@ -196,6 +206,7 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
     const Element& el = current_element(model, ws, k);
     element_loads(model, el, s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
     ws.Mt[k] = element_mass(el, s.e[k]);
+    ws.elastic[k].T = element_tension(els[k], s.length_of(model, k), s.length_rate_of(k));
   }
   attachment_loads(model, t, ws);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
@@ -217,6 +228,7 @@ void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& d
   compute_loads(model, s0, 0.0, ws);
   for (std::size_t k = 0; k < ws.F.size(); ++k) ws.F[k].setZero(), ws.Mom[k].setZero();
   for (auto& f : ws.Fa) f.setZero();
+  for (auto& ew : ws.elastic) ew.T = 0;  // a finite tension gives no impulse
   for (auto& bw : ws.body) bw.Fb.setZero(), bw.Mb.setZero(), bw.hw.setZero();
   backward_pass(model, s0, ws);
   forward_pass(model, s0, 0.0, ws, &dv);

@@ -16,11 +16,15 @@ PhysicalState PhysicalState::hanging(const Model& model) {
   PhysicalState s;
   s.e.assign(model.cable.elements.size(), -Vec3::UnitZ());
   s.w.assign(model.cable.elements.size(), Vec3::Zero());
-  for (const Element& el : model.cable.elements) s.length.push_back(el.length);
-  s.length_rate.assign(model.cable.elements.size(), 0.0);
   s.bodies.resize(model.bodies.size());
   for (std::size_t b = 0; b < model.bodies.size(); ++b) s.bodies[b].q = model.bodies[b].initial_attitude;
+  for (const Element& el : model.cable.elements) s.length.push_back(el.length);
+  s.length_rate.assign(model.cable.elements.size(), 0.0);
   return s;
+}
+
+bool lengths_in_state(const Model& model) {
+  return std::any_of(model.cable.elements.begin(), model.cable.elements.end(), is_elastic);
 }
 
 Workspace::Workspace(const Model& model) {
@@ -36,11 +40,13 @@ Workspace::Workspace(const Model& model) {
   GT.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
   Phi.assign(n, Eigen::Matrix2d::Zero());
   Tr0.assign(n, Eigen::Vector2d::Zero());
+  elastic.assign(n, ElasticWork{});
   body.resize(model.bodies.size());
   body_at.assign(n + 1, -1);
   for (std::size_t i = 0; i < model.bodies.size(); ++i)
     body_at[static_cast<std::size_t>(body_joint(model, model.bodies[i]))] = static_cast<int>(i);
   acc.alpha.assign(n, Vec3::Zero());
+  acc.length_acc.assign(n, 0.0);
   acc.joint_force.assign(n + 1, Vec3::Zero());
   acc.alpha_b.assign(model.bodies.size(), Vec3::Zero());
   acc.link_force.assign(model.bodies.size(), Vec3::Zero());
@@ -76,8 +82,10 @@ void body_kinematics(const Body& body, const BodyState& bs, const Vec3& Q, const
 
 void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& ws) {
   const auto& els = model.cable.elements;
-  // Joints and centres down the chain: P_k = P_{k-1} + L_k e_k; at a body,
-  // the chain goes on from its lower link Q2 (in-line) or ends (end body).
+  // Joints and centres down the chain: P_k = P_{k-1} + d_k, d_k = l_k e_k,
+  // d_k' = l_k' e_k + l_k e_k' (l_k = L_k, l_k' = 0 for an inextensible
+  // element); at a body, the chain goes on from its lower link Q2 (in-line)
+  // or ends (end body).
   ws.P[0] = s.r0;
   ws.vP[0] = s.v0;
   // Winch: the top element's material is fixed to its bottom joint and
@@ -88,13 +96,19 @@ void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& w
     ws.v_top = s.v0 + element_length_rate(s, 0) * s.e[0];
   }
   for (std::size_t i = 0; i < els.size(); ++i) {
-    const double L = ws.L[i] = element_length(model, s, i);
-    const Vec3& v_up = i == 0 && ws.winch ? ws.v_top : ws.vP[i];  // material at the element's top
+    const double L = ws.L[i] = s.length_of(model, i), Ld = s.length_rate_of(i);
     ws.edot[i] = s.w[i].cross(s.e[i]);
+    const Vec3 dd = L * ws.edot[i] + Ld * s.e[i];  // d_k'
     ws.G[i] = ws.P[i] + 0.5 * L * s.e[i];
-    ws.vG[i] = v_up + 0.5 * L * ws.edot[i];
+    if (i == 0 && ws.winch) {
+      // Winch: material moves rigidly with the bottom joint (not stretched).
+      ws.vG[i] = ws.v_top + 0.5 * L * ws.edot[i];
+      ws.vP[i + 1] = ws.v_top + L * ws.edot[i];
+    } else {
+      ws.vG[i] = ws.vP[i] + 0.5 * dd;
+      ws.vP[i + 1] = ws.vP[i] + dd;
+    }
     ws.P[i + 1] = ws.P[i] + L * s.e[i];
-    ws.vP[i + 1] = v_up + L * ws.edot[i];
     const int b = ws.body_at[i + 1];
     if (b < 0) continue;
     BodyWork& bw = ws.body[static_cast<std::size_t>(b)];

@@ -1,6 +1,8 @@
 // The default and paper formulations as flat-state systems for the integrators.
 #include "towsim/integrators/system.hpp"
 
+#include <stdexcept>
+
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/implicit.hpp"
 #include "towsim/dynamics/paper.hpp"
@@ -34,6 +36,7 @@ Vec3 tow_jump(const Model& m, double t) {
 PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws) {
   tow_velocity_jump(m, s, dv, ws);
   for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
+  for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws.acc.length_acc[k];
   for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws.acc.alpha_b[b];
   if (m.tow.mode != Tow::Mode::Motion) return s;
   const double d = 1e-9 * std::max(1.0, std::abs(t));
@@ -50,15 +53,16 @@ double winch_jump(const Model& m, const PhysicalState& s, double t) {
   return winch_kinematics(m.winch, t).rate - element_length_rate(s, 0);
 }
 
-/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body,
-/// then with a winch l_1, l_1'].
+/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body],
+/// then with a winch [l_1, l_1'], then, when the cable has elastic elements, [l_1..l_n, l'_1..l'_n].
 class DefaultSystem final : public System {
  public:
   explicit DefaultSystem(const Model& m)
       : model_(m), ws_(m), s_(PhysicalState::hanging(m)), jws_(m), js_(s_), iw_(m) {
     n_ = m.cable.n();
     winch_ = m.winch.active() && n_ > 0;
-    size_ = body_offset(m.bodies.size()) + (winch_ ? 2 : 0);
+    lengths_ = lengths_in_state(m);
+    size_ = length_offset() + (lengths_ ? 2 * static_cast<std::size_t>(n_) : 0);
     // Length control: l_1 = L(t) - (the fixed elements below + cable drawn in by removals).
     fixed_length_ = m.winch.length_offset;
     for (int k = 1; k < n_; ++k) fixed_length_ += m.cable.elements[static_cast<std::size_t>(k)].length;
@@ -83,6 +87,13 @@ class DefaultSystem final : public System {
       set3(y, o + 4, s.bodies[b].w);
     }
     if (winch_) y[winch_offset()] = element_length(model_, s, 0), y[winch_offset() + 1] = element_length_rate(s, 0);
+    if (lengths_) {
+      const std::size_t o = length_offset();
+      for (int k = 0; k < n_; ++k) {
+        y[o + k] = s.length_of(model_, k);
+        y[o + n_ + k] = s.length_rate_of(k);
+      }
+    }
     return y;
   }
 
@@ -100,7 +111,7 @@ class DefaultSystem final : public System {
     impose_winch(tl, s_);
     forward_dynamics(model_, s_, tl, ws_);
     dy.resize(size_);
-    if (winch_) dy[winch_offset()] = s_.length_rate[0], dy[winch_offset() + 1] = ws_.acc.length_acc;
+    if (winch_) dy[winch_offset()] = s_.length_rate[0], dy[winch_offset() + 1] = ws_.acc.top_length_acc;
     // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
     set3(dy, 0, s_.v0);
     set3(dy, 3, ws_.acc.a0);
@@ -114,6 +125,14 @@ class DefaultSystem final : public System {
       const Quat dq = Quat(0, bs.w.x(), bs.w.y(), bs.w.z()) * bs.q;
       dy[o] = 0.5 * dq.w(), dy[o + 1] = 0.5 * dq.x(), dy[o + 2] = 0.5 * dq.y(), dy[o + 3] = 0.5 * dq.z();
       set3(dy, o + 4, ws_.acc.alpha_b[b]);
+    }
+    // dl/dt = l', dl'/dt = l''.
+    if (lengths_) {
+      const std::size_t o = length_offset();
+      for (int k = 0; k < n_; ++k) {
+        dy[o + k] = s_.length_rate[k];
+        dy[o + n_ + k] = ws_.acc.length_acc[k];
+      }
     }
   }
 
@@ -225,15 +244,13 @@ class DefaultSystem final : public System {
       k[o] = r[o] + 0.5 * hg * dq.w(), k[o + 1] = r[o + 1] + 0.5 * hg * dq.x();
       k[o + 2] = r[o + 2] + 0.5 * hg * dq.y(), k[o + 3] = r[o + 3] + 0.5 * hg * dq.z();
     }
-    // The winch's l_1, l_1' rows are not stiff: identity in the W matrix.
-    if (winch_)
-      for (std::size_t i = winch_offset(); i < size_; ++i) k[i] = r[i];
   }
 
   const Accelerations* last_accelerations() const override { return &ws_.acc; }
 
   std::string describe(std::size_t i) const override {
     if (i < 6) return "tow point";
+    if (lengths_ && i >= length_offset()) return "element " + std::to_string((i - length_offset()) % n_ + 1) + " (length)";
     if (winch_ && i >= winch_offset()) return "winch";
     if (i < body_offset(0)) return "element " + std::to_string((i - 6) % (3 * n_) / 3 + 1);
     const std::size_t b = std::min((i - body_offset(0)) / 7, model_.bodies.size() - 1);
@@ -254,6 +271,13 @@ class DefaultSystem final : public System {
       s.bodies[b].w = CMap3(&y[o + 4]);
     }
     if (winch_) s.length[0] = y[winch_offset()], s.length_rate[0] = y[winch_offset() + 1];
+    if (lengths_) {
+      const std::size_t o = length_offset();
+      for (int k = 0; k < n_; ++k) {
+        s.length[k] = y[o + k];
+        s.length_rate[k] = y[o + n_ + k];
+      }
+    }
   }
   /// Length control: the top element's length and rate at t from the schedule.
   void impose_winch(double t, PhysicalState& s) const {
@@ -266,6 +290,8 @@ class DefaultSystem final : public System {
   std::size_t body_offset(std::size_t b) const { return 6 + 6 * static_cast<std::size_t>(n_) + 7 * b; }
   /// Offset of the winch's block (l_1, l_1').
   std::size_t winch_offset() const { return body_offset(model_.bodies.size()); }
+  /// Offset of the element lengths' block (when lengths_).
+  std::size_t length_offset() const { return winch_offset() + (winch_ ? 2 : 0); }
 
   const Model& model_;
   Workspace ws_;
@@ -275,6 +301,7 @@ class DefaultSystem final : public System {
   ImplicitWorkspace iw_; // local Jacobian and stage-solve work arrays
   StageRhs rhs_;         // one stage's right-hand side, per part
   int n_ = 0;
+  bool lengths_ = false;  // the state carries element lengths and rates
   std::size_t size_ = 0;
   bool winch_ = false;       // the state carries the winch's l_1, l_1'
   double fixed_length_ = 0;  // deployed length but l_1 [m]
@@ -377,6 +404,8 @@ class PaperSystem final : public System {
 }  // namespace
 
 std::unique_ptr<System> make_system(const Model& model) {
+  if (model.sim.formulation == Formulation::Paper && lengths_in_state(model))
+    throw std::invalid_argument("towsim: the paper formulation has inextensible elements only (elastic cable given)");
   if (model.sim.formulation == Formulation::Paper) return std::make_unique<PaperSystem>(model);
   return std::make_unique<DefaultSystem>(model);
 }

@@ -69,6 +69,34 @@ std::vector<double> node_breaking_loads(const Model& model) {
   return out;
 }
 
+/// summary.json `elastic`: peak element tension and slack episodes.
+nlohmann::ordered_json elastic_json(const SlackRecord& r) {
+  nlohmann::ordered_json j;
+  j["max_element_tension"] = {{"value", num(tidy(r.max_tension))},
+                              {"time", num(tidy_time(r.max_tension_time))},
+                              {"element", r.max_tension_element}};
+  j["slack_episodes"] = r.episodes;
+  j["slack_time"] = num(tidy_time(r.slack_time));
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const SlackEvent& ev : r.events()) {
+    nlohmann::ordered_json e;
+    e["start"] = num(tidy_time(ev.start));
+    e["end"] = num(tidy_time(ev.end));
+    e["duration"] = num(tidy_time(ev.end - ev.start));
+    e["ended"] = ev.ended;
+    e["elements"] = {ev.first_element, ev.last_element};
+    e["from"] = num(tidy(ev.from));
+    e["to"] = num(tidy(ev.to));
+    e["min_strain"] = num(ev.min_strain);
+    e["snap_tension"] = ev.ended ? num(tidy(ev.snap_tension)) : nlohmann::ordered_json(nullptr);
+    e["snap_time"] = ev.ended ? num(tidy_time(ev.snap_time)) : nlohmann::ordered_json(nullptr);
+    e["snap_element"] = ev.snap_element;
+    list.push_back(e);
+  }
+  j["slack"] = list;  // the first SlackRecord::kMaxEvents episodes
+  return j;
+}
+
 }  // namespace
 
 double tidy(double v) {
@@ -246,7 +274,7 @@ void timeseries_values(const Model& model, const Sample& s, std::vector<double>&
 }
 
 const std::vector<std::string>& node_columns() {
-  static const std::vector<std::string> c{"x", "y", "z", "vx", "vy", "vz", "tension", "axial_force"};
+  static const std::vector<std::string> c{"x", "y", "z", "vx", "vy", "vz", "tension", "axial_force", "strain"};
   return c;
 }
 
@@ -254,7 +282,8 @@ void node_values(const Sample& s, std::size_t k, std::vector<double>& out) {
   const double nan = std::nan("");
   const Vec3 v = k < s.node_vel.size() ? s.node_vel[k] : Vec3::Constant(nan);
   for (double x : {s.node_pos[k].x(), s.node_pos[k].y(), s.node_pos[k].z(), v.x(), v.y(), v.z(),
-                   k < s.tension.size() ? s.tension[k] : nan, k < s.axial.size() ? s.axial[k] : nan})
+                   k < s.tension.size() ? s.tension[k] : nan, k < s.axial.size() ? s.axial[k] : nan,
+                   k < s.strain.size() ? s.strain[k] : nan})
     out.push_back(tidy(x));  // as written
 }
 
@@ -397,6 +426,7 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
                                                  : nlohmann::ordered_json(nullptr);
     j["winch"] = w;
   }
+  if (lengths_in_state(model)) j["elastic"] = elastic_json(stats.slack);
   j["final"] = record.final_row();  // the last timeseries.csv row by column name
   j["scenario"] = scenario;
   return j;

@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "checks.hpp"
+#include "towsim/dynamics/elastic.hpp"
 #include "reader.hpp"
 
 namespace towsim::io {
@@ -22,7 +24,7 @@ struct Resolved {
   Field<long long> elements;
   Field<double> mass_per_length, diameter, normal_drag, tangential_coef, added_mass, breaking_load;
   Field<std::string> tangential_law;
-  Field<double> axial_stiffness;
+  Field<double> axial_stiffness, axial_damping;
 };
 
 /// Field f of the section if given, else the cable's.
@@ -36,7 +38,8 @@ std::vector<Resolved> resolve(const CableSpec& c) {
   std::vector<Resolved> out;
   if (c.sections.empty() && c.item_body.empty()) {
     out.push_back({c.where, "cable", c.length, c.elements, c.mass_per_length, c.diameter, c.normal_drag,
-                   c.tangential_coef, c.added_mass, c.breaking_load, c.tangential_law, {}});
+                   c.tangential_coef, c.added_mass, c.breaking_load, c.tangential_law, c.axial_stiffness,
+                   c.axial_damping});
     return out;
   }
   for (std::size_t i = 0; i < c.sections.size(); ++i) {
@@ -52,7 +55,8 @@ std::vector<Resolved> resolve(const CableSpec& c) {
                pick(s.added_mass, c.added_mass),
                pick(s.breaking_load, c.breaking_load),
                pick(s.tangential_law, c.tangential_law),
-               s.axial_stiffness};
+               pick(s.axial_stiffness, c.axial_stiffness),
+               pick(s.axial_damping, c.axial_damping)};
     out.push_back(r);
   }
   return out;
@@ -78,9 +82,40 @@ void check_section(const Resolved& s, Diagnostics& d, bool sectioned) {
   check_non_negative(s.tangential_coef, d);
   check_non_negative(s.added_mass, d);
   check_positive(s.breaking_load, d);
-  if (s.axial_stiffness.given)
+  check_positive(s.axial_stiffness, d);
+  check_non_negative(s.axial_damping, d);
+}
+
+/// v with `digits` significant digits, rounded down (a bound users can copy) or to nearest.
+std::string sig(double v, int digits, bool down) {
+  const double p = std::pow(10.0, std::floor(std::log10(v)) - (digits - 1));
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, (down ? std::floor(v / p) : std::round(v / p)) * p);
+  return buf;
+}
+
+/// An elastic section: the paper formulation has no stretch, and a fixed RK4
+/// step must resolve the axial wave (docs/theory.md §5.4).
+void check_elastic(const Resolved& s, const SimulationSpec& sim, Diagnostics& d) {
+  if (!s.axial_stiffness.given || !(s.axial_stiffness.value > 0) || !s.length.given || !s.elements.given ||
+      s.elements.value < 1 || !(s.mass_per_length.value > 0))
+    return;
+  if (sim.formulation.value == "paper") {
     d.error(s.axial_stiffness.where.loc, s.axial_stiffness.where.path,
-            "not supported in this version: the cable is inextensible (remove the key; docs/scenario.md)");
+            "the paper formulation has inextensible elements only: an elastic cable needs formulation: default");
+    return;
+  }
+  if (sim.integrator.value != "rk4") return;
+  Element el{};
+  el.length = s.length.value / static_cast<double>(s.elements.value);
+  el.mass = s.mass_per_length.value * el.length;
+  el.axial_stiffness = s.axial_stiffness.value;
+  const double h_max = rk4_axial_step_limit(el);
+  if (sim.time_step.value > h_max)
+    d.error(s.axial_stiffness.where.loc, s.axial_stiffness.where.path,
+            "with integrator: rk4, the axial wave (speed " + sig(axial_wave_speed(el), 4, false) + " m/s over " +
+                fmt_num(el.length) + " m elements) needs simulation.time_step <= " + sig(h_max, 3, true) +
+                " s (it is " + fmt_num(sim.time_step.value) + " s); use integrator: dopri5 or a smaller step");
 }
 
 /// The order of sections and bodies: a section first, never two bodies in a
@@ -165,6 +200,7 @@ void check_cable(const CableSpec& c, const BodySpec& end_body, const SimulationS
   long long total = 0;
   for (const Resolved& s : secs) {
     check_section(s, d, !c.item_body.empty());
+    check_elastic(s, sim, d);
     total += std::max(0LL, s.elements.value);
   }
   check_positive(c.sign_smoothing_speed, d);
@@ -215,6 +251,10 @@ void build_chain(const CableSpec& c, const BodySpec& end_body, Model& m) {
       Element el = make_element(le, s.mass_per_length.value, s.diameter.value, s.normal_drag.value,
                                 s.tangential_coef.value, cable.tangential_law, s.added_mass.value, m.fluid);
       el.section = static_cast<int>(section);
+      if (s.axial_stiffness.given) {
+        el.axial_stiffness = s.axial_stiffness.value;
+        el.axial_damping = s.axial_damping.value;
+      }
       cable.elements.push_back(el);
     }
     ++section;

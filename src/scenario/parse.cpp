@@ -104,6 +104,7 @@ void parse_section(MapReader& r, SectionSpec& sec, Diagnostics& d) {
   parse_tangential(r, sec.tangential_law, sec.tangential_coef, d);
   r.read("added_mass", sec.added_mass);
   r.read("axial_stiffness", sec.axial_stiffness);
+  r.read("axial_damping", sec.axial_damping);
   r.read("breaking_load", sec.breaking_load);
 }
 
@@ -131,6 +132,8 @@ void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {
   r.choice("added_mass_model", cable.added_mass_model, {"ideal_fluid", "morison"});
   r.read("sign_smoothing_speed", cable.sign_smoothing_speed);
   r.read("breaking_load", cable.breaking_load);
+  r.read("axial_stiffness", cable.axial_stiffness);
+  r.read("axial_damping", cable.axial_damping);
   if (const YNode* n = r.get("sections")) cable.sections_where = r.where(*n, "sections");  // after the single form's keys
   // Sections top to bottom; an item {body: {...}} is an in-line body.
   r.list("sections", [&](MapReader& item, std::size_t) {

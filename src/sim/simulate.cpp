@@ -22,6 +22,16 @@ namespace {
 
 constexpr double kRad2Deg = 180.0 / M_PI;
 constexpr double kMaxRate = 1e4;  // an angular velocity beyond this [rad/s] means divergence
+// A slack elastic element shorter than this fraction of its length [-]: the
+// straight-rod model of a folded cable has broken down (l -> 0 is singular).
+constexpr double kMinLength = 0.05;
+
+/// After an accepted step at t: slack episodes and peak tensions of an elastic cable.
+void track_elastic(const Model& model, const System& sys, const StateVector& y, double t, RunStats& stats) {
+  if (!lengths_in_state(model)) return;
+  const PhysicalState s = sys.physical(y);
+  stats.slack.update(model, s.length, s.length_rate, t);
+}
 
 /// Name of an integrator as in the scenario key.
 const char* integrator_key(Integrator i) {
@@ -64,11 +74,12 @@ Sample sample_of(const Model& model, System& sys, const StateVector& y, double t
                  std::string* err = nullptr) {
   const Workspace& ws = sys.evaluate(y, t);
   if (err) *err = check_rk4_step(model, ws, t, stats);
-  Sample out = make_sample(model, sys.physical(y), ws, t);
+  const PhysicalState s = sys.physical(y);
+  Sample out = make_sample(model, s, ws, t);
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
     const int b = ws.body_at[k + 1];
     const Vec3& bottom = b >= 0 ? ws.body[static_cast<std::size_t>(b)].Q : ws.P[k + 1];
-    const double L = ws.L[k];
+    const double L = ws.L[k];  // the state's length (winch, elastic)
     stats.max_element_drift = std::max(stats.max_element_drift, std::abs((bottom - ws.P[k]).norm() / L - 1));
   }
   return out;
@@ -85,25 +96,28 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
   out.deployed_length = 0;
   for (double L : ws.L) out.deployed_length += L;
   out.payout_speed = ws.winch ? element_length_rate(s, 0) : 0.0;
-  // A node: position, velocity, force through it onto the part below, and
-  // that force along the adjacent element e (tension pulls the part below
-  // back along -e).
-  auto node = [&out](const Vec3& p, const Vec3& v, const Vec3& f, const Vec3& e) {
+  // A node: position, velocity, force through it onto the part below, that
+  // force along the adjacent element el's axis e (tension pulls the part
+  // below back along -e), and el's strain.
+  auto node = [&](const Vec3& p, const Vec3& v, const Vec3& f, std::size_t el) {
     out.node_pos.push_back(p);
     out.node_vel.push_back(v);
     out.tension.push_back(f.norm());
-    out.axial.push_back(-f.dot(e));
+    out.axial.push_back(-f.dot(s.e[el]));
+    out.strain.push_back(is_elastic(model.cable.elements[el])
+                             ? element_strain(model.cable.elements[el], s.length_of(model, el))
+                             : 0.0);
   };
   const std::size_t n = model.cable.elements.size();
   for (std::size_t k = 0; k <= n; ++k) {
     const int b = k == 0 ? -1 : ws.body_at[k];
-    const Vec3& e_above = s.e[k == 0 ? 0 : k - 1];
+    const std::size_t above = k == 0 ? 0 : k - 1;
     if (b >= 0 && model.bodies[static_cast<std::size_t>(b)].inline_body) {
       const BodyWork& bw = ws.body[static_cast<std::size_t>(b)];
-      node(bw.Q, bw.vQ, ws.acc.link_force[static_cast<std::size_t>(b)], e_above);
-      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], s.e[k]);
+      node(bw.Q, bw.vQ, ws.acc.link_force[static_cast<std::size_t>(b)], above);
+      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], k);
     } else {
-      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], e_above);
+      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], above);
     }
   }
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
@@ -159,6 +173,11 @@ std::string check_state(const Model& model, const System& sys, const StateVector
     if (s.w[k].norm() > kMaxRate)
       return "element " + std::to_string(k + 1) + ": angular velocity diverged (" + std::to_string(s.w[k].norm()) +
              " rad/s); reduce simulation.time_step or use an adaptive integrator";
+  for (std::size_t k = 0; k < s.length.size(); ++k)
+    if (is_elastic(model.cable.elements[k]) && !(s.length[k] > kMinLength * model.cable.elements[k].length))
+      return "element " + std::to_string(k + 1) + ": a slack element shortened to " +
+             std::to_string(s.length[k] / model.cable.elements[k].length * 100) +
+             " % of its length (the cable folded on itself); reduce simulation.time_step or refine the cable";
   for (std::size_t b = 0; b < s.bodies.size(); ++b)
     if (s.bodies[b].w.norm() > kMaxRate)
       return "body " + model.bodies[b].name +
@@ -185,6 +204,7 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
     ++stats.steps;
     if (auto err = check_state(model, sys, y); !err.empty()) return err;
     if ((event = winch_due(model, sys, y))) return {};
+    track_elastic(model, sys, y, t, stats);
   }
   return {};
 }
@@ -217,6 +237,7 @@ std::string advance_adaptive(const Model& model, System& sys, Controlled& ctrl, 
     ++stats.steps;
     if (auto err = check_state(model, sys, y); !err.empty()) return err;
     if ((event = winch_due(model, sys, y))) return {};
+    track_elastic(model, sys, y, t, stats);
   }
   return {};
 }
@@ -245,6 +266,7 @@ std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros
     ++stats.steps;
     if (auto err = check_state(model, sys, y); !err.empty()) return err;
     if ((event = winch_due(model, sys, y))) return {};
+    track_elastic(model, sys, y, t, stats);
   }
   return {};
 }
@@ -335,6 +357,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     return out;
   };
   sink.write(sample());
+  track_elastic(model, *chain.sys, y, t, stats);
 
   odeint::runge_kutta4<StateVector> rk4;
   auto dopri = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
@@ -413,6 +436,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   }
   if (ros) keep_ros_errors(*ros, stats);
   stats.end_time = t;
+  stats.slack.finish(t);
   stats.rhs_evaluations += chain.sys->rhs_evaluations;
   stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   sink.flush();

@@ -157,17 +157,13 @@ Vec3 final_tow_velocity(const Tow& tow) {
   return v;
 }
 
-StaticsResult solve_statics(const Model& model, const Vec3& V) {
-  // A steady tow holds the winch: the configuration at the current length.
-  if (model.winch.active()) {
-    Model held = model;
-    held.winch = Winch{};
-    return solve_statics(held, V);
-  }
-  SteadyProblem p(model, V);
-  sweep_from_bottom(p);
+namespace {
+
+/// Levenberg-Marquardt from the problem's current iterate to the
+/// equilibrium of its (inextensible) elements; sets out.iterations,
+/// residual, converged, message.
+void newton(SteadyProblem& p, StaticsResult& out) {
   const int N = p.size();
-  StaticsResult out;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
   Eigen::VectorXd r = p.residual(zero);
   Eigen::MatrixXd J(N, N);
@@ -216,15 +212,68 @@ StaticsResult solve_statics(const Model& model, const Vec3& V) {
        << out.iterations << " iterations";
     out.message = os.str();
   }
-  // Forces at the equilibrium.
+}
+
+/// Elastic elements (docs/theory.md §5.4, §7): the equilibrium of a chain of
+/// inextensible elements of the current lengths l_k, then each elastic
+/// element's tension T_k = e_k . (F_k/2 - f_k) (the axial part of its
+/// d-equation at rest) gives l_k = L_k (1 + T_k/EA); repeat until the
+/// lengths no longer change. The tensions depend on the lengths only through
+/// the geometry (depth in a current profile, the body's place), so this
+/// converges in a few passes, each a warm-started Newton solve.
+void stretch(const Model& elastic, SteadyProblem& p, StaticsResult& out) {
+  constexpr int kMaxPasses = 30;
+  constexpr double kLengthTolerance = 1e-13;  // relative change of every length [-]: strain to round-off
+  const auto& els = elastic.cable.elements;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    forward_dynamics(p.model, p.base, 0.0, p.ws);
+    double change = 0;
+    for (std::size_t k = 0; k < els.size(); ++k) {
+      if (!is_elastic(els[k])) continue;
+      const int b = p.ws.body_at[k + 1];
+      const Vec3& below = b >= 0 ? p.ws.acc.link_force[static_cast<std::size_t>(b)] : p.ws.acc.joint_force[k + 1];
+      const double T = std::max(0.0, p.base.e[k].dot(0.5 * p.ws.F[k] - below));
+      const double l = els[k].length * (1 + T / els[k].axial_stiffness);
+      change = std::max(change, std::abs(l - p.base.length[k]) / els[k].length);
+      p.base.length[k] = l;
+      p.model.cable.elements[k].length = l;
+    }
+    if (change <= kLengthTolerance) return;
+    newton(p, out);
+    if (!out.converged) return;
+  }
+  out.converged = false;
+  out.message = "statics did not converge: the elastic elements' lengths still change after " +
+                std::to_string(kMaxPasses) + " passes";
+}
+
+}  // namespace
+
+StaticsResult solve_statics(const Model& model, const Vec3& V) {
+  // A steady tow holds the winch: the configuration at the current length.
+  if (model.winch.active()) {
+    Model held = model;
+    held.winch = Winch{};
+    return solve_statics(held, V);
+  }
+  SteadyProblem p(model, V);
+  const Model elastic = p.model;  // with the steady tow, before its elements are made rigid
+  const bool stretches = lengths_in_state(model);
+  for (Element& el : p.model.cable.elements) el.axial_stiffness = 0;  // the Newton problem: rigid elements
+  sweep_from_bottom(p);
+  StaticsResult out;
+  newton(p, out);
+  if (stretches && out.converged) stretch(elastic, p, out);
+  // Forces at the equilibrium (the elastic model's own evaluation).
   out.state = p.base;
+  out.state.length_rate.assign(out.state.length.size(), 0.0);
   out.tow_velocity = V;
-  forward_dynamics(p.model, p.base, 0.0, p.ws);
+  forward_dynamics(elastic, p.base, 0.0, p.ws);
   out.tow_force = p.ws.acc.tow_force;
   out.link_force = p.ws.acc.link_force;
   out.body_force = p.ws.acc.lower_link_force;
   out.joint_force = p.ws.acc.joint_force;
-  out.sample = make_sample(p.model, p.base, p.ws, 0.0);
+  out.sample = make_sample(elastic, p.base, p.ws, 0.0);
   return out;
 }
 

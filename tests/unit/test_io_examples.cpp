@@ -84,6 +84,7 @@ towsim::Sample sample(double t) {
   s.node_vel = {towsim::Vec3(1, 0, 0), towsim::Vec3(1, 0, 0)};
   s.tension = {5, 2};
   s.axial = {5, -2};
+  s.strain = {0, 1.5e-3};
   s.bodies.resize(1);
   s.bodies[0].pos = towsim::Vec3(t, 0, -10.5);
   s.bodies[0].rpy_deg = towsim::Vec3(0, -t, 0);
@@ -131,8 +132,8 @@ TEST(IoOutput, TimeseriesColumnsAndExtremes) {
   EXPECT_EQ(ts[2].rfind("0.5,0.5,0,0,3,0,4,0.5,0,-10,0.5,0,-10.5,0,-0.5,0,0,0,2,5,10,", 0), 0u) << ts[2];
   const auto nodes = lines_of(dir / "nodes.csv");
   ASSERT_EQ(nodes.size(), 5u);
-  EXPECT_EQ(nodes[0], "time,node,x,y,z,vx,vy,vz,tension,axial_force");
-  EXPECT_EQ(nodes[4], "0.5,1,0.5,0,-10,1,0,0,2,-2");
+  EXPECT_EQ(nodes[0], "time,node,x,y,z,vx,vy,vz,tension,axial_force,strain");
+  EXPECT_EQ(nodes[4], "0.5,1,0.5,0,-10,1,0,0,2,-2,0.0015");
   std::ifstream in(dir / "summary.json");
   const auto j = nlohmann::json::parse(in);
   EXPECT_EQ(j["status"], "ok");

@@ -20,7 +20,8 @@ void forward_dynamics(const Model& model, const PhysicalState& s, double t, Work
 /// jumps of every element's and the body's angular velocity that the
 /// inextensible chain must take, from the same recursion with the impulse in
 /// place of the acceleration and no finite loads (they give no impulse).
-/// Results: ws.acc.alpha (d omega_k) and ws.acc.alpha_b (d omega_B).
+/// Results: ws.acc.alpha (d omega_k), ws.acc.length_acc (d l_k' of elastic
+/// elements) and ws.acc.alpha_b (d omega_B).
 void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& dv, Workspace& ws);
 
 /// Loads and inertias of every element and of the body for the current

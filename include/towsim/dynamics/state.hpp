@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "towsim/dynamics/elastic.hpp"
 #include "towsim/model/model.hpp"
 
 namespace towsim {
@@ -22,14 +23,22 @@ struct PhysicalState {
   std::vector<Vec3> e;        // e_k, unit vector P_{k-1} -> P_k, k = 1..n at index k-1 [-, R_g]
   std::vector<Vec3> w;        // omega_k, angular velocity of element k, perpendicular to e_k [rad/s, R_g]
   std::vector<BodyState> bodies;  // one per Model::bodies entry, same order
-  // Current joint-to-joint length of each element and its rate (index k-1);
+  // Current joint-to-joint length of each element and its rate (index k-1):
   // Element::length and 0 unless a winch (the top element) or elasticity
   // changes them. Empty = the model's lengths, at rest.
   std::vector<double> length;       // l_k [m]
-  std::vector<double> length_rate;  // dl_k/dt [m/s]
+  std::vector<double> length_rate;  // l_k' [m/s] (0 for an inextensible element)
+
+  /// Length of element i (0-based): length[i], or the element's own when the
+  /// state carries no lengths [m].
+  double length_of(const Model& model, std::size_t i) const {
+    return i < length.size() ? length[i] : model.cable.elements[i].length;
+  }
+  /// Its rate [m/s] (0 when the state carries none).
+  double length_rate_of(std::size_t i) const { return i < length_rate.size() ? length_rate[i] : 0.0; }
 
   /// A state of the model's chain hanging straight down, at rest, bodies
-  /// at their initial attitude.
+  /// at their initial attitude, elements at their unstretched lengths.
   static PhysicalState hanging(const Model& model);
 };
 
@@ -37,9 +46,10 @@ struct PhysicalState {
 struct Accelerations {
   Vec3 a0 = Vec3::Zero();         // tow point acceleration [m/s^2, R_g]
   std::vector<Vec3> alpha;        // element angular accelerations, perpendicular to e_k [rad/s^2, R_g]
+  std::vector<double> length_acc; // l_k'', element length accelerations (0: inextensible) [m/s^2]
   std::vector<Vec3> alpha_b;      // body angular accelerations, per body [rad/s^2, R_g]
   Vec3 tow_force = Vec3::Zero();  // F_R on the cable at O_r [N, R_g]
-  double length_acc = 0;          // winch: l'' of the top element (imposed or from the drum) [m/s^2]
+  double top_length_acc = 0;      // winch: l_1'' of the top element (imposed or from the drum) [m/s^2]
   std::vector<Vec3> link_force;   // F_L on each body at its link point Q, from the cable above [N, R_g]
   std::vector<Vec3> lower_link_force;  // force of each in-line body on the cable below at Q2 [N, R_g]
                                        // (zero for the end body)
@@ -104,6 +114,7 @@ struct Workspace {
   std::vector<Eigen::Matrix2d> Phi;             // (T^T (L^2/4 Mt + L^2 K_k) T + Ir)^-1 [1/(kg m^2)]
   std::vector<Eigen::Vector2d> Tr0;             // T^T r_0 (moment of the known loads) [N m]
   std::vector<Vec3> c;                          // centripetal part of d2e/dt2: -|w|^2 e [1/s^2]
+  std::vector<ElasticWork> elastic;             // elastic elements' articulated quantities and tension
   std::vector<BodyWork> body;   // per Model::bodies entry
   std::vector<int> body_at;     // index of the body hanging at joint k, or -1 (k = 0..n)
   Accelerations acc;            // result of the last evaluation
@@ -113,6 +124,10 @@ struct Workspace {
   /// True when this workspace was sized for `model`'s chain.
   bool fits(const Model& model) const;
 };
+
+/// True when the model's state carries element lengths and their rates
+/// (an elastic element anywhere).
+bool lengths_in_state(const Model& model);
 
 /// Positions and velocities of joints, centres and body from a physical state.
 void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& ws);
@@ -126,13 +141,11 @@ Quat quat_from_rpy(double roll, double pitch, double yaw);
 
 /// Current length of element k (0-based): s.length[k], or the model's when s has none [m].
 inline double element_length(const Model& model, const PhysicalState& s, std::size_t k) {
-  return k < s.length.size() ? s.length[k] : model.cable.elements[k].length;
+  return s.length_of(model, k);
 }
 
 /// Current rate of the length of element k (0-based) [m/s].
-inline double element_length_rate(const PhysicalState& s, std::size_t k) {
-  return k < s.length_rate.size() ? s.length_rate[k] : 0.0;
-}
+inline double element_length_rate(const PhysicalState& s, std::size_t k) { return s.length_rate_of(k); }
 
 /// The element k (0-based) as the dynamics use it: the model's, or the
 /// winch's top element at its current length (filled by compute_kinematics).

@@ -30,7 +30,8 @@ enum class AddedMassModel {
   Morison,     // acceleration term only: -ma (I - ee^T) du/dt, -Ia alpha
 };
 
-/// One rigid, straight, inextensible cable element i (1 = top).
+/// One straight cable element i (1 = top): rigid and inextensible (the
+/// paper's), or elastic when axial_stiffness > 0 (docs/theory.md §5.4).
 struct Element {
   int section = 0;   // index of the cable section it belongs to (0 = top) [-]
   double length;     // L_i, joint to joint [m] (the paper's 2l)
@@ -42,6 +43,8 @@ struct Element {
   double weight;     // apparent weight (m_i - rho A_i L_i) g, along -z [N]
   double drag_factor;      // 1/2 rho Cd D L, normal drag: F = -k |u_n| u_n [kg/m]
   double friction_factor;  // Pode: 1/2 rho Cd f D L; Skin: 1/2 rho pi D L Ct [kg/m]
+  double axial_stiffness = 0;  // EA [N]; 0 = inextensible (rigid element, the paper's model)
+  double axial_damping = 0;    // c_a [N s]: adds c_a * strain rate to the tension while taut
 };
 
 /// A point load lumped at a cable joint: clump weight, float, sensor.

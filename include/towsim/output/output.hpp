@@ -79,7 +79,7 @@ std::string timeseries_header(const Model& model);
 /// timeseries_columns() (the files and the Python API both use this).
 void timeseries_values(const Model& model, const Sample& s, std::vector<double>& out);
 
-/// The per-node columns of nodes.csv (after `time,node`): x, y, z, vx, vy, vz, tension, axial_force.
+/// The per-node columns of nodes.csv (after `time,node`): x, y, z, vx, vy, vz, tension, axial_force, strain.
 const std::vector<std::string>& node_columns();
 /// Node k's nodes.csv values of one sample as written (tidied), in the order of node_columns().
 void node_values(const Sample& s, std::size_t k, std::vector<double>& out);

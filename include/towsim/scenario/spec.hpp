@@ -57,7 +57,8 @@ struct SectionSpec {
   Field<std::string> tangential_law;  // pode | skin
   Field<double> tangential_coef;    // f or ct [-]
   Field<double> added_mass;         // Ca [-]
-  Field<double> axial_stiffness;    // EA [N] (refused: the cable is inextensible in this version)
+  Field<double> axial_stiffness;    // EA [N]; absent = inextensible
+  Field<double> axial_damping;      // c_a [N s]: tension c_a * strain rate while taut
   Field<double> breaking_load;      // [N], for utilisation
 };
 
@@ -87,6 +88,8 @@ struct CableSpec {
   Field<std::string> added_mass_model{"ideal_fluid"};  // ideal_fluid | morison
   Field<double> sign_smoothing_speed{1e-3};   // [m/s]
   Field<double> breaking_load;                // [N] (single-section form)
+  Field<double> axial_stiffness;              // EA [N]; absent = inextensible (sections inherit it)
+  Field<double> axial_damping{0.0};           // c_a [N s] (sections inherit it)
   // cable.sections: items in order, each a section or an in-line body
   // (index into `inline_bodies`); empty = the single-section form above.
   Where sections_where;

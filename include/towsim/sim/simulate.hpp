@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "towsim/dynamics/state.hpp"
+#include "towsim/sim/slack.hpp"
 
 namespace towsim {
 
@@ -35,6 +36,8 @@ struct Sample {
   std::vector<double> tension;  // |force carried through the node onto the part below| [N]
   std::vector<double> axial;    // that force along the adjacent element (the one above; below, at the
                                 // top of a section): positive in tension, negative in compression [N]
+  std::vector<double> strain;   // strain l/L - 1 of the same adjacent element (0: inextensible;
+                                // < 0: slack, no tension) [-]
   std::vector<BodySample> bodies;  // per Model::bodies entry
   bool has_waves = false;       // waves or a vessel in the model
   double wave_elevation = 0;    // at the vessel's RAO origin (else at the tow point) [m]
@@ -73,7 +76,6 @@ struct RunStats {
   long rejected_steps = 0;     // adaptive: rejected trial steps
   long rhs_evaluations = 0;    // evaluations of the dynamics
   double wall_seconds = 0;     // wall-clock time of the integration [s]
-  double max_element_drift = 0;// max |  |P_k - P_{k-1}| / L_k - 1 | seen [-]
   std::string integrator;      // the method used: rk4, dopri5, cash_karp54, rosenbrock
   double error_estimate = -1;  // rosenbrock: largest local error estimate of an accepted step,
                                // relative, state and tow/link forces [-]; < 0: none
@@ -83,6 +85,8 @@ struct RunStats {
   long winch_splits = 0;       // top elements split as cable was paid out [-]
   long winch_removals = 0;     // top elements removed as cable was hauled in [-]
   double winch_energy_lost = 0;// kinetic energy lost at removals (Removal::energy_lost, summed) [J]
+  double max_element_drift = 0;// max |  |P_k - P_{k-1}| / l_k - 1 | seen (l_k: the state's length) [-]
+  SlackRecord slack;           // elastic cable: slack episodes, snap and peak element tensions
 };
 
 /// Estimated largest stable RK4 step for the state whose evaluation `ws`
