@@ -171,6 +171,8 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
       summary["files"]["spectra"] = "spectra.csv";
     }
     if (!write_summary(opts.out_dir, summary)) throw std::runtime_error("cannot write summary.json");
+    if (!opts.quiet)
+      for (const std::string& w : stats.warnings) err << "towsim: warning: " << w << "\n";
     // Rigid elements can push; a real cable would go slack there.
     const Extreme& comp = writer.extremes().min_axial_force;
     if (!opts.quiet && comp.value < 0)

@@ -157,7 +157,7 @@ void describe_winch(const Winch& w, std::ostream& out) {
 }
 
 void describe_run(const Model& m, std::ostream& out) {
-  const char* integ[] = {"rk4", "dopri5", "cash_karp54"};
+  const char* integ[] = {"rk4", "dopri5", "cash_karp54", "rosenbrock"};
   const auto& s = m.sim;
   const char* init[] = {"hanging", "steady", "direction"};
   out << "initial: " << init[static_cast<int>(m.initial.kind)];

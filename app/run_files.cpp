@@ -31,6 +31,21 @@ double to_double(std::string_view f) {
 
 bool same_time(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); }
 
+/// Open a CSV file and read its header line into `header`; false with a
+/// message naming the file when it cannot be opened or is empty.
+bool open_csv(const std::string& path, std::ifstream& in, std::string& header, std::string& error) {
+  in.open(path);
+  if (!in) {
+    error = path + ": cannot open it";
+    return false;
+  }
+  if (!std::getline(in, header)) {
+    error = path + ": empty file (no header)";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int CsvTable::col(const std::string& name) const {
@@ -46,17 +61,10 @@ double CsvTable::at(std::size_t r, int c) const {
 
 bool read_csv_table(const std::string& path, CsvTable& table, std::string& error) {
   table = CsvTable{};
-  std::ifstream in(path);
-  if (!in) {
-    error = path + ": cannot open it";
-    return false;
-  }
+  std::ifstream in;
   std::string line;
+  if (!open_csv(path, in, line, error)) return false;
   std::vector<std::string_view> f;
-  if (!std::getline(in, line)) {
-    error = path + ": empty file (no header)";
-    return false;
-  }
   split_views(line, f);
   for (auto v : f) table.names.emplace_back(v);
   while (std::getline(in, line)) {
@@ -73,17 +81,10 @@ bool read_csv_table(const std::string& path, CsvTable& table, std::string& error
 bool read_node_frames(const std::string& path, const std::vector<double>& wanted, std::vector<NodeFrame>& frames,
                       std::string& error) {
   frames.clear();
-  std::ifstream in(path);
-  if (!in) {
-    error = path + ": cannot open it";
-    return false;
-  }
+  std::ifstream in;
   std::string line;
+  if (!open_csv(path, in, line, error)) return false;
   std::vector<std::string_view> f;
-  if (!std::getline(in, line)) {
-    error = path + ": empty file (no header)";
-    return false;
-  }
   split_views(line, f);
   auto col = [&f](const char* name) {
     for (std::size_t i = 0; i < f.size(); ++i)

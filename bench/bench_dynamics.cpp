@@ -5,6 +5,12 @@
 //   paper_dynamics/{cable,sphere}    the paper's dense Lagrange form (n <= 300:
 //                                    its assembly is O(n^3) and 1000 elements
 //                                    take seconds per evaluation)
+//   stage_factor/{cable,sphere}      the rosenbrock integrator's factorisation
+//                                    of M + hg C + hg^2 K (implicit_factor: the
+//                                    backward pass with modified inertias), once
+//                                    per step, hg = 0.1 s
+//   stage_solve/{cable,sphere}       one linear stage solve with it
+//                                    (implicit_stage_solve), 5 per step
 //   baseline_step/cable              one step of the earlier formulation
 //                                    (bench/baseline: Cartesian joints,
 //                                    multipliers, central differences)
@@ -22,6 +28,7 @@
 #include "baseline/cartesian.hpp"
 #include "models.hpp"  // tests/support: cable_model, add_sphere_body, random_state
 #include "towsim/dynamics/dynamics.hpp"
+#include "towsim/dynamics/implicit.hpp"
 #include "towsim/dynamics/paper.hpp"
 
 namespace {
@@ -86,6 +93,32 @@ void BM_paper(benchmark::State& state, bool body) {
                                                      benchmark::Counter::kInvert);
 }
 
+void BM_stage(benchmark::State& state, bool body, bool factor) {
+  const int n = static_cast<int>(state.range(0));
+  const Model m = bench_model(n, body);
+  const PhysicalState s = bench_state(m);
+  Workspace ws(m);
+  forward_dynamics(m, s, kTime, ws);
+  ImplicitWorkspace iw(m);
+  local_jacobian(m, s, ws, kTime, iw.jac);
+  StageRhs r;  // an arbitrary right-hand side
+  r.dv0 = Vec3(0.1, 0, 0);
+  for (int k = 0; k < n; ++k) r.dw.push_back(0.01 * s.w[k]), r.rot.push_back(0.001 * s.w[k]);
+  r.dwb.assign(m.bodies.size(), Vec3(0.01, 0, 0));
+  r.rotb.assign(m.bodies.size(), Vec3(0.001, 0, 0));
+  implicit_factor(m, s, ws, 0.1, iw);
+  for (auto _ : state) {
+    if (factor) implicit_factor(m, s, ws, 0.1, iw);
+    else implicit_stage_solve(m, s, ws, 0.1, r, iw);
+    benchmark::DoNotOptimize(iw.alpha.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetComplexityN(n);
+  state.counters["s_per_element"] =
+      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate |
+                                                     benchmark::Counter::kInvert);
+}
+
 /// One explicit step of the earlier formulation (assembly of loads and the
 /// consistent mass, the O(n) saddle-point solve, the update). Restarted from
 /// the hanging cable every 256 steps (h = 1 ms) so the state stays physical.
@@ -122,6 +155,10 @@ int main(int argc, char** argv) {
   sizes(benchmark::RegisterBenchmark("forward_dynamics/sphere", BM_forward, true), 1000);
   sizes(benchmark::RegisterBenchmark("paper_dynamics/cable", BM_paper, false), 300);
   sizes(benchmark::RegisterBenchmark("paper_dynamics/sphere", BM_paper, true), 300);
+  sizes(benchmark::RegisterBenchmark("stage_factor/cable", BM_stage, false, true), 1000);
+  sizes(benchmark::RegisterBenchmark("stage_factor/sphere", BM_stage, true, true), 1000);
+  sizes(benchmark::RegisterBenchmark("stage_solve/cable", BM_stage, false, false), 1000);
+  sizes(benchmark::RegisterBenchmark("stage_solve/sphere", BM_stage, true, false), 1000);
   sizes(benchmark::RegisterBenchmark("baseline_step/cable", BM_baseline), 1000);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -2,6 +2,7 @@
 #include "towsim/integrators/system.hpp"
 
 #include "towsim/dynamics/dynamics.hpp"
+#include "towsim/dynamics/implicit.hpp"
 #include "towsim/dynamics/paper.hpp"
 
 namespace towsim {
@@ -53,13 +54,18 @@ double winch_jump(const Model& m, const PhysicalState& s, double t) {
 /// then with a winch l_1, l_1'].
 class DefaultSystem final : public System {
  public:
-  explicit DefaultSystem(const Model& m) : model_(m), ws_(m), s_(PhysicalState::hanging(m)) {
+  explicit DefaultSystem(const Model& m)
+      : model_(m), ws_(m), s_(PhysicalState::hanging(m)), jws_(m), js_(s_), iw_(m) {
     n_ = m.cable.n();
     winch_ = m.winch.active() && n_ > 0;
     size_ = body_offset(m.bodies.size()) + (winch_ ? 2 : 0);
     // Length control: l_1 = L(t) - (the fixed elements below + cable drawn in by removals).
     fixed_length_ = m.winch.length_offset;
     for (int k = 1; k < n_; ++k) fixed_length_ += m.cable.elements[static_cast<std::size_t>(k)].length;
+    rhs_.dw.assign(s_.e.size(), Vec3::Zero());
+    rhs_.rot.assign(s_.e.size(), Vec3::Zero());
+    rhs_.dwb.assign(s_.bodies.size(), Vec3::Zero());
+    rhs_.rotb.assign(s_.bodies.size(), Vec3::Zero());
   }
 
   StateVector initial(const PhysicalState& s, double) override {
@@ -175,6 +181,56 @@ class DefaultSystem final : public System {
     return dv.norm();
   }
 
+  bool has_stage_solve() const override { return true; }
+
+  void prepare_stage_solve(double t) override {
+    // Keep the evaluation at the step's start: its kinematics, inertias and
+    // forces define the local Jacobian for all stages of the step.
+    jws_ = ws_;
+    js_ = s_;
+    local_jacobian(model_, js_, jws_, law_time(t), iw_.jac);
+    iw_.hg = -1;  // a new Jacobian: factorise again at the next stage solve
+  }
+
+  void stage_solve(double hg, const StateVector& r, StateVector& k) override {
+    // Velocity rows: (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x), k_v = r_v + z.
+    rhs_.dv0 = CMap3(&r[3]);
+    for (int i = 0; i < n_; ++i) {
+      rhs_.dw[i] = CMap3(&r[6 + 3 * n_ + 3 * i]);
+      rhs_.rot[i] = js_.e[i].cross(CMap3(&r[6 + 3 * i]));
+    }
+    for (std::size_t b = 0; b < js_.bodies.size(); ++b) {
+      const std::size_t o = body_offset(b);
+      rhs_.dwb[b] = CMap3(&r[o + 4]);
+      // dq = 1/2 (0, rot) q  =>  rot = 2 vec(dq q^-1).
+      rhs_.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * js_.bodies[b].q.conjugate()).vec();
+    }
+    implicit_stage_solve(model_, js_, jws_, hg, rhs_, iw_);
+    k.resize(size_);
+    // Position rows: k_x = r_x + hg B k_v (B: velocities -> position rates at the step's start).
+    const Vec3 kv0 = CMap3(&r[3]) + iw_.a0;
+    set3(k, 3, kv0);
+    set3(k, 0, CMap3(&r[0]) + hg * kv0);
+    for (int i = 0; i < n_; ++i) {
+      const Vec3 kw = rhs_.dw[i] + iw_.alpha[i];
+      set3(k, 6 + 3 * n_ + 3 * i, kw);
+      set3(k, 6 + 3 * i, CMap3(&r[6 + 3 * i]) + hg * kw.cross(js_.e[i]));
+    }
+    for (std::size_t b = 0; b < js_.bodies.size(); ++b) {
+      const std::size_t o = body_offset(b);
+      const Vec3 kw = rhs_.dwb[b] + iw_.alpha_b[b];
+      set3(k, o + 4, kw);
+      const Quat dq = Quat(0, kw.x(), kw.y(), kw.z()) * js_.bodies[b].q;
+      k[o] = r[o] + 0.5 * hg * dq.w(), k[o + 1] = r[o + 1] + 0.5 * hg * dq.x();
+      k[o + 2] = r[o + 2] + 0.5 * hg * dq.y(), k[o + 3] = r[o + 3] + 0.5 * hg * dq.z();
+    }
+    // The winch's (l_1, l_1') rows: explicit (a zero Jacobian block, which a
+    // W-method allows); length control sets them from the schedule anyway.
+    if (winch_) k[winch_offset()] = r[winch_offset()], k[winch_offset() + 1] = r[winch_offset() + 1];
+  }
+
+  const Accelerations* last_accelerations() const override { return &ws_.acc; }
+
   std::string describe(std::size_t i) const override {
     if (i < 6) return "tow point";
     if (winch_ && i >= winch_offset()) return "winch";
@@ -213,6 +269,10 @@ class DefaultSystem final : public System {
   const Model& model_;
   Workspace ws_;
   PhysicalState s_;
+  Workspace jws_;        // evaluation at the start of the step (Jacobian point)
+  PhysicalState js_;     // its state
+  ImplicitWorkspace iw_; // local Jacobian and stage-solve work arrays
+  StageRhs rhs_;         // one stage's right-hand side, per part
   int n_ = 0;
   std::size_t size_ = 0;
   bool winch_ = false;       // the state carries the winch's l_1, l_1'

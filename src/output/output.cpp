@@ -344,6 +344,17 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   j["rejected_steps"] = stats.rejected_steps;
   j["rhs_evaluations"] = stats.rhs_evaluations;
   j["max_element_drift"] = num(stats.max_element_drift);  // kept unrounded: it is a round-off measure
+  j["integrator"] = stats.integrator;
+  // rosenbrock: largest local error estimate of an accepted step (relative,
+  // state and tow/link forces) and its force part; null for the others.
+  j["integration_error_estimate"] =
+      stats.error_estimate >= 0 ? num(stats.error_estimate) : nlohmann::ordered_json(nullptr);
+  j["force_error_estimate"] = stats.force_error_estimate >= 0 ? num(stats.force_error_estimate)
+                                                              : nlohmann::ordered_json(nullptr);
+  // rk4: smallest estimated stability limit of the step over the samples [s].
+  j["rk4_stability_limit"] =
+      stats.rk4_step_limit > 0 ? num(stats.rk4_step_limit) : nlohmann::ordered_json(nullptr);
+  j["warnings"] = stats.warnings;
   j["samples"] = record.samples();
   j["files"] = {{"timeseries", "timeseries.csv"},
                 {"nodes", write_nodes ? nlohmann::ordered_json("nodes.csv") : nlohmann::ordered_json(nullptr)}};

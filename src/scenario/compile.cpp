@@ -43,6 +43,10 @@ void check_simulation(const SimulationSpec& s, Diagnostics& d) {
   check_positive(s.output_interval, d);
   check_count(s.duration, s.time_step, "time_step", kMaxSteps, d);
   check_count(s.duration, s.output_interval, "output_interval", kMaxSamples, d);
+  // The linearly implicit method's stage solve is the O(n) recursion of the default formulation.
+  if (s.integrator.value == "rosenbrock" && s.formulation.value == "paper")
+    d.error(s.integrator.where.loc, s.integrator.where.path,
+            "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)");
 }
 
 /// Rules between `initial` and `tow`: a steady start takes its velocity from
@@ -81,6 +85,7 @@ Simulation build_simulation(const SimulationSpec& s) {
   sim.output_interval = s.output_interval.value;
   sim.integrator = s.integrator.value == "dopri5"        ? Integrator::DOPRI5
                    : s.integrator.value == "cash_karp54" ? Integrator::CashKarp54
+                   : s.integrator.value == "rosenbrock"  ? Integrator::Rosenbrock
                                                          : Integrator::RK4;
   sim.tolerance = s.tolerance.value;
   sim.max_step = s.max_step.value;

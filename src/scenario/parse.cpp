@@ -158,7 +158,7 @@ void parse_simulation(MapReader& r, SimulationSpec& sim) {
   sim.where = r.where();
   r.read("duration", sim.duration, true);
   r.read("time_step", sim.time_step);
-  r.choice("integrator", sim.integrator, {"rk4", "dopri5", "cash_karp54"});
+  r.choice("integrator", sim.integrator, {"rk4", "dopri5", "cash_karp54", "rosenbrock"});
   r.read("tolerance", sim.tolerance);
   r.read("max_step", sim.max_step);
   r.choice("formulation", sim.formulation, {"default", "paper"});

@@ -4,9 +4,12 @@
 #include <algorithm>
 #include <boost/numeric/odeint.hpp>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <sstream>
 
+#include "towsim/dynamics/implicit.hpp"
+#include "towsim/integrators/rosenbrock.hpp"
 #include "towsim/integrators/system.hpp"
 #include "towsim/sim/winch_events.hpp"
 #include "towsim/waves/vessel.hpp"
@@ -20,9 +23,45 @@ namespace {
 constexpr double kRad2Deg = 180.0 / M_PI;
 constexpr double kMaxRate = 1e4;  // an angular velocity beyond this [rad/s] means divergence
 
+/// Name of an integrator as in the scenario key.
+const char* integrator_key(Integrator i) {
+  switch (i) {
+    case Integrator::RK4: return "rk4";
+    case Integrator::DOPRI5: return "dopri5";
+    case Integrator::CashKarp54: return "cash_karp54";
+    case Integrator::Rosenbrock: return "rosenbrock";
+  }
+  return "?";
+}
+
+/// RK4 only: compare the step with the stability limit at this sample. Beyond
+/// 0.9 times it (the estimate is within 10 % of the measured limits): a
+/// warning (once); beyond 1.5 times it: an error text (the run stops).
+std::string check_rk4_step(const Model& model, const Workspace& ws, double t, RunStats& stats) {
+  if (model.sim.integrator != Integrator::RK4) return {};
+  int k = 0;
+  double T = 0;
+  const double lim = rk4_step_limit(model, ws, t, &k, &T);
+  if (!(lim > 0) || std::isinf(lim)) return {};
+  if (stats.rk4_step_limit < 0 || lim < stats.rk4_step_limit) stats.rk4_step_limit = lim;
+  const double h = model.sim.time_step;
+  if (h <= 0.9 * lim) return {};
+  std::ostringstream os;
+  os << "rk4 time_step " << h << " s is above 0.9 times the estimated stability limit " << lim << " s at t = " << t
+     << " s (element " << k << ", tension " << T << " N): forces may be wrong; use simulation.time_step <= "
+     << 0.9 * lim << " or simulation.integrator: rosenbrock";
+  // The estimate is within 10 % of the measured limit (tests): 1.5 times
+  // it is clearly unstable.
+  if (h > 1.5 * lim) return "refused: " + os.str();
+  if (stats.warnings.empty() || stats.warnings.back().rfind("rk4 time_step", 0) != 0) stats.warnings.push_back(os.str());
+  return {};
+}
+
 /// Output sample of state y at time t; tracks the element length drift.
-Sample sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats) {
+Sample sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats,
+                 std::string* err = nullptr) {
   const Workspace& ws = sys.evaluate(y, t);
+  if (err) *err = check_rk4_step(model, ws, t, stats);
   Sample out = make_sample(model, sys.physical(y), ws, t);
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
     const int b = ws.body_at[k + 1];
@@ -34,6 +73,38 @@ Sample sample_of(const Model& model, System& sys, const StateVector& y, double t
 }
 
 }  // namespace
+
+double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* element, double* tension) {
+  double best = std::numeric_limits<double>::infinity();
+  const auto& els = model.cable.elements;
+  for (std::size_t k = 0; k < els.size(); ++k) {
+    const Element& el = current_element(model, ws, k);  // a winch's top element at its current length
+    const double L = ws.L[k];                            // [m]
+    const int b = ws.body_at[k + 1];
+    const Vec3& fb = b >= 0 ? ws.acc.link_force[static_cast<std::size_t>(b)] : ws.acc.joint_force[k + 1];
+    const double T = std::max(ws.acc.joint_force[k].norm(), fb.norm());
+    const double mn = el.mass + el.added_mass;
+    // Rocking: omega^2 = 12 T / ((m + m_a) L). Drag damping at rate sigma
+    // (normal: C / (m + m_a), along e: C / m) shifts the fast modes to
+    // -sigma/2 +- i omega; RK4 is stable to |h lambda| ~ 2 sqrt(2) there.
+    const Vec3 e = (ws.G[k] - ws.P[k]) * (2 / L);  // G = P_{k-1} + (L/2) e
+    Mat3 C;
+    double K = 0;
+    element_local_jacobian(model, el, e, ws.vG[k], ws.G[k], t, ws.F[k], fb, C, K);
+    const Mat3 P = Mat3::Identity() - e * e.transpose();
+    const double sn = Eigen::SelfAdjointEigenSolver<Mat3>(P * C * P).eigenvalues().maxCoeff() / mn;
+    const double sigma = std::max(sn, e.dot(C * e) / el.mass);
+    const double w2 = 12 * T / (mn * L) + 0.25 * sigma * sigma;
+    if (!(w2 > 0)) continue;
+    const double h = 2 * std::sqrt(2.0) / std::sqrt(w2);
+    if (h < best) {
+      best = h;
+      if (element) *element = static_cast<int>(k) + 1;
+      if (tension) *tension = T;
+    }
+  }
+  return best;
+}
 
 Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, double t) {
   Sample out;
@@ -193,10 +264,49 @@ void winch_event_at(Chain& c, StateVector& y, double t, RunStats& stats) {
   y = c.sys->initial(s2, t);
 }
 
+/// Advance y to `target` by Rosenbrock-W steps (error control on state and forces).
+std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros, StateVector& y, double& t,
+                               double target, double& h, RunStats& stats, bool& event) {
+  const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
+  while (t < target - 1e-12 * std::max(1.0, target)) {
+    const double h_try = std::min({h, model.sim.max_step, target - t});
+    double dt = h_try;
+    if (!ros.try_step(y, t, dt)) {
+      ++stats.rejected_steps;
+      h = dt;
+      if (h < h_min) {
+        std::ostringstream os;
+        os << "step size collapsed below " << h_min << " s (tolerance " << model.sim.tolerance
+           << " cannot be met)";
+        return os.str();
+      }
+      continue;
+    }
+    // Keep the controller's proposal unless this step was shortened to land.
+    if (h_try >= h || dt > h) h = dt;
+    if (std::abs(target - t) < 1e-12 * std::max(1.0, target)) t = target;
+    ++stats.steps;
+    if (auto err = check_state(model, sys, y); !err.empty()) return err;
+    if ((event = winch_due(model, sys, y))) return {};
+  }
+  return {};
+}
+
+/// Absolute force scale of the force error norm: the chain's apparent weight [N].
+double force_scale(const Model& model) {
+  double w = 0;
+  for (const Element& el : model.cable.elements) w += std::abs(el.weight);
+  for (const Body& b : model.bodies) w += std::abs(b.mass - model.fluid.rho * b.displaced_volume) * model.fluid.g;
+  for (const Attachment& a : model.cable.attachments)
+    w += std::abs(a.mass - model.fluid.rho * a.volume) * model.fluid.g;
+  return std::max(w, 1.0);
+}
+
 }  // namespace
 
 RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progress, const volatile int* stop_flag) {
   RunStats stats;
+  stats.integrator = integrator_key(model.sim.integrator);
   const auto wall0 = std::chrono::steady_clock::now();
   Chain chain;
   chain.model = &model;
@@ -205,9 +315,11 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   if (model.initial.kind != Initial::Kind::Steady) chain.sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
   chain.sys->project(y, 0.0);
   double t = 0;
-  // One sample of the current chain, its nodes with their identities.
+  // One sample of the current chain, its nodes with their identities; `check`
+  // gets the rk4 stability check's error text.
+  std::string check;
   auto sample = [&]() {
-    Sample out = sample_of(*chain.model, *chain.sys, y, t, stats);
+    Sample out = sample_of(*chain.model, *chain.sys, y, t, stats, &check);
     if (chain.node_id.empty()) {
       chain.node_id = out.node_id;
       chain.next_id = static_cast<long>(out.node_id.size());
@@ -222,6 +334,9 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
                                        odeint::runge_kutta_dopri5<StateVector>());
   auto cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
                                           odeint::runge_kutta_cash_karp54<StateVector>());
+  std::unique_ptr<RosenbrockW> ros;
+  if (model.sim.integrator == Integrator::Rosenbrock)
+    ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(model));
   double h = model.sim.time_step;
   const double T = model.sim.duration, dT = model.sim.output_interval;
   const long n_out = static_cast<long>(std::ceil(T / dT - 1e-9));
@@ -229,7 +344,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   for (double b : winch_breakpoints(model.winch)) breaks.push_back(b);
   std::sort(breaks.begin(), breaks.end());
   auto next_break = breaks.begin();
-  for (long k = 1; k <= n_out; ++k) {
+  for (long k = 1; k <= n_out && check.empty(); ++k) {
     if (stop_flag && *stop_flag) {
       stats.status = "interrupted";
       stats.message = "interrupted by signal at t = " + std::to_string(t) + " s";
@@ -245,6 +360,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       const bool at_break = next_break != breaks.end() && std::abs(*next_break - t) <= eps;
       if (at_break) {
         chain.sys->apply_tow_jump(y, t);
+        if (ros) ros->invalidate();  // the law's acceleration (and maybe y) jumps here
         ++next_break;
       }
       if (t >= out_time - 1e-12 * std::max(1.0, out_time)) break;
@@ -256,6 +372,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
         case Integrator::RK4: err = advance_fixed(m, sys, rk4, y, t, target, stats, event); break;
         case Integrator::DOPRI5: err = advance_adaptive(m, sys, dopri, y, t, target, h, stats, event); break;
         case Integrator::CashKarp54: err = advance_adaptive(m, sys, cashkarp, y, t, target, h, stats, event); break;
+        case Integrator::Rosenbrock: err = advance_rosenbrock(m, sys, *ros, y, t, target, h, stats, event); break;
       }
       if (!event || !err.empty()) continue;
       // The state changes size: new chain, fresh steppers (sized on first use).
@@ -265,6 +382,11 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
                                       odeint::runge_kutta_dopri5<StateVector>());
       cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
                                          odeint::runge_kutta_cash_karp54<StateVector>());
+      if (ros) {
+        stats.error_estimate = std::max(stats.error_estimate, ros->max_error);
+        stats.force_error_estimate = std::max(stats.force_error_estimate, ros->max_force_error);
+        ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model));
+      }
     }
     if (!err.empty()) {
       std::ostringstream os;
@@ -275,6 +397,14 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     }
     sink.write(sample());
     if (progress) progress(t / T);
+  }
+  if (!check.empty() && stats.status == "ok") {
+    stats.status = "failed";
+    stats.message = check;
+  }
+  if (ros) {
+    stats.error_estimate = std::max(stats.error_estimate, ros->max_error);
+    stats.force_error_estimate = std::max(stats.force_error_estimate, ros->max_force_error);
   }
   stats.end_time = t;
   stats.rhs_evaluations += chain.sys->rhs_evaluations;

@@ -3,27 +3,9 @@
 
 #include <algorithm>
 
-namespace towsim {
+#include "towsim/model/spline.hpp"
 
-namespace {
-/// Second derivatives of the natural cubic spline through (ts, xs) (Thomas algorithm).
-std::vector<Vec3> spline_curvatures(const std::vector<double>& ts, const std::vector<Vec3>& xs) {
-  const std::size_t m = ts.size();
-  std::vector<Vec3> M(m, Vec3::Zero());
-  if (m <= 2) return M;
-  std::vector<double> c(m, 0.0);
-  std::vector<Vec3> d(m, Vec3::Zero());
-  for (std::size_t i = 1; i + 1 < m; ++i) {
-    const double h0 = ts[i] - ts[i - 1], h1 = ts[i + 1] - ts[i];
-    const Vec3 rhs = 6 * ((xs[i + 1] - xs[i]) / h1 - (xs[i] - xs[i - 1]) / h0);
-    const double diag = 2 * (h0 + h1) - h0 * c[i - 1];
-    c[i] = h1 / diag;
-    d[i] = (rhs - h0 * d[i - 1]) / diag;
-  }
-  for (std::size_t i = m - 2; i >= 1; --i) M[i] = d[i] - c[i] * M[i + 1];
-  return M;
-}
-}  // namespace
+namespace towsim {
 
 Track Track::make(std::vector<double> time, std::vector<Vec3> pos) {
   Track tr;
@@ -34,7 +16,7 @@ Track Track::make(std::vector<double> time, std::vector<Vec3> pos) {
 }
 
 void Track::prepare() {
-  if (time.size() >= 2) curv = spline_curvatures(time, pos);
+  if (time.size() >= 2) curv = natural_spline_curvatures(time, pos);
 }
 
 TowKinematics Track::at(double t) const {
@@ -43,7 +25,7 @@ TowKinematics Track::at(double t) const {
   const std::size_t m = ts.size();
   TowKinematics k{xs.front(), Vec3::Zero(), Vec3::Zero()};
   if (m < 2) return k;
-  const std::vector<Vec3> local = curv.size() == m ? std::vector<Vec3>{} : spline_curvatures(ts, xs);
+  const std::vector<Vec3> local = curv.size() == m ? std::vector<Vec3>{} : natural_spline_curvatures(ts, xs);
   const std::vector<Vec3>& M = curv.size() == m ? curv : local;
   auto segment = [&](std::size_t i, double tt) {
     const double h = ts[i + 1] - ts[i];

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "towsim/model/spline.hpp"
+
 namespace towsim {
 
 namespace {
@@ -43,24 +45,6 @@ void bracket(const std::vector<double>& xs, double x, std::size_t& i0, std::size
   w = (x - xs[i0]) / (xs[i1] - xs[i0]);
 }
 
-/// Natural cubic spline second derivatives of 6-channel rows (Thomas algorithm).
-std::vector<Vec6> spline6(const std::vector<double>& ts, const std::vector<Vec6>& xs) {
-  const std::size_t m = ts.size();
-  std::vector<Vec6> M(m, Vec6::Zero());
-  if (m <= 2) return M;
-  std::vector<double> c(m, 0.0);
-  std::vector<Vec6> d(m, Vec6::Zero());
-  for (std::size_t i = 1; i + 1 < m; ++i) {
-    const double h0 = ts[i] - ts[i - 1], h1 = ts[i + 1] - ts[i];
-    const Vec6 rhs = 6 * ((xs[i + 1] - xs[i]) / h1 - (xs[i] - xs[i - 1]) / h0);
-    const double diag = 2 * (h0 + h1) - h0 * c[i - 1];
-    c[i] = h1 / diag;
-    d[i] = (rhs - h0 * d[i - 1]) / diag;
-  }
-  for (std::size_t i = m - 2; i >= 1; --i) M[i] = d[i] - c[i] * M[i + 1];
-  return M;
-}
-
 }  // namespace
 
 Vessel::Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<const WaveField> waves,
@@ -92,7 +76,7 @@ Vessel::Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<con
                std::vector<double> time, std::vector<Vec6> motions)
     : sheave_(tow_point), course0_(initial_course), waves_(std::move(waves)), time_(std::move(time)),
       rec_(std::move(motions)) {
-  curv_ = spline6(time_, rec_);
+  curv_ = natural_spline_curvatures(time_, rec_);
 }
 
 VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {

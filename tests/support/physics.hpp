@@ -27,6 +27,8 @@ inline std::string integrator_name(Integrator i) {
       return "DOPRI5";
     case Integrator::CashKarp54:
       return "CashKarp54";
+    case Integrator::Rosenbrock:
+      return "Rosenbrock";
   }
   return "?";
 }

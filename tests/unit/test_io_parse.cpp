@@ -169,9 +169,20 @@ TEST_F(ScenarioFile, SeveralErrorsAtOnce) {
                    "normal_drag, tangential_drag, added_mass, added_mass_model, sign_smoothing_speed, breaking_load, "
                    "sections, attachments)") +
                 at("8:13: simulation.duration: must be > 0 (got 0)") +
-                at("9:15: simulation.integrator: expected one of rk4, dopri5, cash_karp54 (got 'rk5'; did you mean "
+                at("9:15: simulation.integrator: expected one of rk4, dopri5, cash_karp54, rosenbrock (got 'rk5'; did you mean "
                    "'rk4'?)") +
                 "--set:1:22: simulation.time_step: must be > 0 (got 0)\n");
+}
+
+TEST_F(ScenarioFile, RosenbrockNeedsTheDefaultFormulation) {
+  const auto s = load(kCable + kSim + "  integrator: rosenbrock\n  formulation: paper\n");
+  EXPECT_FALSE(s.ok());
+  EXPECT_EQ(s.diags.str(),
+            at("8:15: simulation.integrator: rosenbrock needs formulation: default (its stage solves use the O(n) "
+               "recursion)"));
+  const auto ok = load(kCable + kSim + "  integrator: rosenbrock\n");
+  ASSERT_TRUE(ok.ok()) << ok.diags.str();
+  EXPECT_EQ(ok.model->sim.integrator, towsim::Integrator::Rosenbrock);
 }
 
 TEST_F(ScenarioFile, DuplicateKey) {

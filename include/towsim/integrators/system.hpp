@@ -41,6 +41,17 @@ class System {
   /// strictly inside it, so a step ending on a breakpoint of the law sees the
   /// piece before it and a step starting there the piece after it.
   void set_window(double t0, double t1) { t0_ = t0, t1_ = t1; }
+  /// Linearly implicit integrators (docs/theory.md §6.3). True when this
+  /// system provides the O(n) stage solve below.
+  virtual bool has_stage_solve() const { return false; }
+  /// Take the local Jacobian at the state and time of the last derivative()
+  /// call (the start of a step): used by every stage_solve until the next call.
+  virtual void prepare_stage_solve(double /*t*/) {}
+  /// Solve (I - hg J) k = r for the stage increment k, J the local Jacobian
+  /// approximation of prepare_stage_solve; hg = h gamma [s]. O(n).
+  virtual void stage_solve(double /*hg*/, const StateVector& /*r*/, StateVector& /*k*/) {}
+  /// Forces of the last derivative() call (tow force, link forces), or null.
+  virtual const Accelerations* last_accelerations() const { return nullptr; }
   /// odeint's call signature.
   void operator()(const StateVector& y, StateVector& dy, double t) { derivative(y, dy, t); }
 

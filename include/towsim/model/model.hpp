@@ -160,7 +160,7 @@ struct Initial {
   Vec3 direction = -Vec3::UnitZ();  // Direction: unit vector from the tow point [-]
 };
 
-enum class Integrator { RK4, DOPRI5, CashKarp54 };
+enum class Integrator { RK4, DOPRI5, CashKarp54, Rosenbrock };
 enum class Formulation { Default, Paper };
 
 /// Time integration settings (docs/theory.md §6).
@@ -169,7 +169,7 @@ struct Simulation {
   double time_step = 0.01;      // fixed step, or first step if adaptive [s]
   double output_interval = 0.1; // [s]
   Integrator integrator = Integrator::RK4;
-  double tolerance = 1e-6;      // adaptive: relative and absolute error target [-]
+  double tolerance = 1e-6;      // adaptive: relative and absolute error target (rosenbrock: also on forces) [-]
   double max_step = 1.0;        // adaptive: largest step [s]
   Formulation formulation = Formulation::Default;
   bool write_nodes = true;      // write nodes.csv

@@ -207,7 +207,7 @@ struct SimulationSpec {
   Where where;
   Field<double> duration;              // [s] (required)
   Field<double> time_step{0.01};       // [s]
-  Field<std::string> integrator{"rk4"};  // rk4 | dopri5 | cash_karp54
+  Field<std::string> integrator{"rk4"};  // rk4 | dopri5 | cash_karp54 | rosenbrock
   Field<double> tolerance{1e-6};       // [-]
   Field<double> max_step{1.0};         // [s]
   Field<std::string> formulation{"default"};  // default | paper

@@ -77,7 +77,22 @@ struct RunStats {
   long winch_splits = 0;       // top elements split as cable was paid out [-]
   long winch_removals = 0;     // top elements removed as cable was hauled in [-]
   double winch_energy_lost = 0;// kinetic energy lost at removals (Removal::energy_lost, summed) [J]
+  std::string integrator;      // the method used: rk4, dopri5, cash_karp54, rosenbrock
+  double error_estimate = -1;  // rosenbrock: largest local error estimate of an accepted step,
+                               // relative, state and tow/link forces [-]; < 0: none
+  double force_error_estimate = -1;  // rosenbrock: its part from the tow and link forces [-]; < 0: none
+  double rk4_step_limit = -1;  // rk4: smallest estimated stability limit over the samples [s]; < 0: none
+  std::vector<std::string> warnings;  // e.g. an rk4 step beyond the estimated stability limit
 };
+
+/// Estimated largest stable RK4 step for the state whose evaluation `ws`
+/// holds (at time t [s]): the rocking mode of a short element under tension T,
+/// omega_max = 2 sqrt(3) sqrt(T / (L (m + m_a))), h_max = 2 sqrt(2) / omega_max
+/// = sqrt(2/3) sqrt(L (m + m_a) / T), and the drag damping of an element,
+/// h_max = 2.785 / sigma, sigma = drag damping / inertia (docs/theory.md §6.4).
+/// Smallest over the elements; `element` (1-based) and `tension` [N] say where. [s]
+double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* element = nullptr,
+                      double* tension = nullptr);
 
 /// Progress callback: fraction done in [0, 1].
 using ProgressFn = std::function<void(double)>;

@@ -1,0 +1,100 @@
+// Linear stage solves of the linearly implicit integrator (docs/theory.md
+// §6.3 "Rosenbrock-W"): the O(n) recursion run with modified inertias
+// M + hg C + hg^2 K and a right-hand side of arbitrary generalized forces.
+//
+// C and K are LOCAL: each part of the chain contributes the damping and the
+// stiffness of its own coordinates only (per-part hooks below). The W-method
+// keeps its order whatever this approximate Jacobian is; the local terms only
+// have to capture the stiff modes (rocking of short tensioned elements, drag
+// damping of light elements) for the step to be bounded by accuracy.
+#pragma once
+
+#include <vector>
+
+#include "towsim/dynamics/state.hpp"
+
+namespace towsim {
+
+/// The local (per-part) Jacobian approximation at one state. A new kind of
+/// part (an elastic element's stretch, a seabed spring at a joint) adds its
+/// own entries here and its own terms in `implicit_stage_solve`.
+struct LocalJacobian {
+  std::vector<Mat3> element_damping;     // C_k = -dF_k/dv(G_k), drag at G_k [kg/s, R_g]
+  std::vector<double> element_stiffness; // K_k, rocking stiffness of element k about its top joint
+                                         // (geometric: axial force times length) [N m/rad]
+  std::vector<Mat3> joint_damping;       // attachments at joint k: -dF_a/dv(P_k) [kg/s, R_g]
+  std::vector<Mat6> body_damping;        // -d(F; M about O_t)/d(v_O; omega_B) [SI, R_g]
+  std::vector<Mat3> body_stiffness;      // rotation of the body about its link point Q, loads held
+                                         // in space: moment per radian [N m/rad, R_g]
+};
+
+/// Per-part hook, element: drag damping at G and rocking stiffness, from the
+/// loads of the last evaluation. F: the element's loads at G [N]; f_bottom:
+/// the force through its bottom joint onto the part below [N, R_g].
+void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG,
+                            const Vec3& xG, double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K);
+
+/// Per-part hook, body: damping C (6x6 on v_O, omega_B) and rotational
+/// stiffness K about the link point Q, by central differences of its loads
+/// (symmetric part, negative eigenvalues dropped). bw: the body's evaluation.
+void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& C, Mat3& K);
+
+/// Per-part hook, attachment at a joint: drag damping on the joint's velocity.
+Mat3 attachment_local_damping(const Model& model, const Attachment& a, const Vec3& x, const Vec3& v, double t);
+
+/// Fill `jac` for the state whose evaluation `ws` holds (forward_dynamics at (s, t)).
+void local_jacobian(const Model& model, const PhysicalState& s, const Workspace& ws, double t, LocalJacobian& jac);
+
+/// Work arrays of the stage solve, sized once per model.
+struct ImplicitWorkspace {
+  explicit ImplicitWorkspace(const Model& model);
+  LocalJacobian jac;
+  // Right-hand side of one stage solve, as loads (built from the increments):
+  std::vector<Vec3> F, Mom;   // per element: force at G [N] and couple [N m], R_g
+  std::vector<Vec3> Fa;       // per joint (attachments) [N, R_g]
+  std::vector<Vec3> Fb, Mb;   // per body: force and moment about O_t [N], [N m], R_g
+  // Recursion with modified inertias (zero velocities: no centripetal terms).
+  std::vector<Mat3> K;        // f_k = K_k a_k + b_k [kg] (k = 0..n)
+  std::vector<Vec3> b;        // [N]
+  // Factorisation (implicit_factor: depends on hg and the Jacobian point only):
+  std::vector<Eigen::Matrix<double, 3, 2>> T, GT;  // tangent basis [-], G T [kg m]
+  std::vector<Eigen::Matrix2d> Phi;                // inverse rotational block [1/(kg m^2)]
+  std::vector<Eigen::Matrix<double, 3, 2>> H;      // G T Phi [1/m]
+  std::vector<Mat3> bPhi, bC, bKQ;                 // per body: as BodyWork, modified inertia
+  double hg = -1;                                  // h gamma of the factorisation [s]; < 0: none
+  // Right-hand-side sweeps (implicit_stage_solve):
+  std::vector<Eigen::Vector2d> Tr0;                // T^T r_0 [N m]
+  std::vector<Vec3> brhs, bbQ;                     // per body [N m], [N]
+  std::vector<Vec3> dvP;                           // velocity increments of the joints [m/s]
+  // Solution: tow point (Force mode) and angular increments (z below).
+  Vec3 a0 = Vec3::Zero();     // [m/s] (0 in Motion mode)
+  std::vector<Vec3> alpha;    // per element, normal to e_k [rad/s]
+  std::vector<Vec3> alpha_b;  // per body [rad/s]
+};
+
+/// Velocity-side inputs of one stage solve (increments r_v of the velocities
+/// and the rotation vectors of the position increments r_x, all R_g).
+struct StageRhs {
+  Vec3 dv0 = Vec3::Zero();        // tow point velocity increment (Force mode) [m/s]
+  std::vector<Vec3> dw;           // per element: omega increment [rad/s]
+  std::vector<Vec3> rot;          // per element: e_k x (increment of e_k) [rad]
+  std::vector<Vec3> dwb;          // per body: omega_B increment [rad/s]
+  std::vector<Vec3> rotb;         // per body: rotation vector of the attitude increment [rad]
+};
+
+/// Factorise M + hg C + hg^2 K in O(n): the backward pass of the recursion
+/// (articulated inertias K_k, rotation blocks Phi) with modified inertias.
+/// `ws` holds the evaluation at the state s the Jacobian iw.jac belongs to
+/// (kinematics, inertias). Valid for every stage solve with the same hg.
+void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
+                     ImplicitWorkspace& iw);
+
+/// Solve (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x) in O(n)
+/// with the factorisation of implicit_factor (same hg, same s and ws): the
+/// right-hand side as loads, the bias sweep up the chain, the accelerations
+/// down. Result z in iw.a0, iw.alpha, iw.alpha_b; the stage increment of the
+/// velocities is then r_v + z.
+void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
+                          const StageRhs& r, ImplicitWorkspace& iw);
+
+}  // namespace towsim

@@ -1,0 +1,44 @@
+// Rosenbrock-W integrator ROS34PW2 (Rang & Angermann 2005): linearly
+// implicit, order 3 with an embedded order 2, L-stable, W-method (its order
+// holds with any approximation of the Jacobian). Each stage solve is the O(n)
+// recursion with modified inertias (System::stage_solve). Error control on
+// the state AND on the tow and link forces (docs/theory.md §6.3).
+#pragma once
+
+#include <array>
+
+#include "towsim/integrators/system.hpp"
+
+namespace towsim {
+
+class RosenbrockW {
+ public:
+  /// tol: relative and absolute tolerance [-]; force_scale: absolute force
+  /// floor of the force error norm [N] (the system's apparent weight).
+  RosenbrockW(System& sys, double tol, double force_scale);
+
+  /// Try one step of size h from (y, t). Accepted: y, t advanced (y
+  /// projected), returns true. Either way h becomes the next proposal [s].
+  bool try_step(StateVector& y, double& t, double& h);
+
+  /// The state was changed from outside (a tow velocity jump, a breakpoint):
+  /// the cached derivative at the step's start is stale.
+  void invalidate() { have_f0_ = false; }
+
+  double max_error = 0;        // largest accepted local error estimate, relative [-] (state and forces)
+  double max_force_error = 0;  // its part from the tow and link forces, relative [-]
+
+ private:
+  static constexpr int kStages = 4;
+  System& sys_;
+  double tol_, force_scale_;
+  std::array<std::array<double, kStages>, kStages> a_{}, c_{};  // transformed coefficients
+  std::array<double, kStages> m_{}, mhat_{}, alpha_{};          // weights, stage times
+  double gamma_ = 0;
+  bool have_f0_ = false;
+  bool last_rejected_ = false;
+  StateVector f0_, fi_, yi_, rhs_, y1_, yhat_, scratch_;
+  std::array<StateVector, kStages> u_;
+};
+
+}  // namespace towsim

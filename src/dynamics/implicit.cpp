@@ -1,0 +1,295 @@
+// Linear stage solves of the Rosenbrock-W integrator (docs/theory.md §6.3):
+// the articulated recursion of fast.cpp at zero velocity, with the inertia of
+// each part increased by its local damping and stiffness, M + hg C + hg^2 K,
+// and the right-hand side given as loads on the parts. Cost O(n).
+#include "towsim/dynamics/implicit.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "towsim/hydro/loads.hpp"
+
+namespace towsim {
+
+namespace {
+
+inline std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+
+/// Tangent basis normal to e (same construction as the recursion's).
+Eigen::Matrix<double, 3, 2> tangent_basis(const Vec3& e) {
+  Eigen::Index i;
+  e.cwiseAbs().minCoeff(&i);
+  const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
+  Eigen::Matrix<double, 3, 2> T;
+  T << t1, e.cross(t1);
+  return T;
+}
+
+/// A body's elimination at zero velocity, inertia part: modified inertia Me
+/// (the body's Mw plus its local terms); an in-line body first takes in the
+/// cable below, K2 at its lower link Q2.
+void body_factor(const Body& body, const BodyWork& bw, Mat6 Me, const Mat3* K2, std::size_t b,
+                 ImplicitWorkspace& iw) {
+  if (body.inline_body) {
+    Eigen::Matrix<double, 6, 3> J2t;
+    J2t << Mat3::Identity(), skew(bw.rQ2);
+    Me += J2t * *K2 * J2t.transpose();
+  }
+  const Mat3 Rx = skew(bw.rQ);  // rQ = Q - O_t [m, R_g]
+  const Mat3 Mll = Me.topLeftCorner<3, 3>(), Mla = Me.topRightCorner<3, 3>();
+  const Mat3 Mal = Me.bottomLeftCorner<3, 3>(), Maa = Me.bottomRightCorner<3, 3>();
+  iw.bC[b] = Mal - Rx * Mll;
+  iw.bPhi[b] = (iw.bC[b] * Rx + Maa - Rx * Mla).inverse();  // inertia about Q
+  iw.bKQ[b] = Mll - iw.bC[b].transpose() * iw.bPhi[b] * iw.bC[b];
+}
+
+/// The same elimination, bias part: loads (Fb, Mb about O_t) and the cable
+/// below's bias b2 at Q2 (in-line body).
+void body_bias(const Body& body, const BodyWork& bw, const Vec3& Fb, const Vec3& Mb, const Vec3* b2, std::size_t b,
+               ImplicitWorkspace& iw) {
+  Vec3 hl = Vec3::Zero(), ha = Vec3::Zero();
+  if (body.inline_body) hl = *b2, ha = bw.rQ2.cross(*b2);  // J2^T b2
+  const Vec3& r = bw.rQ;
+  iw.brhs[b] = Mb - r.cross(Fb) - ha + r.cross(hl);
+  iw.bbQ[b] = iw.bC[b].transpose() * iw.bPhi[b] * iw.brhs[b] + hl - Fb;
+}
+
+/// Symmetric part of A with its negative eigenvalues dropped (a damping or a
+/// stiffness the W-method may use: never one that feeds energy in).
+template <int N>
+Eigen::Matrix<double, N, N> psd_part(const Eigen::Matrix<double, N, N>& A) {
+  const Eigen::Matrix<double, N, N> S = 0.5 * (A + A.transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> es(S);
+  const Eigen::Matrix<double, N, 1> l = es.eigenvalues().cwiseMax(0.0);
+  return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+}
+
+}  // namespace
+
+void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& C, Mat3& K) {
+  BodyWork p = bw;
+  auto loads = [&](Vec6& g) {
+    body_loads(fluid, body, t, p);
+    g << p.Fb, p.Mb;
+  };
+  // Damping: -d(F; M)/d(v_O; omega), central differences (steps 1e-6 of the
+  // speeds' scale: truncation ~1e-12, round-off ~1e-10 relative).
+  Mat6 D;
+  const double dv = 1e-6 * std::max(1.0, bw.vO.norm()), dw = 1e-6 * std::max(1.0, bw.w.norm());
+  for (int j = 0; j < 6; ++j) {
+    Vec6 gp, gm;
+    const double d = j < 3 ? dv : dw;
+    Vec3& x = j < 3 ? p.vO : p.w;
+    x[j % 3] += d;
+    loads(gp);
+    x[j % 3] -= 2 * d;
+    loads(gm);
+    x[j % 3] += d;
+    D.col(j) = -(gp - gm) / (2 * d);
+  }
+  C = psd_part<6>(D);
+  // Stiffness about O_t: -dM/dtheta, turning the body about O_t.
+  Mat3 KO;
+  const double da = 1e-6;
+  for (int j = 0; j < 3; ++j) {
+    Vec6 gp, gm;
+    p.R = Eigen::AngleAxisd(da, Vec3::Unit(j)).toRotationMatrix() * bw.R;
+    loads(gp);
+    p.R = Eigen::AngleAxisd(-da, Vec3::Unit(j)).toRotationMatrix() * bw.R;
+    loads(gm);
+    KO.col(j) = -(gp.tail<3>() - gm.tail<3>()) / (2 * da);
+  }
+  // About Q: the loads' resultant F, carried by the arm O_t - Q, adds
+  // -(F.rQ) I + F rQ^T (potential -F.x with x - Q = (x - O_t) - rQ).
+  const Vec3& F = bw.Fb;
+  K = psd_part<3>(KO - F.dot(bw.rQ) * Mat3::Identity() + F * bw.rQ.transpose());
+}
+
+void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG,
+                            const Vec3& xG, double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K) {
+  // Rocking stiffness: with the joint forces held, turning e by dtheta moves
+  // the bottom joint by L dtheta x e and G by half that; the loads there
+  // (tension -f_bottom.e, own loads F.e along e) resist it.
+  const double L = el.length;
+  K = std::max(0.0, -L * f_bottom.dot(e) + 0.5 * L * F.dot(e));
+  C.setZero();
+  const Fluid& fluid = model.fluid;
+  if (fluid.rho == 0) return;
+  // Drag damping -dF/du (u: velocity relative to the water at G).
+  const Vec3 u = vG - fluid.velocity(xG, t);
+  const double ue = u.dot(e);
+  const Vec3 un = u - ue * e;
+  const double unn = un.norm();
+  if (unn > 0) C += el.drag_factor * (unn * (Mat3::Identity() - e * e.transpose()) + un * un.transpose() / unn);
+  // Tangential friction: its e-e derivative (symmetric part along e).
+  double ct = 0;
+  if (model.cable.tangential_law == TangentialLaw::Pode) {
+    const double vs = model.cable.sign_smoothing_speed, q = std::sqrt(ue * ue + vs * vs);
+    ct = el.friction_factor * (2 * ue * ue / q + u.squaredNorm() * vs * vs / (q * q * q));
+  } else {
+    ct = 2 * el.friction_factor * std::abs(ue);
+  }
+  C += ct * e * e.transpose();
+}
+
+Mat3 attachment_local_damping(const Model& model, const Attachment& a, const Vec3& x, const Vec3& v, double t) {
+  const Fluid& fluid = model.fluid;
+  if (fluid.rho == 0) return Mat3::Zero();
+  // Drag -1/2 rho CdA |u| u: derivative 1/2 rho CdA (|u| I + u u^T / |u|).
+  const Vec3 u = v - fluid.velocity(x, t);
+  const double un = u.norm();
+  if (un == 0) return Mat3::Zero();
+  return 0.5 * fluid.rho * a.drag_area * (un * Mat3::Identity() + u * u.transpose() / un);
+}
+
+void local_jacobian(const Model& model, const PhysicalState& s, const Workspace& ws, double t, LocalJacobian& jac) {
+  const auto& els = model.cable.elements;
+  for (std::size_t k = 0; k < els.size(); ++k) {
+    const int bi = ws.body_at[k + 1];
+    const Vec3& fb = bi >= 0 ? ws.acc.link_force[idx(bi)] : ws.acc.joint_force[k + 1];
+    element_local_jacobian(model, current_element(model, ws, k), s.e[k], ws.vG[k], ws.G[k], t, ws.F[k], fb,
+                           jac.element_damping[k], jac.element_stiffness[k]);
+  }
+  for (auto& C : jac.joint_damping) C.setZero();
+  for (const Attachment& a : model.cable.attachments) {
+    const auto k = idx(a.joint);
+    jac.joint_damping[k] += attachment_local_damping(model, a, ws.P[k], ws.vP[k], t);
+  }
+  for (std::size_t b = 0; b < model.bodies.size(); ++b)
+    body_local_jacobian(model.fluid, model.bodies[b], ws.body[b], t, jac.body_damping[b], jac.body_stiffness[b]);
+}
+
+ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
+  const std::size_t n = model.cable.elements.size(), nb = model.bodies.size();
+  jac.element_damping.assign(n, Mat3::Zero());
+  jac.element_stiffness.assign(n, 0.0);
+  jac.joint_damping.assign(n + 1, Mat3::Zero());
+  jac.body_damping.assign(nb, Mat6::Zero());
+  jac.body_stiffness.assign(nb, Mat3::Zero());
+  F.assign(n, Vec3::Zero());
+  Mom.assign(n, Vec3::Zero());
+  Fa.assign(n + 1, Vec3::Zero());
+  Fb.assign(nb, Vec3::Zero());
+  Mb.assign(nb, Vec3::Zero());
+  K.assign(n + 1, Mat3::Zero());
+  b.assign(n + 1, Vec3::Zero());
+  T.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
+  GT.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
+  Phi.assign(n, Eigen::Matrix2d::Zero());
+  H.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
+  Tr0.assign(n, Eigen::Vector2d::Zero());
+  bPhi.assign(nb, Mat3::Zero());
+  bC.assign(nb, Mat3::Zero());
+  bKQ.assign(nb, Mat3::Zero());
+  brhs.assign(nb, Vec3::Zero());
+  bbQ.assign(nb, Vec3::Zero());
+  dvP.assign(n + 1, Vec3::Zero());
+  alpha.assign(n, Vec3::Zero());
+  alpha_b.assign(nb, Vec3::Zero());
+}
+
+void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
+                     ImplicitWorkspace& iw) {
+  const auto& els = model.cable.elements;
+  const std::size_t n = els.size();
+  const LocalJacobian& jac = iw.jac;
+  // Backward pass of fast.cpp (c = 0, w = 0), inertias only.
+  iw.K[n] = ws.Ma[n] + hg * jac.joint_damping[n];
+  for (std::size_t k = n; k-- > 0;) {
+    const int bi = ws.body_at[k + 1];
+    const Mat3* Kk = &iw.K[k + 1];
+    if (bi >= 0) {
+      const std::size_t b = idx(bi);
+      Mat6 Me = ws.body[b].Mw + hg * jac.body_damping[b];
+      Me.bottomRightCorner<3, 3>() += hg * hg * jac.body_stiffness[b];
+      body_factor(model.bodies[b], ws.body[b], Me, Kk, b, iw);
+      Kk = &iw.bKQ[b];
+    }
+    const Element& el = current_element(model, ws, k);  // a winch's top element at its current length
+    const double L = ws.L[k];
+    const Mat3 Mt = ws.Mt[k] + hg * jac.element_damping[k];
+    const auto& T = iw.T[k] = tangent_basis(s.e[k]);
+    const Eigen::Matrix<double, 3, 2> KT = *Kk * T;
+    iw.GT[k] = 0.5 * L * Mt * T + L * KT;
+    Eigen::Matrix2d D = T.transpose() * (0.25 * L * L * Mt * T + L * L * KT);
+    D.diagonal().array() += element_rot_inertia(el) + hg * hg * jac.element_stiffness[k];
+    iw.Phi[k] = D.inverse();
+    iw.H[k] = iw.GT[k] * iw.Phi[k];
+    const Mat3 Kn = Mt + *Kk - iw.H[k] * iw.GT[k].transpose();
+    iw.K[k] = 0.5 * (Kn + Kn.transpose());
+    iw.K[k] += ws.Ma[k] + hg * jac.joint_damping[k];
+  }
+  iw.hg = hg;
+}
+
+void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
+                          const StageRhs& r, ImplicitWorkspace& iw) {
+  if (iw.hg != hg) implicit_factor(model, s, ws, hg, iw);
+  const auto& els = model.cable.elements;
+  const std::size_t n = els.size();
+  const LocalJacobian& jac = iw.jac;
+  const bool free_top = model.tow.mode != Tow::Mode::Motion;
+  // Right-hand side as loads: -hg C dv at each damper (dv: the velocity
+  // increments r_v carried down the chain), -hg K (hg dw + rot) on rotations.
+  Vec3 dv = free_top ? r.dv0 : Vec3::Zero();
+  iw.dvP[0] = dv;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec3& e = s.e[k];
+    const double L = ws.L[k];
+    const Vec3 dw = r.dw[k] - r.dw[k].dot(e) * e;
+    const Vec3 rot = r.rot[k] - r.rot[k].dot(e) * e;
+    const Vec3 de = dw.cross(e);
+    iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * L * de));
+    iw.Mom[k] = -hg * jac.element_stiffness[k] * (hg * dw + rot);
+    dv += L * de;
+    const int bi = ws.body_at[k + 1];
+    if (bi >= 0) {
+      const std::size_t b = idx(bi);
+      const BodyWork& bw = ws.body[b];
+      const Vec3& dwb = r.dwb[b];
+      const Vec3 dvO = dv - dwb.cross(bw.rQ);  // v_O = v_Q + omega x (O - Q)
+      Vec6 dnu;
+      dnu << dvO, dwb;
+      const Vec6 g = -hg * (jac.body_damping[b] * dnu);
+      iw.Fb[b] = g.head<3>();
+      iw.Mb[b] = g.tail<3>() - hg * (jac.body_stiffness[b] * (hg * dwb + r.rotb[b]));
+      if (model.bodies[b].inline_body) dv = dvO + dwb.cross(bw.rQ2);
+    }
+    iw.dvP[k + 1] = dv;
+  }
+  for (std::size_t k = 0; k <= n; ++k) iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]);
+
+  // Bias sweep up the chain (the inertias are factorised).
+  iw.b[n] = -iw.Fa[n];
+  for (std::size_t k = n; k-- > 0;) {
+    const int bi = ws.body_at[k + 1];
+    const Vec3* bk = &iw.b[k + 1];
+    if (bi >= 0) {
+      const std::size_t b = idx(bi);
+      body_bias(model.bodies[b], ws.body[b], iw.Fb[b], iw.Mb[b], bk, b, iw);
+      bk = &iw.bbQ[b];
+    }
+    const double L = ws.L[k];
+    const Vec3 r0 = 0.5 * L * iw.F[k] - L * *bk - s.e[k].cross(iw.Mom[k]);
+    iw.Tr0[k] = iw.T[k].transpose() * r0;
+    iw.b[k] = iw.H[k] * iw.Tr0[k] + *bk - iw.F[k] - iw.Fa[k];
+  }
+
+  // Forward pass: the tow point is held (Motion) or free with no force.
+  Vec3 a = free_top ? Vec3(iw.K[0].ldlt().solve(-iw.b[0])) : Vec3::Zero();
+  iw.a0 = a;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec3 beta = iw.T[k] * (iw.Phi[k] * (iw.Tr0[k] - iw.GT[k].transpose() * a));
+    iw.alpha[k] = s.e[k].cross(beta);
+    a += ws.L[k] * beta;
+    const int bi = ws.body_at[k + 1];
+    if (bi < 0) continue;
+    const std::size_t b = idx(bi);
+    const BodyWork& bw = ws.body[b];
+    const Vec3 al = iw.bPhi[b] * (iw.brhs[b] - iw.bC[b] * a);
+    iw.alpha_b[b] = al;
+    if (model.bodies[b].inline_body) a = a + bw.rQ.cross(al) + al.cross(bw.rQ2);
+  }
+}
+
+}  // namespace towsim

@@ -1,0 +1,138 @@
+// Rosenbrock-W ROS34PW2 with error control on state and forces (docs/theory.md §6.3).
+#include "towsim/integrators/rosenbrock.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace towsim {
+
+namespace {
+
+// ROS34PW2 (Rang & Angermann, BIT 45 (2005) 761-787), in the form
+// (I - h gamma J) k_i = h f(y + sum_j alpha_ij k_j) + h J sum_j gamma_ij k_j,
+// y1 = y + sum_i b_i k_i; bhat: the embedded order-2 solution.
+constexpr double kGamma = 4.3586652150845900e-01;
+constexpr double kAlpha[4][4] = {{0, 0, 0, 0},
+                                 {8.7173304301691801e-01, 0, 0, 0},
+                                 {8.4457060015369423e-01, -1.1299064236484185e-01, 0, 0},
+                                 {0, 0, 1, 0}};
+constexpr double kGam[4][4] = {{kGamma, 0, 0, 0},
+                               {-8.7173304301691801e-01, kGamma, 0, 0},
+                               {-9.0338057013044082e-01, 5.4180672388095326e-02, kGamma, 0},
+                               {2.4212380706095346e-01, -1.2232505839045147e+00, 5.4526025533510214e-01, kGamma}};
+constexpr double kB[4] = {2.4212380706095346e-01, -1.2232505839045147e+00, 1.5452602553351020e+00, kGamma};
+constexpr double kBhat[4] = {3.7810903145819369e-01, -9.6042292212423178e-02, 0.5, 2.1793326075422950e-01};
+
+}  // namespace
+
+RosenbrockW::RosenbrockW(System& sys, double tol, double force_scale)
+    : sys_(sys), tol_(tol), force_scale_(force_scale), gamma_(kGamma) {
+  // Transformed variables u_i = sum_j gamma_ij k_j (Hairer & Wanner IV.7):
+  // (I - h gamma J) u_i = h gamma f(y + sum_j a_ij u_j) + gamma sum_j c_ij u_j,
+  // a = alpha Gamma^-1, c = diag(1/gamma) - Gamma^-1, m = b^T Gamma^-1.
+  double Gi[4][4] = {};  // Gamma^-1 (lower triangular), by forward substitution
+  for (int j = 0; j < kStages; ++j) {
+    Gi[j][j] = 1 / kGam[j][j];
+    for (int i = j + 1; i < kStages; ++i) {
+      double s = 0;
+      for (int l = j; l < i; ++l) s += kGam[i][l] * Gi[l][j];
+      Gi[i][j] = -s / kGam[i][i];
+    }
+  }
+  for (int i = 0; i < kStages; ++i) {
+    alpha_[i] = 0;
+    for (int j = 0; j < kStages; ++j) {
+      alpha_[i] += kAlpha[i][j];
+      double s = 0;
+      for (int l = 0; l < kStages; ++l) s += kAlpha[i][l] * Gi[l][j];
+      a_[i][j] = s;
+      c_[i][j] = (i == j ? 1 / kGamma : 0) - Gi[i][j];
+      m_[j] += kB[i] * Gi[i][j];
+      mhat_[j] += kBhat[i] * Gi[i][j];
+    }
+  }
+}
+
+bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
+  const std::size_t N = y.size();
+  const double t1 = t + h, hg = h * gamma_;
+  sys_.set_window(t, t1);
+  if (!have_f0_) {
+    sys_.derivative(y, f0_, t);
+    sys_.prepare_stage_solve(t);
+    have_f0_ = true;
+  }
+  // Stages: one evaluation and one O(n) solve each (stage 1 reuses f0).
+  for (int i = 0; i < kStages; ++i) {
+    const StateVector* f = &f0_;
+    if (i > 0) {
+      yi_ = y;
+      for (int j = 0; j < i; ++j)
+        if (a_[i][j] != 0)
+          for (std::size_t q = 0; q < N; ++q) yi_[q] += a_[i][j] * u_[j][q];
+      sys_.derivative(yi_, fi_, t + alpha_[i] * h);
+      f = &fi_;
+    }
+    rhs_.resize(N);
+    for (std::size_t q = 0; q < N; ++q) rhs_[q] = hg * (*f)[q];
+    for (int j = 0; j < i; ++j)
+      for (std::size_t q = 0; q < N; ++q) rhs_[q] += gamma_ * c_[i][j] * u_[j][q];
+    sys_.stage_solve(hg, rhs_, u_[i]);
+  }
+  y1_ = y;
+  rhs_.assign(N, 0.0);
+  for (int i = 0; i < kStages; ++i)
+    for (std::size_t q = 0; q < N; ++q) y1_[q] += m_[i] * u_[i][q], rhs_[q] += (m_[i] - mhat_[i]) * u_[i][q];
+  // Filtered error estimate (Shampine): (I - hg J)^-1 (y1 - yhat). The
+  // embedded solution is not L-stable (|R(inf)| = 0.48): unfiltered, the
+  // damped stiff modes (element rocking) would dominate the estimate.
+  sys_.stage_solve(hg, rhs_, scratch_);
+  yhat_ = y1_;
+  for (std::size_t q = 0; q < N; ++q) yhat_[q] -= scratch_[q];
+  sys_.project(y1_, t1);
+  sys_.project(yhat_, t1);
+  // State error: |y1 - yhat| against tol (1 + |y|), max norm.
+  double err = 0;
+  for (std::size_t q = 0; q < N; ++q) {
+    const double sc = tol_ * (1 + std::max(std::abs(y[q]), std::abs(y1_[q])));
+    err = std::max(err, std::abs(y1_[q] - yhat_[q]) / sc);
+  }
+  if (!std::isfinite(err)) err = std::numeric_limits<double>::infinity();
+  // Force error: tow and link forces of both solutions, against tol (scale + |F|).
+  double ferr = 0;
+  if (err <= 1) {
+    const Accelerations* acc = sys_.last_accelerations();
+    sys_.derivative(yhat_, scratch_, t1);
+    Vec3 tow_hat = Vec3::Zero();
+    std::vector<Vec3> link_hat;
+    if (acc) tow_hat = acc->tow_force, link_hat = acc->link_force;
+    sys_.derivative(y1_, fi_, t1);  // last: the next step's start
+    if (acc) {
+      auto rel = [&](const Vec3& a, const Vec3& b) { return (a - b).norm() / (force_scale_ + a.norm()); };
+      ferr = rel(acc->tow_force, tow_hat);
+      for (std::size_t b = 0; b < link_hat.size(); ++b) ferr = std::max(ferr, rel(acc->link_force[b], link_hat[b]));
+    }
+    if (!std::isfinite(ferr)) ferr = std::numeric_limits<double>::infinity();
+    err = std::max(err, ferr / tol_);
+  }
+  // Step size: order 2 estimate -> exponent 1/3, safety 0.9, factor in [0.2, 5].
+  double fac = err == 0 ? 5.0 : std::clamp(0.9 * std::pow(err, -1.0 / 3.0), 0.2, 5.0);
+  if (!(err <= 1)) {
+    h *= std::min(fac, 0.9);
+    last_rejected_ = true;
+    return false;
+  }
+  if (last_rejected_) fac = std::min(fac, 1.0);
+  last_rejected_ = false;
+  y.swap(y1_);
+  t = t1;
+  f0_.swap(fi_);
+  sys_.prepare_stage_solve(t1);
+  max_error = std::max(max_error, err * tol_);
+  max_force_error = std::max(max_force_error, ferr);
+  h *= fac;
+  return true;
+}
+
+}  // namespace towsim
