@@ -147,8 +147,8 @@ void local_jacobian(const Model& model, const PhysicalState& s, const Workspace&
   for (std::size_t k = 0; k < els.size(); ++k) {
     const int bi = ws.body_at[k + 1];
     const Vec3& fb = bi >= 0 ? ws.acc.link_force[idx(bi)] : ws.acc.joint_force[k + 1];
-    element_local_jacobian(model, current_element(model, ws, k), s.e[k], ws.vG[k], ws.G[k], t, ws.F[k], fb,
-                           jac.element_damping[k], jac.element_stiffness[k]);
+    element_local_jacobian(model, current_element(model, ws, k), s.e[k], ws.vG[k], ws.G[k], t, ws.F[k], fb, jac.element_damping[k],
+                           jac.element_stiffness[k]);
   }
   for (auto& C : jac.joint_damping) C.setZero();
   for (const Attachment& a : model.cable.attachments) {
@@ -205,8 +205,8 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
       body_factor(model.bodies[b], ws.body[b], Me, Kk, b, iw);
       Kk = &iw.bKQ[b];
     }
-    const Element& el = current_element(model, ws, k);  // a winch's top element at its current length
-    const double L = ws.L[k];
+    const Element& el = current_element(model, ws, k);
+    const double L = el.length;
     const Mat3 Mt = ws.Mt[k] + hg * jac.element_damping[k];
     const auto& T = iw.T[k] = tangent_basis(s.e[k]);
     const Eigen::Matrix<double, 3, 2> KT = *Kk * T;
@@ -235,7 +235,7 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
   iw.dvP[0] = dv;
   for (std::size_t k = 0; k < n; ++k) {
     const Vec3& e = s.e[k];
-    const double L = ws.L[k];
+    const double L = current_element(model, ws, k).length;
     const Vec3 dw = r.dw[k] - r.dw[k].dot(e) * e;
     const Vec3 rot = r.rot[k] - r.rot[k].dot(e) * e;
     const Vec3 de = dw.cross(e);
@@ -269,7 +269,7 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
       body_bias(model.bodies[b], ws.body[b], iw.Fb[b], iw.Mb[b], bk, b, iw);
       bk = &iw.bbQ[b];
     }
-    const double L = ws.L[k];
+    const double L = current_element(model, ws, k).length;
     const Vec3 r0 = 0.5 * L * iw.F[k] - L * *bk - s.e[k].cross(iw.Mom[k]);
     iw.Tr0[k] = iw.T[k].transpose() * r0;
     iw.b[k] = iw.H[k] * iw.Tr0[k] + *bk - iw.F[k] - iw.Fa[k];
@@ -281,7 +281,7 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
   for (std::size_t k = 0; k < n; ++k) {
     const Vec3 beta = iw.T[k] * (iw.Phi[k] * (iw.Tr0[k] - iw.GT[k].transpose() * a));
     iw.alpha[k] = s.e[k].cross(beta);
-    a += ws.L[k] * beta;
+    a += current_element(model, ws, k).length * beta;
     const int bi = ws.body_at[k + 1];
     if (bi < 0) continue;
     const std::size_t b = idx(bi);

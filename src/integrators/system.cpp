@@ -206,7 +206,8 @@ class DefaultSystem final : public System {
       rhs_.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * js_.bodies[b].q.conjugate()).vec();
     }
     implicit_stage_solve(model_, js_, jws_, hg, rhs_, iw_);
-    k.resize(size_);
+    // Rows without local terms keep k = r (W = I there: still a W-method).
+    k = r;
     // Position rows: k_x = r_x + hg B k_v (B: velocities -> position rates at the step's start).
     const Vec3 kv0 = CMap3(&r[3]) + iw_.a0;
     set3(k, 3, kv0);
@@ -224,9 +225,9 @@ class DefaultSystem final : public System {
       k[o] = r[o] + 0.5 * hg * dq.w(), k[o + 1] = r[o + 1] + 0.5 * hg * dq.x();
       k[o + 2] = r[o + 2] + 0.5 * hg * dq.y(), k[o + 3] = r[o + 3] + 0.5 * hg * dq.z();
     }
-    // The winch's (l_1, l_1') rows: explicit (a zero Jacobian block, which a
-    // W-method allows); length control sets them from the schedule anyway.
-    if (winch_) k[winch_offset()] = r[winch_offset()], k[winch_offset() + 1] = r[winch_offset() + 1];
+    // The winch's l_1, l_1' rows are not stiff: identity in the W matrix.
+    if (winch_)
+      for (std::size_t i = winch_offset(); i < size_; ++i) k[i] = r[i];
   }
 
   const Accelerations* last_accelerations() const override { return &ws_.acc; }

@@ -46,13 +46,15 @@ std::string check_rk4_step(const Model& model, const Workspace& ws, double t, Ru
   if (stats.rk4_step_limit < 0 || lim < stats.rk4_step_limit) stats.rk4_step_limit = lim;
   const double h = model.sim.time_step;
   if (h <= 0.9 * lim) return {};
-  std::ostringstream os;
-  os << "rk4 time_step " << h << " s is above 0.9 times the estimated stability limit " << lim << " s at t = " << t
-     << " s (element " << k << ", tension " << T << " N): forces may be wrong; use simulation.time_step <= "
-     << 0.9 * lim << " or simulation.integrator: rosenbrock";
   // The estimate is within 10 % of the measured limit (tests): 1.5 times
   // it is clearly unstable.
-  if (h > 1.5 * lim) return "refused: " + os.str();
+  const bool refuse = h > 1.5 * lim;
+  std::ostringstream os;
+  os << (refuse ? "refused: " : "") << "rk4 time_step " << h << " s is above " << (refuse ? "1.5" : "0.9")
+     << " times the estimated stability limit " << lim << " s at t = " << t << " s (element " << k << ", tension "
+     << T << " N): " << (refuse ? "the run would diverge or be wrong" : "forces may be wrong")
+     << "; use simulation.time_step <= " << 0.9 * lim << " or simulation.integrator: rosenbrock";
+  if (refuse) return os.str();
   if (stats.warnings.empty() || stats.warnings.back().rfind("rk4 time_step", 0) != 0) stats.warnings.push_back(os.str());
   return {};
 }
@@ -73,38 +75,6 @@ Sample sample_of(const Model& model, System& sys, const StateVector& y, double t
 }
 
 }  // namespace
-
-double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* element, double* tension) {
-  double best = std::numeric_limits<double>::infinity();
-  const auto& els = model.cable.elements;
-  for (std::size_t k = 0; k < els.size(); ++k) {
-    const Element& el = current_element(model, ws, k);  // a winch's top element at its current length
-    const double L = ws.L[k];                            // [m]
-    const int b = ws.body_at[k + 1];
-    const Vec3& fb = b >= 0 ? ws.acc.link_force[static_cast<std::size_t>(b)] : ws.acc.joint_force[k + 1];
-    const double T = std::max(ws.acc.joint_force[k].norm(), fb.norm());
-    const double mn = el.mass + el.added_mass;
-    // Rocking: omega^2 = 12 T / ((m + m_a) L). Drag damping at rate sigma
-    // (normal: C / (m + m_a), along e: C / m) shifts the fast modes to
-    // -sigma/2 +- i omega; RK4 is stable to |h lambda| ~ 2 sqrt(2) there.
-    const Vec3 e = (ws.G[k] - ws.P[k]) * (2 / L);  // G = P_{k-1} + (L/2) e
-    Mat3 C;
-    double K = 0;
-    element_local_jacobian(model, el, e, ws.vG[k], ws.G[k], t, ws.F[k], fb, C, K);
-    const Mat3 P = Mat3::Identity() - e * e.transpose();
-    const double sn = Eigen::SelfAdjointEigenSolver<Mat3>(P * C * P).eigenvalues().maxCoeff() / mn;
-    const double sigma = std::max(sn, e.dot(C * e) / el.mass);
-    const double w2 = 12 * T / (mn * L) + 0.25 * sigma * sigma;
-    if (!(w2 > 0)) continue;
-    const double h = 2 * std::sqrt(2.0) / std::sqrt(w2);
-    if (h < best) {
-      best = h;
-      if (element) *element = static_cast<int>(k) + 1;
-      if (tension) *tension = T;
-    }
-  }
-  return best;
-}
 
 Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, double t) {
   Sample out;
@@ -145,6 +115,37 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
   out.node_id.resize(out.node_pos.size());
   for (std::size_t k = 0; k < out.node_id.size(); ++k) out.node_id[k] = static_cast<long>(k);
   return out;
+}
+
+double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* element, double* tension) {
+  double best = std::numeric_limits<double>::infinity();
+  const auto& els = model.cable.elements;
+  for (std::size_t k = 0; k < els.size(); ++k) {
+    const Element& el = current_element(model, ws, k);
+    const int b = ws.body_at[k + 1];
+    const Vec3& fb = b >= 0 ? ws.acc.link_force[static_cast<std::size_t>(b)] : ws.acc.joint_force[k + 1];
+    const double T = std::max(ws.acc.joint_force[k].norm(), fb.norm());
+    const double mn = el.mass + el.added_mass;
+    // Rocking: omega^2 = 12 T / ((m + m_a) L). Drag damping at rate sigma
+    // (normal: C / (m + m_a), along e: C / m) shifts the fast modes to
+    // -sigma/2 +- i omega; RK4 is stable to |h lambda| ~ 2 sqrt(2) there.
+    const Vec3 e = (ws.G[k] - ws.P[k]) * (2 / el.length);  // G = P_{k-1} + (L/2) e
+    Mat3 C;
+    double K = 0;
+    element_local_jacobian(model, el, e, ws.vG[k], ws.G[k], t, ws.F[k], fb, C, K);
+    const Mat3 P = Mat3::Identity() - e * e.transpose();
+    const double sn = Eigen::SelfAdjointEigenSolver<Mat3>(P * C * P).eigenvalues().maxCoeff() / mn;
+    const double sigma = std::max(sn, e.dot(C * e) / el.mass);
+    const double w2 = 12 * T / (mn * el.length) + 0.25 * sigma * sigma;
+    if (!(w2 > 0)) continue;
+    const double h = 2 * std::sqrt(2.0) / std::sqrt(w2);
+    if (h < best) {
+      best = h;
+      if (element) *element = static_cast<int>(k) + 1;
+      if (tension) *tension = T;
+    }
+  }
+  return best;
 }
 
 namespace {
@@ -220,6 +221,51 @@ std::string advance_adaptive(const Model& model, System& sys, Controlled& ctrl, 
   return {};
 }
 
+/// Advance y to `target` by Rosenbrock-W steps (error control on state and forces).
+std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros, StateVector& y, double& t,
+                               double target, double& h, RunStats& stats, bool& event) {
+  const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
+  while (t < target - 1e-12 * std::max(1.0, target)) {
+    const double h_try = std::min({h, model.sim.max_step, target - t});
+    double dt = h_try;
+    if (!ros.try_step(y, t, dt)) {
+      ++stats.rejected_steps;
+      h = dt;
+      if (h < h_min) {
+        std::ostringstream os;
+        os << "step size collapsed below " << h_min << " s (tolerance " << model.sim.tolerance
+           << " cannot be met)";
+        return os.str();
+      }
+      continue;
+    }
+    // Keep the controller's proposal unless this step was shortened to land.
+    if (h_try >= h || dt > h) h = dt;
+    if (std::abs(target - t) < 1e-12 * std::max(1.0, target)) t = target;
+    ++stats.steps;
+    if (auto err = check_state(model, sys, y); !err.empty()) return err;
+    if ((event = winch_due(model, sys, y))) return {};
+  }
+  return {};
+}
+
+/// The largest error estimates so far, kept across winch events (which
+/// start a new stepper).
+void keep_ros_errors(const RosenbrockW& ros, RunStats& stats) {
+  stats.error_estimate = std::max(stats.error_estimate, ros.max_error);
+  stats.force_error_estimate = std::max(stats.force_error_estimate, ros.max_force_error);
+}
+
+/// Absolute force scale of the force error norm: the chain's apparent weight [N].
+double force_scale(const Model& model) {
+  double w = 0;
+  for (const Element& el : model.cable.elements) w += std::abs(el.weight);
+  for (const Body& b : model.bodies) w += std::abs(b.mass - model.fluid.rho * b.displaced_volume) * model.fluid.g;
+  for (const Attachment& a : model.cable.attachments)
+    w += std::abs(a.mass - model.fluid.rho * a.volume) * model.fluid.g;
+  return std::max(w, 1.0);
+}
+
 /// The run's current chain: the model given, or one derived from it by
 /// winch events (one element more or less in the top section), with its
 /// system and the material identities of its nodes.
@@ -264,44 +310,6 @@ void winch_event_at(Chain& c, StateVector& y, double t, RunStats& stats) {
   y = c.sys->initial(s2, t);
 }
 
-/// Advance y to `target` by Rosenbrock-W steps (error control on state and forces).
-std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros, StateVector& y, double& t,
-                               double target, double& h, RunStats& stats, bool& event) {
-  const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
-  while (t < target - 1e-12 * std::max(1.0, target)) {
-    const double h_try = std::min({h, model.sim.max_step, target - t});
-    double dt = h_try;
-    if (!ros.try_step(y, t, dt)) {
-      ++stats.rejected_steps;
-      h = dt;
-      if (h < h_min) {
-        std::ostringstream os;
-        os << "step size collapsed below " << h_min << " s (tolerance " << model.sim.tolerance
-           << " cannot be met)";
-        return os.str();
-      }
-      continue;
-    }
-    // Keep the controller's proposal unless this step was shortened to land.
-    if (h_try >= h || dt > h) h = dt;
-    if (std::abs(target - t) < 1e-12 * std::max(1.0, target)) t = target;
-    ++stats.steps;
-    if (auto err = check_state(model, sys, y); !err.empty()) return err;
-    if ((event = winch_due(model, sys, y))) return {};
-  }
-  return {};
-}
-
-/// Absolute force scale of the force error norm: the chain's apparent weight [N].
-double force_scale(const Model& model) {
-  double w = 0;
-  for (const Element& el : model.cable.elements) w += std::abs(el.weight);
-  for (const Body& b : model.bodies) w += std::abs(b.mass - model.fluid.rho * b.displaced_volume) * model.fluid.g;
-  for (const Attachment& a : model.cable.attachments)
-    w += std::abs(a.mass - model.fluid.rho * a.volume) * model.fluid.g;
-  return std::max(w, 1.0);
-}
-
 }  // namespace
 
 RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progress, const volatile int* stop_flag) {
@@ -315,9 +323,8 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   if (model.initial.kind != Initial::Kind::Steady) chain.sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
   chain.sys->project(y, 0.0);
   double t = 0;
-  // One sample of the current chain, its nodes with their identities; `check`
-  // gets the rk4 stability check's error text.
-  std::string check;
+  std::string check;  // a refusal from the rk4 stability check
+  // One sample of the current chain, its nodes with their identities.
   auto sample = [&]() {
     Sample out = sample_of(*chain.model, *chain.sys, y, t, stats, &check);
     if (chain.node_id.empty()) {
@@ -334,9 +341,15 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
                                        odeint::runge_kutta_dopri5<StateVector>());
   auto cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
                                           odeint::runge_kutta_cash_karp54<StateVector>());
+  // Rosenbrock-W holds its system: made again after a winch event.
   std::unique_ptr<RosenbrockW> ros;
-  if (model.sim.integrator == Integrator::Rosenbrock)
-    ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(model));
+  auto make_ros = [&]() {
+    if (ros) keep_ros_errors(*ros, stats);
+    if (model.sim.integrator != Integrator::Rosenbrock) return;
+    if (!chain.sys->has_stage_solve()) check = "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)";
+    ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model));
+  };
+  make_ros();
   double h = model.sim.time_step;
   const double T = model.sim.duration, dT = model.sim.output_interval;
   const long n_out = static_cast<long>(std::ceil(T / dT - 1e-9));
@@ -382,11 +395,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
                                       odeint::runge_kutta_dopri5<StateVector>());
       cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
                                          odeint::runge_kutta_cash_karp54<StateVector>());
-      if (ros) {
-        stats.error_estimate = std::max(stats.error_estimate, ros->max_error);
-        stats.force_error_estimate = std::max(stats.force_error_estimate, ros->max_force_error);
-        ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model));
-      }
+      make_ros();
     }
     if (!err.empty()) {
       std::ostringstream os;
@@ -402,10 +411,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     stats.status = "failed";
     stats.message = check;
   }
-  if (ros) {
-    stats.error_estimate = std::max(stats.error_estimate, ros->max_error);
-    stats.force_error_estimate = std::max(stats.force_error_estimate, ros->max_force_error);
-  }
+  if (ros) keep_ros_errors(*ros, stats);
   stats.end_time = t;
   stats.rhs_evaluations += chain.sys->rhs_evaluations;
   stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -50,7 +50,8 @@ inline std::vector<RunCase> all_run_cases() {
   return {{Formulation::Default, Integrator::RK4},
           {Formulation::Default, Integrator::DOPRI5},
           {Formulation::Paper, Integrator::RK4},
-          {Formulation::Paper, Integrator::DOPRI5}};
+          {Formulation::Paper, Integrator::DOPRI5},
+          {Formulation::Default, Integrator::Rosenbrock}};
 }
 
 /// Run `m` to completion and return its samples; the run must end "ok".

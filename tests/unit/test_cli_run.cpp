@@ -68,6 +68,35 @@ TEST_F(Cli, RunWritesTheThreeFiles) {
   EXPECT_EQ(lines[0].rfind("time,tow_x,tow_y,tow_z,tow_force_x,tow_force_y,tow_force_z,end_x,end_y,end_z", 0), 0u);
 }
 
+TEST_F(Cli, Rk4StepNearItsStabilityLimitIsWarnedAbout) {
+  // cable-tow: estimated rk4 limit ~0.21-0.22 s (docs/theory.md 6.4); 0.2 s
+  // is above 0.9 times it (but stable: the warning is conservative).
+  const fs::path out = dir_ / "run";
+  const CliResult r = run_towsim("run --example cable-tow --set simulation.duration=20 --set simulation.time_step=0.2 "
+                                 "--set simulation.write_nodes=false --out " + quoted(out));
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("towsim: warning: rk4 time_step 0.2 s is above 0.9 times the estimated stability limit"),
+            std::string::npos) << r.out;
+  const std::string summary = towsim::testing::slurp(out / "summary.json");
+  EXPECT_NE(summary.find("\"integrator\": \"rk4\""), std::string::npos);
+  EXPECT_NE(summary.find("\"warnings\": [\n    \"rk4 time_step 0.2 s is above"), std::string::npos) << summary;
+  EXPECT_EQ(summary.find("\"rk4_stability_limit\": null"), std::string::npos);
+  EXPECT_NE(summary.find("\"integration_error_estimate\": null"), std::string::npos);
+}
+
+TEST_F(Cli, RosenbrockRunReportsItsErrorEstimate) {
+  const fs::path out = dir_ / "run";
+  const CliResult r = run_towsim("run --example cable-tow --set simulation.duration=5 --set simulation.integrator=rosenbrock "
+                                 "--set simulation.tolerance=1e-5 --set simulation.write_nodes=false --quiet --out " +
+                                 quoted(out));
+  EXPECT_EQ(r.status, 0) << r.out;
+  const std::string summary = towsim::testing::slurp(out / "summary.json");
+  EXPECT_NE(summary.find("\"integrator\": \"rosenbrock\""), std::string::npos) << summary;
+  EXPECT_EQ(summary.find("\"integration_error_estimate\": null"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"rk4_stability_limit\": null"), std::string::npos);
+  EXPECT_NE(summary.find("\"warnings\": []"), std::string::npos);
+}
+
 TEST_F(Cli, UsageErrorsExit2) {
   EXPECT_EQ(run_towsim("run --example cable-tow").status, 2);  // no --out
   EXPECT_EQ(run_towsim("").status, 2);                         // no subcommand
