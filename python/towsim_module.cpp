@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <limits>
 #include <string>
@@ -157,8 +158,10 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
 }
 
 /// towsim.statics: the steady-tow equilibrium at the tow law's final speed.
+/// With target_depth > 0 (NaN: none), first the deployed length for that depth
+/// (`towsim statics --target-depth`).
 py::dict statics(const std::string& kind, const std::string& source, const std::string& label,
-                 const std::vector<std::string>& sets) {
+                 const std::vector<std::string>& sets, double target_depth) {
   py::dict out;
   const LoadedScenario sc = load(kind, source, label, sets);
   if (!sc.ok()) {
@@ -172,11 +175,20 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   }
   StaticsResult r;
   Sample s;
+  TargetDepthResult target;
+  const bool with_target = !std::isnan(target_depth);
   {
     py::gil_scoped_release release;
-    r = solve_statics(model, final_tow_velocity(model.tow));
+    if (with_target) {
+      target = length_for_depth(model, final_tow_velocity(model.tow), target_depth);
+      r = target.statics;
+      if (!target.found) r.converged = false, r.message = target.message;
+    } else {
+      r = solve_statics(model, final_tow_velocity(model.tow));
+    }
     s = r.sample;
   }
+  if (with_target) out["deployed_length"] = target.length;
   std::vector<double> row;
   timeseries_values(model, s, row);
   std::vector<double> nodes;
@@ -221,7 +233,8 @@ std::vector<Figure> figures_of(const std::string& summary) {
 PYBIND11_MODULE(_towsim, m) {
   m.doc() = "towsim C++ core (use the `towsim` package)";
   m.def("run", &run, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"));
-  m.def("statics", &statics, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"));
+  m.def("statics", &statics, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"),
+        py::arg("target_depth") = std::numeric_limits<double>::quiet_NaN());
   m.def("run_case", &run_case_py, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"),
         py::arg("out_dir") = "");
   m.def("summary_figures", &figures_of, py::arg("summary_json"));

@@ -118,6 +118,7 @@ class StaticsResult(Mapping):
         self.residual = float(raw["residual"])
         self.message = raw["message"]
         self.tow_velocity = np.array(raw["tow_velocity"])
+        self.deployed_length = float(raw["deployed_length"]) if "deployed_length" in raw else None
 
     def __getitem__(self, column):
         return self.values[column]
@@ -208,12 +209,18 @@ def run(scenario, overrides=None):
     return result
 
 
-def statics(scenario, overrides=None):
+def statics(scenario, overrides=None, target_depth=None):
     """The steady-tow equilibrium at the tow law's final speed (`towsim statics`).
 
+    With target_depth [m]: first the deployed cable length that puts the body
+    (or the cable end) at that depth (`--target-depth`), in .deployed_length;
+    the equilibrium is then the one at that length.
     Returns a StaticsResult; raises ScenarioError for invalid input and
     SimulationError (with .result) when the solver does not converge."""
-    raw = _core.statics(*_source(scenario), _sets(overrides))
+    if target_depth is not None and not target_depth > 0:
+        raise ScenarioError(f"--target-depth must be > 0 (got {target_depth})")
+    args = (*_source(scenario), _sets(overrides))
+    raw = _core.statics(*args) if target_depth is None else _core.statics(*args, float(target_depth))
     if "errors" in raw:
         raise ScenarioError(raw["errors"])
     result = StaticsResult(raw)

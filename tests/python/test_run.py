@@ -198,3 +198,16 @@ def test_examples_are_available():
     assert r["time"][-1] == 1
     with pytest.raises(towsim.ScenarioError):
         towsim.example("nope")
+
+
+def test_statics_target_depth_equals_the_cli():
+    # towsim.statics(..., target_depth=D) is `towsim statics --target-depth D`.
+    path = SCENARIOS / "fish-depth-change.yaml"
+    status, out, err = towsim_cli("statics", path, "--target-depth", "300")
+    assert status == 0, err
+    s = towsim.statics(path, target_depth=300)
+    assert s.converged
+    assert f"deployed length for a depth of 300 m: {s.deployed_length:.7g} m" in out
+    assert abs(s["body_depth"] - 300) < 1e-6
+    assert abs(s["deployed_length"] - s.deployed_length) < 1e-6
+    assert towsim.statics(path).deployed_length is None

@@ -131,7 +131,7 @@ TEST(Winch, PendulumSplitThresholdInvariance) {
 /// body - body drag - cable tangential drag (skin law), signs with c.
 /// length_table: the same from a length table that starts paying out at
 /// 10 s and stops at 40 s (jumps of the pay-out speed: impulses).
-void lowering(double c, bool length_table = false) {
+void lowering(double c, bool length_table = false, Integrator integ = Integrator::RK4) {
   const double rho = 1025, g = 9.81, Le = 10, mpl = 2.0, D = 0.02, ct = 0.01;
   testing::CableSpec cs;
   cs.n = 5;
@@ -149,6 +149,8 @@ void lowering(double c, bool length_table = false) {
   m.winch.schedule = schedule_from_rate({0.0}, {c}, 5 * Le, Le, 1e9);
   if (length_table) m.winch.schedule = schedule_from_length({0, 10, 40}, {5 * Le, 5 * Le, 5 * Le + 30 * c});
   m.sim.duration = length_table ? 50 : 40;
+  m.sim.integrator = integ;
+  m.sim.tolerance = 1e-6;
   m.sim.time_step = 0.01;
   m.sim.output_interval = 1;
   MemorySink sink;
@@ -180,6 +182,12 @@ void lowering(double c, bool length_table = false) {
 
 TEST(Winch, SteadyVerticalLowering) { lowering(0.8); }
 TEST(Winch, LengthTableSpeedJumps) { lowering(0.8, true); }
+// The same with the Rosenbrock-W and the adaptive explicit integrators (the
+// winch's rows explicit in the stage solves; steppers rebuilt at events).
+TEST(Winch, SteadyVerticalLoweringOtherIntegrators) {
+  lowering(0.8, true, Integrator::Rosenbrock);
+  lowering(-0.8, false, Integrator::DOPRI5);
+}
 TEST(Winch, SteadyVerticalRaising) { lowering(-0.8); }
 
 /// A chain with a winch and a body, elements in random directions.
