@@ -100,6 +100,7 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   check_initial(spec.initial, spec.tow, diags);
   check_simulation(spec.simulation, diags);
   check_waves(spec, diags);
+  check_seabed(spec, diags);
   if (!diags.ok()) return std::nullopt;
   Model m;
   m.name = spec.name;
@@ -108,7 +109,10 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   m.tow = build_tow(spec.tow);
   m.initial = build_initial(spec.initial);
   m.sim = build_simulation(spec.simulation);
+  build_seabed(spec.environment.seabed, m);
   attach_waves(spec, m);
+  check_seabed_start(spec, m, diags);
+  if (!diags.ok()) return std::nullopt;
   return m;
 }
 
