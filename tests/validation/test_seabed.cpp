@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "../support/models.hpp"
@@ -102,6 +103,9 @@ TEST(SeabedCable, RestingJointsSinkByWeightOverStiffness) {
   const Sample& last = samples.back();
   // Slowest vertical mode decays at >= 40 /s: after 3 s only round-off is
   // left; 1e-6 of delta (1 nm) is far above it.
+  double worst = 0;
+  for (const Vec3& p : last.node_pos) worst = std::max(worst, std::abs(-depth - p.z() - delta) / delta);
+  std::printf("resting joints: max |penetration - w/k| / (w/k) = %.2e\n", worst);
   for (std::size_t j = 0; j < last.node_pos.size(); ++j)
     EXPECT_NEAR(-depth - last.node_pos[j].z(), delta, 1e-6 * delta) << "node " << j;
   EXPECT_NEAR(last.contact_length, cs.length, 1e-12);
@@ -141,7 +145,14 @@ TEST_P(SeabedLying, TopTensionIsWeightTimesDepth) {
   const StaticsResult r = solve_statics(m, Vec3::Zero());
   ASSERT_TRUE(r.converged) << r.message;
   const double T = r.tow_force.norm();
+  std::printf("lying n = %d: (T - w h) / (w L / 2) = %.4f, contact %.3f m, %d iterations\n", cs.n,
+              (T - w * h) / (0.5 * w * L), r.sample.contact_length, r.iterations);
   EXPECT_LE(std::abs(T - w * h), w * (0.5 * L + 2 * delta)) << "T = " << T << ", w h = " << w * h;
+  // Sharper, the discrete equilibrium itself: m = floor(h / L) elements hang
+  // vertically, the crossing one adds half its weight whatever its tilt, so
+  // T = w (m L + L / 2) (1e-9 relative: the statics' residual floor).
+  const double m_vertical = std::floor(h / L);
+  EXPECT_NEAR(T, w * (m_vertical * L + 0.5 * L), 1e-9 * T);
   EXPECT_NEAR(r.tow_force.z(), T, 1e-9 * T);  // straight up: the suspended part hangs vertically
   // On the bottom: the length beyond the depth, to within the crossing element.
   EXPECT_NEAR(r.sample.contact_length, cs.length - h, L);
@@ -238,6 +249,8 @@ TEST(SeabedSled, TowingForceIsFrictionPlusDrag) {
   const double N = W - FL.z();                                        // the bottom's normal load [N]
   const double smooth = U / std::hypot(U, kSeabedSlipSpeed);          // the law's smoothing at slip U
   const double drag = 0.5 * kRho * std::numbers::pi * 2 * radius * length * ct * U * U;  // axial skin friction [N]
+  std::printf("sled: F_L,x = %.6f N, mu N s + drag = %.6f N (drag %.4f N), relative difference %.2e\n", FL.x(),
+              mu * N * smooth + drag, drag, (FL.x() - mu * N * smooth - drag) / (mu * N));
   EXPECT_NEAR(s.bodies[0].vel.x(), U, 1e-3 * U);                      // steady
   // Steady to 0.1 % of the friction (the body's residual acceleration times
   // its mass is below that after 55 s at speed).
