@@ -287,7 +287,13 @@ StaticsResult steady_state(const Model& model) {
     throw std::runtime_error("initial: steady needs tow.mode: motion (the steady velocity comes from the tow law)");
   const TowKinematics k = tow_kinematics(model.tow, 0.0);
   StaticsResult res = solve_statics(model, tow_law_kinematics(model.tow, 0.0).vel);  // the mean tow velocity
-  if (!res.converged) throw std::runtime_error(res.message);
+  if (!res.converged) {
+    std::string msg = res.message;
+    if (model.seabed && res.tow_velocity.norm() > 0)
+      msg += " (a tow moving with cable on the seabed is not solved in this version: start at rest, or from a "
+             "direction above the bottom)";
+    throw std::runtime_error(msg);
+  }
   res.state.r0 = k.pos;
   res.state.v0 = k.vel;
   return res;
