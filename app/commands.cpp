@@ -195,6 +195,9 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     if (!opts.quiet && comp.value < 0 && !all_elastic)
       err << "towsim: warning: the cable was in compression (axial force " << fmt_num(comp.value) << " N at t = "
           << fmt_num(comp.time) << " s; see axial_force in nodes.csv): a real cable would go slack there\n";
+    // Strength: utilisation above 1/3 and above 1 (also in summary.json "warnings").
+    if (!opts.quiet)
+      for (const std::string& w : strength_warnings(writer.extremes())) err << "towsim: warning: " << w << "\n";
     return report_run(stats, model, opts, writer.samples(), writer.final_row(), writer.extremes(), out, err);
   } catch (const std::exception& e) {
     err << "towsim: " << e.what() << "\n";

@@ -40,6 +40,21 @@ void describe_fluid(const Fluid& f, std::ostream& out) {
     line(out, i == 0 ? "current" : "", vec(f.current_velocity[i]) + " m/s at depth " + fmt_num(f.current_depth[i]) + " m");
 }
 
+/// The seabed: depth (or its table) and contact law.
+void describe_seabed(const Model& m, std::ostream& out) {
+  if (!m.seabed) return;
+  const Seabed& sb = *m.seabed;
+  out << "seabed\n";
+  if (sb.depth.size() == 1)
+    line(out, "depth", fmt_num(sb.depth[0]) + " m (flat)");
+  else
+    for (std::size_t i = 0; i < sb.depth.size(); ++i)
+      line(out, i == 0 ? "depth" : "", fmt_num(sb.depth[i]) + " m at x = " + fmt_num(sb.x[i]) + " m");
+  line(out, "stiffness", fmt_num(sb.stiffness) + " N/m per m in contact");
+  line(out, "damping", fmt_num(sb.damping) + " N s/m per m in contact");
+  line(out, "friction", fmt_num(sb.friction) + " (smoothed below " + fmt_num(sb.slip_speed) + " m/s)");
+}
+
 /// The properties of one run of equal elements (e: its first element).
 void describe_elements(const Cable& c, const Element& e, int count, std::ostream& out) {
   line(out, "element length", fmt_num(e.length) + " m");
@@ -186,6 +201,7 @@ void describe_run(const Model& m, std::ostream& out) {
 void describe_model(const Model& m, std::ostream& out) {
   out << "scenario " << m.name << ": valid\n";
   describe_fluid(m.fluid, out);
+  describe_seabed(m, out);
   describe_cable(m.cable, out);
   for (const Body& b : m.bodies) describe_body(b, m.cable, m.fluid, out);
   if (!end_body(m)) out << "body: none (free cable end)\n";

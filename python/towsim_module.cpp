@@ -54,13 +54,13 @@ class ArraySink : public RunRecord {
     series.insert(series.end(), last_row().begin(), last_row().end());
     if (!keep_nodes_) return;
     std::vector<double> row;
-    for (std::size_t k = 0; k < s.node_pos.size(); ++k) node_values(s, k, row);
+    for (std::size_t k = 0; k < s.node_pos.size(); ++k) node_values(model(), s, k, row);
     joints = std::max(joints, s.node_pos.size());
     nodes.push_back(std::move(row));
   }
   /// The nodes as one time x joint x component block (NaN where a sample has fewer joints).
   std::vector<double> node_block() const {
-    const std::size_t c = node_columns().size();
+    const std::size_t c = node_columns(model()).size();
     std::vector<double> out(nodes.size() * joints * c, kNaN);
     for (std::size_t t = 0; t < nodes.size(); ++t) std::copy(nodes[t].begin(), nodes[t].end(), out.begin() + t * joints * c);
     return out;
@@ -143,10 +143,10 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
   const auto rows = static_cast<py::ssize_t>(sink.samples());
   out["columns"] = columns;
   out["series"] = to_array(std::move(sink.series), {rows, static_cast<py::ssize_t>(columns.size())});
-  out["node_columns"] = node_columns();
+  out["node_columns"] = node_columns(model);
   if (model.sim.write_nodes)
     out["nodes"] = to_array(sink.node_block(), {rows, static_cast<py::ssize_t>(sink.joints),
-                                                static_cast<py::ssize_t>(node_columns().size())});
+                                                static_cast<py::ssize_t>(node_columns(model).size())});
   else
     out["nodes"] = py::none();
   out["summary"] = json_text(summary);
@@ -192,13 +192,13 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   std::vector<double> row;
   timeseries_values(model, s, row);
   std::vector<double> nodes;
-  for (std::size_t k = 0; k < s.node_pos.size(); ++k) node_values(s, k, nodes);
+  for (std::size_t k = 0; k < s.node_pos.size(); ++k) node_values(model, s, k, nodes);
   const auto columns = timeseries_columns(model);
   out["columns"] = columns;
   out["values"] = to_array(std::move(row), {static_cast<py::ssize_t>(columns.size())});
-  out["node_columns"] = node_columns();
+  out["node_columns"] = node_columns(model);
   out["nodes"] = to_array(std::move(nodes), {static_cast<py::ssize_t>(s.node_pos.size()),
-                                            static_cast<py::ssize_t>(node_columns().size())});
+                                            static_cast<py::ssize_t>(node_columns(model).size())});
   out["converged"] = r.converged;
   out["iterations"] = r.iterations;
   out["residual"] = r.residual;

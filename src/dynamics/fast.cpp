@@ -213,6 +213,7 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
     body_inertia(model.fluid, model.bodies[b], ws.body[b], t);
     body_loads(model.fluid, model.bodies[b], t, ws.body[b]);
   }
+  seabed_loads(model, ws);  // point loads at joints (ws.Fa) and on bodies, like attachments
 }
 
 void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& dv, Workspace& ws) {

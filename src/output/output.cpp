@@ -2,7 +2,9 @@
 #include "towsim/output/output.hpp"
 #include "towsim/waves/vessel.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -187,6 +189,24 @@ void Extremes::add(const Model& model, const Sample& s) {
   if (std::any_of(model.cable.sections.begin(), model.cable.sections.end(),
                   [](const Section& sec) { return sec.breaking_load > 0; }))
     max_utilisation.max(utilisation(model, s), s.t);
+  // The first crossings of 1/3 and 1, at the most utilised node.
+  if (!s.utilisation.empty() && !cable_failure.happened()) {
+    const auto top = std::max_element(s.utilisation.begin(), s.utilisation.end());
+    const double u = *top;
+    for (Crossing* c : {&utilisation_warning, &cable_failure}) {
+      const double limit = c == &cable_failure ? kUtilisationFailure : kUtilisationWarning;
+      if (c->happened() || !(u > limit)) continue;
+      c->time = s.t;
+      c->node = top - s.utilisation.begin();
+      c->arc_length = node_arc_lengths(model)[static_cast<std::size_t>(c->node)];
+      c->utilisation = u;
+    }
+  }
+  if (model.seabed) {
+    max_contact_length.max(s.contact_length, s.t);
+    max_seabed_normal.max(s.seabed_normal, s.t);
+    max_seabed_friction.max(s.seabed_friction, s.t);
+  }
   // Each body: its own extremes.
   inline_bodies.resize(model.bodies.size());
   for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b) {
@@ -223,6 +243,7 @@ std::vector<std::string> timeseries_columns(const Model& model) {
       c.push_back(b.name + s);
   }
   if (has_sea(model)) c.insert(c.end(), {"wave_elevation", "tow_wave_x", "tow_wave_y", "tow_wave_z"});
+  if (model.seabed) c.insert(c.end(), {"contact_length", "seabed_normal_force", "seabed_friction_force"});
   return c;
 }
 
@@ -270,6 +291,7 @@ void timeseries_values(const Model& model, const Sample& s, std::vector<double>&
     v.push_back(s.wave_elevation);
     add3(s.tow_wave);
   }
+  if (model.seabed) v.insert(v.end(), {s.contact_length, s.seabed_normal, s.seabed_friction});
   for (std::size_t i = 1; i < v.size(); ++i) v[i] = tidy(v[i]);
 }
 
@@ -285,6 +307,56 @@ void node_values(const Sample& s, std::size_t k, std::vector<double>& out) {
                    k < s.tension.size() ? s.tension[k] : nan, k < s.axial.size() ? s.axial[k] : nan,
                    k < s.strain.size() ? s.strain[k] : nan})
     out.push_back(tidy(x));  // as written
+}
+
+std::vector<std::string> node_columns(const Model& model) {
+  std::vector<std::string> c = node_columns();
+  if (std::any_of(model.cable.sections.begin(), model.cable.sections.end(),
+                  [](const Section& sec) { return sec.breaking_load > 0; }))
+    c.push_back("utilisation");
+  if (model.seabed) c.push_back("seabed_force");
+  return c;
+}
+
+void node_values(const Model& model, const Sample& s, std::size_t k, std::vector<double>& out) {
+  node_values(s, k, out);
+  const double nan = std::nan("");
+  if (!s.utilisation.empty()) out.push_back(tidy(k < s.utilisation.size() ? s.utilisation[k] : nan));
+  if (model.seabed) out.push_back(tidy(k < s.node_seabed.size() ? s.node_seabed[k].norm() : nan));
+}
+
+std::vector<double> node_arc_lengths(const Model& model) {
+  std::vector<double> out{0.0};
+  const auto& els = model.cable.elements;
+  double arc = 0;  // [m]
+  for (std::size_t k = 1; k <= els.size(); ++k) {
+    arc += els[k - 1].length;
+    out.push_back(arc);
+    // An in-line body's joint gives a second node (Q2) at the same arc length.
+    for (const Body& body : model.bodies)
+      if (body.inline_body && static_cast<std::size_t>(body_joint(model, body)) == k) out.push_back(arc);
+  }
+  return out;
+}
+
+std::vector<std::string> strength_warnings(const Extremes& ex) {
+  std::vector<std::string> out;
+  auto fmt_num = [](double v) {  // as in messages ("%.10g")
+    char b[40];
+    std::snprintf(b, sizeof b, "%.10g", v);
+    return std::string(b);
+  };
+  auto text = [&](const Crossing& c) {
+    return fmt_num(tidy(c.utilisation)) + " at t = " + fmt_num(tidy_time(c.time)) + " s, node " +
+           std::to_string(c.node) + ", " + fmt_num(tidy(c.arc_length)) + " m from the tow point";
+  };
+  if (ex.utilisation_warning.happened())
+    out.push_back("utilisation above 1/3 (a safety factor below 3 on the breaking load): first " +
+                  text(ex.utilisation_warning) + "; see utilisation in nodes.csv");
+  if (ex.cable_failure.happened())
+    out.push_back("utilisation above 1 (tension above the breaking load: the cable would break): first " +
+                  text(ex.cable_failure) + "; the run went on as if it held");
+  return out;
 }
 
 RunRecord::RunRecord(const Model& model) : model_(model), sea_(statistics_start(model)) {}
@@ -311,7 +383,7 @@ RunWriter::RunWriter(const std::string& dir, const Model& model, bool write_node
   if (write_nodes) {
     nodes_ = open_file(dir, "nodes.csv");
     std::string h = node_ids_ ? "time,node,node_id" : "time,node";
-    for (const auto& c : node_columns()) h += "," + c;
+    for (const auto& c : node_columns(model)) h += "," + c;
     write_all(nodes_, h + "\n");
   }
 }
@@ -343,7 +415,7 @@ void RunWriter::write(const Sample& s) {
     buf_ += ',' + std::to_string(k);
     if (node_ids_) buf_ += ',' + std::to_string(k < s.node_id.size() ? s.node_id[k] : static_cast<long>(k));
     values_.clear();
-    node_values(s, k, values_);
+    node_values(model(), s, k, values_);
     for (double v : values_) {
       buf_ += ',';
       put_number(buf_, v);
@@ -409,11 +481,28 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
     for (int i = 0; i < 3; ++i)
       e[name + names[i]] = {{"min", json_of(be.min_deg[i])}, {"max", json_of(be.max_deg[i])}};
   }
+  if (model.seabed) {
+    e["max_contact_length"] = json_of(ex.max_contact_length);
+    e["max_seabed_normal_force"] = json_of(ex.max_seabed_normal);
+    e["max_seabed_friction_force"] = json_of(ex.max_seabed_friction);
+  }
   j["extremes"] = e;
-  // With breaking loads: the largest tension / breaking load anywhere, and when.
+  // With breaking loads: the largest tension / breaking load anywhere, and when;
+  // the first crossings of 1/3 (warning) and 1 (failure), null when never.
   if (!std::isnan(ex.max_utilisation.value)) {
     j["max_utilisation"] = num(tidy(ex.max_utilisation.value));
     j["max_utilisation_time"] = num(tidy_time(ex.max_utilisation.time));
+    auto crossing = [](const Crossing& c) {
+      if (!c.happened()) return nlohmann::ordered_json(nullptr);
+      nlohmann::ordered_json o;
+      o["time"] = num(tidy_time(c.time));
+      o["node"] = c.node;
+      o["arc_length"] = num(tidy(c.arc_length));
+      o["utilisation"] = num(tidy(c.utilisation));
+      return o;
+    };
+    j["utilisation_warning"] = crossing(ex.utilisation_warning);
+    j["cable_failure"] = crossing(ex.cable_failure);
   }
   // With a winch: its events and the largest tow tension against its rating.
   if (model.winch.active()) {
@@ -427,6 +516,7 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
     j["winch"] = w;
   }
   if (lengths_in_state(model)) j["elastic"] = elastic_json(stats.slack);
+  for (const std::string& w : strength_warnings(ex)) j["warnings"].push_back(w);
   j["final"] = record.final_row();  // the last timeseries.csv row by column name
   j["scenario"] = scenario;
   return j;

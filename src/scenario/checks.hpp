@@ -45,6 +45,14 @@ void check_tow(const TowSpec& t, Diagnostics& d);
 /// offsets alone, whose velocity starts the course).
 Tow build_tow(const TowSpec& t, bool include_manoeuvres = true);
 
+/// Check `environment.seabed` (and its rules with the formulation and waves).
+void check_seabed(const ScenarioSpec& s, Diagnostics& d);
+/// Build the Seabed into m.seabed from a checked spec (nothing when absent).
+void build_seabed(const SeabedSpec& spec, Model& m);
+/// Refuse a tow point below the seabed at t = 0, and a hanging or directed
+/// start with a cable joint or a body below it (needs the whole model built).
+void check_seabed_start(const ScenarioSpec& s, const Model& m, Diagnostics& d);
+
 /// Check `waves:` and `vessel:` (src/io/compile_waves.cpp).
 void check_waves(const ScenarioSpec& s, Diagnostics& d);
 

@@ -106,6 +106,7 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   check_simulation(spec.simulation, diags);
   check_waves(spec, diags);
   if (spec.winch.present) check_winch(spec, diags);
+  check_seabed(spec, diags);
   if (!diags.ok()) return std::nullopt;
   Model m;
   m.name = spec.name;
@@ -118,7 +119,10 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   }
   m.initial = build_initial(spec.initial);
   m.sim = build_simulation(spec.simulation);
+  build_seabed(spec.environment.seabed, m);
   attach_waves(spec, m);
+  check_seabed_start(spec, m, diags);
+  if (!diags.ok()) return std::nullopt;
   return m;
 }
 

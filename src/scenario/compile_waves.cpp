@@ -143,7 +143,10 @@ void attach_waves(const ScenarioSpec& s, Model& m) {
   if (w.present) {
     const double chi = course0 + w.heading_deg.value * std::numbers::pi / 180;  // travel direction in R_g
     const Vec3 dir(std::cos(chi), std::sin(chi), 0);
-    const double depth = w.water_depth.given ? w.water_depth.value : std::numeric_limits<double>::infinity();
+    // Finite depth: water_depth, else the seabed's below the tow's start, else deep water.
+    const double depth = w.water_depth.given ? w.water_depth.value
+                         : m.seabed        ? m.seabed->depth_at(m.tow.start.x())
+                                           : std::numeric_limits<double>::infinity();
     WaveField built = w.regular ? make_regular_wave(w.height.value, w.period.value, dir, depth, m.fluid.g)
                                 : make_irregular_sea(w.hs.value, w.tp.value,
                                                      w.type.value == "pierson_moskowitz" ? 1.0 : w.gamma.value,

@@ -34,9 +34,36 @@ void parse_initial(const YNode* n, InitialSpec& init, Diagnostics& d) {
 
 }  // namespace
 
+namespace {
+
+/// environment.seabed: {depth: D | [[x, D], ...], stiffness, damping, friction}.
+void parse_seabed(MapReader& r, SeabedSpec& sb, Diagnostics& d) {
+  sb.where = r.where();
+  r.read("stiffness", sb.stiffness);
+  r.read("damping", sb.damping);
+  r.read("friction", sb.friction);
+  const YNode* n = r.get("depth", true);
+  if (n == nullptr) return;
+  sb.depth_where = r.where(*n, "depth");
+  if (n->is_scalar()) {
+    double v = 0;
+    if (convert(*n, sb.depth_where.path, d, v)) sb.depth.push_back(RowSpec{{0.0, v}, sb.depth_where});
+    return;
+  }
+  if (!read_table(*n, sb.depth_where.path, 2, d, sb.depth)) sb.depth.clear();
+}
+
+}  // namespace
+
 void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
   r.read("water_density", env.water_density);
   r.read("gravity", env.gravity);
+  if (const YNode* sbn = r.get("seabed")) {
+    MapReader sr(sbn, r.sub("seabed"), d);
+    env.seabed.present = sr.present();
+    if (env.seabed.present) parse_seabed(sr, env.seabed, d);
+    sr.finish();
+  }
   // current (m/s) or current_kn (knots): a vector, or rows {depth, velocity | velocity_kn}.
   const YNode* c = r.get("current");
   const YNode* c_kn = r.get("current_kn");

@@ -98,8 +98,12 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
   out.payout_speed = ws.winch ? element_length_rate(s, 0) : 0.0;
   // A node: position, velocity, force through it onto the part below, that
   // force along the adjacent element el's axis e (tension pulls the part
-  // below back along -e), and el's strain.
-  auto node = [&](const Vec3& p, const Vec3& v, const Vec3& f, std::size_t el) {
+  // below back along -e), el's strain and, with breaking loads, the node's
+  // utilisation from el's section; fs: the seabed's force there.
+  const auto& els = model.cable.elements;
+  const bool strength = std::any_of(model.cable.sections.begin(), model.cable.sections.end(),
+                                    [](const Section& sec) { return sec.breaking_load > 0; });
+  auto node = [&](const Vec3& p, const Vec3& v, const Vec3& f, std::size_t el, const Vec3& fs) {
     out.node_pos.push_back(p);
     out.node_vel.push_back(v);
     out.tension.push_back(f.norm());
@@ -107,19 +111,29 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
     out.strain.push_back(is_elastic(model.cable.elements[el])
                              ? element_strain(model.cable.elements[el], s.length_of(model, el))
                              : 0.0);
+    if (strength) {
+      const auto sec = static_cast<std::size_t>(els[el].section);
+      const double limit = sec < model.cable.sections.size() ? model.cable.sections[sec].breaking_load : 0.0;
+      out.utilisation.push_back(limit > 0 ? f.norm() / limit : 0.0);
+    }
+    if (model.seabed) out.node_seabed.push_back(fs);
   };
-  const std::size_t n = model.cable.elements.size();
+  const std::size_t n = els.size();
   for (std::size_t k = 0; k <= n; ++k) {
     const int b = k == 0 ? -1 : ws.body_at[k];
     const std::size_t above = k == 0 ? 0 : k - 1;
     if (b >= 0 && model.bodies[static_cast<std::size_t>(b)].inline_body) {
       const BodyWork& bw = ws.body[static_cast<std::size_t>(b)];
-      node(bw.Q, bw.vQ, ws.acc.link_force[static_cast<std::size_t>(b)], above);
-      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], k);
+      node(bw.Q, bw.vQ, ws.acc.link_force[static_cast<std::size_t>(b)], above, bw.Fs_q);
+      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], k, ws.Fs[k]);
+      out.contact_length += bw.ls_q;
     } else {
-      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], above);
+      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], above, ws.Fs[k]);
     }
+    out.contact_length += ws.ls[k];
   }
+  out.seabed_normal = ws.seabed_normal;
+  out.seabed_friction = ws.seabed_friction;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyWork& bw = ws.body[b];
     out.bodies.push_back({bw.O, bw.vO, roll_pitch_yaw(s.bodies[b].q) * kRad2Deg, bw.w, ws.acc.link_force[b],

@@ -73,6 +73,8 @@ struct BodyWork {
   Vec6 hw = Vec6::Zero();       // [N; N m], R_g
   Vec3 Fb = Vec3::Zero();       // external force but the links' [N, R_g]
   Vec3 Mb = Vec3::Zero();       // its moment about O_t [N m, R_g]
+  Vec3 Fs_q = Vec3::Zero();     // in-line body: seabed force on the cable's half-element at Q (in Fb) [N, R_g]
+  double ls_q = 0;              // that half-element's length in contact [m]
   // Articulated quantities (docs/theory.md "Bodies in the chain"):
   Mat6 Me = Mat6::Zero();       // Mw plus the cable below seen at Q2 [SI, R_g]
   Vec6 he = Vec6::Zero();       // hw plus the cable below's bias [N; N m]
@@ -105,6 +107,11 @@ struct Workspace {
   // Attachments: inertia and known force at their joint (index k = 0..n)
   std::vector<Mat3> Ma;         // summed mass + added mass [kg]
   std::vector<Vec3> Fa;         // summed loads [N, R_g]
+  // Seabed contact (seabed_loads; zero without a seabed), at P_k (index k = 0..n):
+  std::vector<Vec3> Fs;         // force on the cable there, normal + friction [N, R_g] (in Fa; in the end body's Fb at Q)
+  std::vector<double> ls;       // length of cable in contact that the joint represents [m]
+  double seabed_normal = 0;     // sum of |normal force| over the cable and the bodies [N]
+  double seabed_friction = 0;   // sum of |friction force| over the cable and the bodies [N]
   // Articulated quantities of the recursion (index k = 0..n)
   std::vector<Mat3> K;          // f_k = K_k a_{P_k} + b_k [kg]
   std::vector<Vec3> b;          // [N]

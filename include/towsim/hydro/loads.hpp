@@ -40,6 +40,23 @@ void body_loads(const Fluid& fluid, const Body& body, double t, BodyWork& ws);
 /// Needs the joints' kinematics (compute_kinematics).
 void attachment_loads(const Model& model, double t, Workspace& ws);
 
+/// Seabed contact (model.seabed; nothing without one; docs/theory.md §3.2).
+/// Each joint P_k below the bottom gets the contact force of the cable it
+/// represents (half of each adjacent element), added to ws.Fa[k] (at the end
+/// body's joint: to its Fb, Mb at the link point Q; at an in-line body: the
+/// half-element above acts at Q on the body, the one below at Q2 = P_k).
+/// Each body's hull points (the lowest point of each sphere, of each
+/// cylinder's end discs; a body with neither: its CG) add theirs to Fb, Mb.
+/// Fills ws.Fs, ws.ls, ws.seabed_normal, ws.seabed_friction and each
+/// BodyWork's Fs_q, ls_q. Call after attachment_loads and body_loads.
+void seabed_loads(const Model& model, Workspace& ws);
+
+/// Normal stiffness of the seabed contact at joint k (0..n) for the current
+/// kinematics: d|F_n|/d(penetration) = stiffness * length in contact [N/m]
+/// (at an in-line body's joint: of the half-element below, at Q2); 0 off the
+/// bottom or without a seabed. For implicit integrators (a joint's local stiffness).
+double seabed_normal_stiffness(const Model& model, const Workspace& ws, int k);
+
 /// Lift coefficient of a lifting surface at angle of attack alpha [rad]:
 /// linear up to stall, then falling smoothly to zero at 90 degrees.
 double lift_coefficient(const LiftingSurface& ls, double alpha);

@@ -8,10 +8,12 @@
 // (x forward, y, z) attached to the towed body at its origin O_t.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "towsim/model/fluid.hpp"
+#include "towsim/model/seabed.hpp"
 #include "towsim/model/types.hpp"
 #include "towsim/model/winch.hpp"
 #include "towsim/tow/tow.hpp"
@@ -186,6 +188,7 @@ struct Simulation {
 struct Model {
   std::string name;        // scenario name (file stem or example name)
   Fluid fluid;
+  std::optional<Seabed> seabed;  // environment.seabed; none = no bottom (towsim/model/seabed.hpp)
   Cable cable;
   std::vector<Body> bodies;
   Tow tow;

@@ -40,6 +40,20 @@ struct BodyExtremes {
   Extreme min_deg[3], max_deg[3]; // roll, pitch, yaw [deg]
 };
 
+/// Utilisation above which a run warns: a safety factor of 3 on the breaking load [-].
+inline constexpr double kUtilisationWarning = 1.0 / 3.0;
+/// Utilisation above which the cable is flagged as failed (the run goes on) [-].
+inline constexpr double kUtilisationFailure = 1.0;
+
+/// The first sample where a node's utilisation went above a threshold.
+struct Crossing {
+  double time = std::numeric_limits<double>::quiet_NaN();         // [s]
+  long node = -1;                                                  // nodes.csv index, -1 = never
+  double arc_length = std::numeric_limits<double>::quiet_NaN();   // of the node from the tow point [m]
+  double utilisation = std::numeric_limits<double>::quiet_NaN();  // there and then [-]
+  bool happened() const { return node >= 0; }
+};
+
 /// Extremes over all written samples.
 struct Extremes {
   Extreme max_tow_tension;    // |F_R| [N]
@@ -49,6 +63,11 @@ struct Extremes {
   Extreme min_depth, max_depth;  // -z of the end body's origin, or of the cable end without one [m]
   Extreme max_layback;        // horizontal distance tow point -> end body origin (or cable end) [m]
   Extreme max_utilisation;    // largest tension / breaking load at a node [-] (sections with breaking_load)
+  Crossing utilisation_warning;  // first utilisation > kUtilisationWarning
+  Crossing cable_failure;        // first utilisation > kUtilisationFailure
+  Extreme max_contact_length;    // cable length on the seabed [m] (with a seabed)
+  Extreme max_seabed_normal;     // sum of |normal force| of the seabed [N]
+  Extreme max_seabed_friction;   // sum of |friction force| of the seabed [N]
   BodyExtremes end_body_extremes;           // the end body's (if any)
   std::vector<BodyExtremes> inline_bodies;  // per Model::bodies entry (in-line ones used)
   /// Update with one sample of `model`.
@@ -83,6 +102,17 @@ void timeseries_values(const Model& model, const Sample& s, std::vector<double>&
 const std::vector<std::string>& node_columns();
 /// Node k's nodes.csv values of one sample as written (tidied), in the order of node_columns().
 void node_values(const Sample& s, std::size_t k, std::vector<double>& out);
+/// The per-node columns of a model's nodes.csv: node_columns(), then
+/// `utilisation` (with breaking loads) and `seabed_force` (with a seabed).
+std::vector<std::string> node_columns(const Model& model);
+/// Node k's values in the order of node_columns(model).
+void node_values(const Model& model, const Sample& s, std::size_t k, std::vector<double>& out);
+/// Arc length of each node (nodes.csv order) from the tow point [m].
+std::vector<double> node_arc_lengths(const Model& model);
+
+/// The strength warnings of a run, one sentence each: utilisation above 1/3
+/// (a safety factor below 3), above 1 (the cable would break there).
+std::vector<std::string> strength_warnings(const Extremes& ex);
 
 /// Horizontal distance from the tow point to the end body's origin (or to
 /// the cable's lower end without an end body) [m].

@@ -35,13 +35,25 @@ struct RowSpec {
   Where where;
 };
 
-/// environment: water, gravity, current.
+/// environment.seabed: a flat or tabulated bottom and its contact law.
+struct SeabedSpec {
+  bool present = false;
+  Where where;
+  Where depth_where;                 // the `depth` key's value
+  std::vector<RowSpec> depth;        // rows {x [m], depth [m]}; a number = one row at x = 0
+  Field<double> stiffness{1e5};      // [N/m per m of cable in contact]
+  Field<double> damping{1e3};        // [N s/m per m]
+  Field<double> friction{0.5};       // Coulomb coefficient [-]
+};
+
+/// environment: water, gravity, current, seabed.
 struct EnvironmentSpec {
   Field<double> water_density{1025.0};  // [kg/m^3], 0 = no fluid
   Field<double> gravity{9.81};          // [m/s^2]
   bool current_given = false;
   Where current_where;
   std::vector<RowSpec> current;  // rows {depth [m], ux, uy, uz [m/s]}; uniform = one row at depth 0
+  SeabedSpec seabed;
 };
 
 /// cable.sections item: a run of equal elements. Unset properties take the

@@ -38,6 +38,13 @@ struct Sample {
                                 // top of a section): positive in tension, negative in compression [N]
   std::vector<double> strain;   // strain l/L - 1 of the same adjacent element (0: inextensible;
                                 // < 0: slack, no tension) [-]
+  std::vector<double> utilisation;  // per node: tension / breaking load of its section [-] (0 where none is
+                                    // given); empty when no section gives a breaking load
+  std::vector<Vec3> node_seabed;    // per node: the seabed's contact force on the cable there [N, R_g];
+                                    // empty without a seabed
+  double contact_length = 0;        // cable length in contact with the seabed [m]
+  double seabed_normal = 0;         // sum of |normal force| of the seabed on the cable and the bodies [N]
+  double seabed_friction = 0;       // sum of |friction force| [N]
   std::vector<BodySample> bodies;  // per Model::bodies entry
   bool has_waves = false;       // waves or a vessel in the model
   double wave_elevation = 0;    // at the vessel's RAO origin (else at the tow point) [m]

@@ -1,0 +1,98 @@
+// Seabed contact on the cable's joints and the bodies' hull points
+// (docs/theory.md §3.2; the contact law: towsim/model/seabed.hpp).
+#include "towsim/hydro/loads.hpp"
+
+namespace towsim {
+
+namespace {
+
+/// Length of cable a body with no sphere or cylinder represents at its CG [m].
+constexpr double kBareBodyLength = 1.0;
+
+/// Add a contact force f at the body point p [m, R_g] to the body's loads.
+void add_body_contact(BodyWork& bw, const Vec3& p, const Vec3& f) {
+  bw.Fb += f;
+  bw.Mb += (p - bw.O).cross(f);
+}
+
+/// Contact of a body point p (body-fixed) representing `length` [m].
+SeabedForce body_point(const Seabed& sb, BodyWork& bw, const Vec3& p, double length) {
+  const SeabedForce f = sb.contact(p, bw.vO + bw.w.cross(p - bw.O), length);
+  if (f.length > 0) add_body_contact(bw, p, f.total());
+  return f;
+}
+
+/// The hull points of one body: each sphere's lowest point towards the bottom
+/// (length: its diameter), each cylinder's end discs' lowest points (half its
+/// length each, as a cable element), else the CG (kBareBodyLength).
+void hull_contact(const Seabed& sb, const Body& body, BodyWork& bw, double& normal, double& friction) {
+  auto account = [&](const SeabedForce& f) {
+    normal += f.normal.norm();
+    friction += f.friction.norm();
+  };
+  for (const SphereLoad& sp : body.spheres) {
+    const Vec3 c = bw.O + bw.R * sp.center;
+    account(body_point(sb, bw, c - sp.radius * sb.normal(c.x()), 2 * sp.radius));
+  }
+  for (const CylinderLoad& cy : body.cylinders) {
+    const Vec3 a = bw.R * cy.axis;
+    for (double side : {-0.5, 0.5}) {
+      const Vec3 ce = bw.O + bw.R * cy.center + side * cy.length * a;
+      const Vec3 nrm = sb.normal(ce.x());
+      const Vec3 d = nrm - nrm.dot(a) * a;  // towards the bottom in the disc's plane: -d
+      const Vec3 p = d.norm() > 1e-12 ? Vec3(ce - 0.5 * cy.diameter * d.normalized()) : ce;
+      account(body_point(sb, bw, p, 0.5 * cy.length));
+    }
+  }
+  if (body.spheres.empty() && body.cylinders.empty()) account(body_point(sb, bw, bw.O + bw.R * body.cg, kBareBodyLength));
+}
+
+}  // namespace
+
+void seabed_loads(const Model& model, Workspace& ws) {
+  ws.seabed_normal = ws.seabed_friction = 0;
+  if (!model.seabed) return;
+  const Seabed& sb = *model.seabed;
+  const auto& els = model.cable.elements;
+  const std::size_t n = els.size();
+  auto account = [&](const SeabedForce& f) {
+    ws.seabed_normal += f.normal.norm();
+    ws.seabed_friction += f.friction.norm();
+  };
+  for (std::size_t k = 0; k <= n; ++k) {
+    const int bi = k > 0 ? ws.body_at[k] : -1;
+    const Body* body = bi >= 0 ? &model.bodies[static_cast<std::size_t>(bi)] : nullptr;
+    // At P_k: half of the element below, and half of the one above unless a
+    // body separates them (an in-line body's Q2, or the end body's Q).
+    double l = k < n ? 0.5 * els[k].length : 0.0;
+    if (k > 0 && !(body && body->inline_body)) l += 0.5 * els[k - 1].length;
+    const SeabedForce f = sb.contact(ws.P[k], ws.vP[k], l);
+    ws.Fs[k] = f.total();
+    ws.ls[k] = f.length;
+    account(f);
+    if (body && !body->inline_body) {
+      BodyWork& bw = ws.body[static_cast<std::size_t>(bi)];
+      if (f.length > 0) add_body_contact(bw, ws.P[k], ws.Fs[k]);
+    } else {
+      ws.Fa[k] += ws.Fs[k];
+    }
+    if (body && body->inline_body) {
+      // The half-element above ends at the body's upper link Q.
+      BodyWork& bw = ws.body[static_cast<std::size_t>(bi)];
+      const SeabedForce fq = sb.contact(bw.Q, bw.vQ, 0.5 * els[k - 1].length);
+      bw.Fs_q = fq.total();
+      bw.ls_q = fq.length;
+      if (fq.length > 0) add_body_contact(bw, bw.Q, bw.Fs_q);
+      account(fq);
+    }
+  }
+  for (std::size_t b = 0; b < model.bodies.size(); ++b)
+    hull_contact(sb, model.bodies[b], ws.body[b], ws.seabed_normal, ws.seabed_friction);
+}
+
+double seabed_normal_stiffness(const Model& model, const Workspace& ws, int k) {
+  if (!model.seabed || k < 0 || static_cast<std::size_t>(k) >= ws.ls.size()) return 0.0;
+  return model.seabed->stiffness * ws.ls[static_cast<std::size_t>(k)];
+}
+
+}  // namespace towsim

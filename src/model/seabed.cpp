@@ -1,0 +1,49 @@
+// The seabed's shape and contact law (include/towsim/model/seabed.hpp).
+#include "towsim/model/seabed.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "towsim/model/table.hpp"
+
+namespace towsim {
+
+Seabed Seabed::flat(double d, double stiffness, double damping, double friction) {
+  Seabed s;
+  s.x = {0.0};
+  s.depth = {d};
+  s.stiffness = stiffness;
+  s.damping = damping;
+  s.friction = friction;
+  return s;
+}
+
+double Seabed::depth_at(double x_g) const { return interpolate(x, depth, x_g); }
+
+Vec3 Seabed::normal(double x_g) const {
+  if (depth.size() < 2 || x_g < x.front() || x_g >= x.back()) return Vec3::UnitZ();
+  const auto i = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), x_g) - x.begin()) - 1;
+  // z_b = -depth(x): the surface z - z_b(x) = 0 has gradient (depth'(x), 0, 1).
+  const double slope = (depth[i + 1] - depth[i]) / (x[i + 1] - x[i]);
+  return Vec3(slope, 0, 1).normalized();
+}
+
+double Seabed::gap(const Vec3& p) const { return (p.z() - bottom_z(p.x())) * normal(p.x()).z(); }
+
+SeabedForce Seabed::contact(const Vec3& p, const Vec3& v, double length) const {
+  SeabedForce f;
+  const double h = gap(p);
+  if (!(h < 0) || length <= 0) return f;
+  f.length = length;
+  const Vec3 n = normal(p.x());
+  // Spring-damper along the normal, never pulling the point down.
+  const double vn = v.dot(n);
+  const double Fn = length * std::max(0.0, -stiffness * h - damping * vn);
+  f.normal = Fn * n;
+  // Smoothed Coulomb friction against the slip velocity along the bottom.
+  const Vec3 ut = v - vn * n;
+  f.friction = -friction * Fn / std::sqrt(ut.squaredNorm() + slip_speed * slip_speed) * ut;
+  return f;
+}
+
+}  // namespace towsim

@@ -1,0 +1,263 @@
+// The seabed (MODEL.md 9 "Seabed", docs/theory.md §3.2, docs/validation.md):
+// the contact law against its closed forms, a cable lying on the bottom from
+// a stationary tow point (top tension = apparent weight per metre x depth),
+// a sled dragged along the bottom (towing force = mu x normal load + drag).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "../support/models.hpp"
+#include "../support/physics.hpp"
+#include "towsim/hydro/loads.hpp"
+#include "towsim/sim/simulate.hpp"
+#include "towsim/sim/statics.hpp"
+
+namespace towsim {
+namespace {
+
+constexpr double kRho = 1025, kG = 9.81;  // the test models' water [kg/m^3] and gravity [m/s^2]
+
+/// Apparent weight per metre of a test cable, from its own data [N/m].
+double apparent_weight(const testing::CableSpec& c) {
+  return (c.mass_per_length - kRho * std::numbers::pi / 4 * c.diameter * c.diameter) * kG;
+}
+
+// ---------------------------------------------------------------------------
+// The law at one point: geometry of a sloped table, and the friction's
+// smoothing converging to Coulomb at second order in v_s.
+// ---------------------------------------------------------------------------
+TEST(SeabedLaw, SlopedTableGeometry) {
+  Seabed sb;
+  sb.x = {0, 100};
+  sb.depth = {100, 50};  // z_b = -100 + 0.5 x between the rows
+  const Vec3 n = Vec3(-0.5, 0, 1).normalized();  // gradient of z - 0.5 x, normalised
+  EXPECT_LT((sb.normal(40) - n).norm(), 1e-15);
+  EXPECT_EQ(sb.normal(-10), Vec3::UnitZ());  // held flat beyond the table
+  EXPECT_EQ(sb.normal(150), Vec3::UnitZ());
+  // A point at distance d along the normal from the bottom point (40, -80).
+  for (double d : {-0.3, 0.0, 2.0}) EXPECT_NEAR(sb.gap(Vec3(40, 0, -80) + d * n), d, 1e-13);
+  // In contact: the normal force is along n, of size k l delta at rest.
+  const SeabedForce f = sb.contact(Vec3(40, 3, -80) - 0.01 * n, Vec3::Zero(), 2.0);
+  // Round-off: the 0.01 m penetration of a point at 80 m carries 80 * 2.2e-16
+  // m of error, times k l = 2e5 N/m: 4e-9 N of the 2000 N force; 1e-11 relative.
+  EXPECT_NEAR((f.normal - sb.stiffness * 2.0 * 0.01 * n).norm(), 0, 1e-11 * f.normal.norm());
+  EXPECT_EQ(f.friction, Vec3::Zero());
+  EXPECT_EQ(f.length, 2.0);
+}
+
+TEST(SeabedLaw, FrictionSmoothingConvergesToCoulomb) {
+  // Slip at U along the bottom: |F_t| = mu |F_n| U / sqrt(U^2 + v_s^2), so the
+  // error to Coulomb is mu |F_n| (v_s/U)^2 / 2 to leading order (the next
+  // term, 3/8 (v_s/U)^4, is below 0.12 % of it for v_s/U <= 0.04): halving
+  // v_s divides it by 4 (order 2 within 0.01).
+  Seabed sb = Seabed::flat(10, 1e5, 0, 0.6);
+  const double U = 1.0;
+  double previous = 0;
+  for (double vs : {0.04, 0.02, 0.01, 0.005}) {
+    sb.slip_speed = vs;
+    const SeabedForce f = sb.contact(Vec3(0, 0, -10.01), Vec3(U, 0, 0), 1.0);
+    const double coulomb = sb.friction * f.normal.norm();
+    const double err = coulomb - f.friction.norm();
+    EXPECT_NEAR(err / coulomb, 0.5 * vs * vs / (U * U), 0.01 * vs * vs / (U * U)) << vs;
+    EXPECT_LT(f.friction.x(), 0);  // against the slip
+    if (previous > 0) {
+      EXPECT_NEAR(std::log2(previous / err), 2.0, 0.01) << vs;
+    }
+    previous = err;
+  }
+}
+
+TEST(SeabedLaw, DampingNeverPulls) {
+  // Leaving the bottom fast: k delta - c v_n < 0 gives no force at all.
+  const Seabed sb = Seabed::flat(10, 1e4, 1e3, 0.5);
+  const SeabedForce f = sb.contact(Vec3(0, 0, -10.001), Vec3(0.3, 0, 1.0), 1.0);
+  EXPECT_EQ(f.normal, Vec3::Zero());
+  EXPECT_EQ(f.friction, Vec3::Zero());
+}
+
+// ---------------------------------------------------------------------------
+// A cable lying flat on the bottom, free at both ends (tow force zero):
+// every joint carries exactly the weight of the length it represents, so
+// each sinks by delta = w / k (closed form).
+// ---------------------------------------------------------------------------
+TEST(SeabedCable, RestingJointsSinkByWeightOverStiffness) {
+  testing::CableSpec cs;
+  cs.n = 10;
+  cs.length = 20;
+  Model m = testing::cable_model(cs);
+  const double depth = 50, k = 1e4;
+  m.seabed = Seabed::flat(depth, k, 300, 0.5);  // overdamped: zeta = 300 / (2 sqrt(k (m + ma))) ~ 1.1
+  m.tow.mode = Tow::Mode::Force;
+  m.tow.start = Vec3(0, 0, -depth);
+  m.tow.force_time = {0};
+  m.tow.force_value = {Vec3::Zero()};
+  m.initial.kind = Initial::Kind::Direction;
+  m.initial.direction = Vec3::UnitX();
+  m.sim.duration = 3;
+  m.sim.time_step = 1e-3;
+  m.sim.output_interval = 0.5;
+  const auto samples = testing::run(m);
+  const double delta = apparent_weight(cs) / k;  // [m]
+  const Sample& last = samples.back();
+  // Slowest vertical mode decays at >= 40 /s: after 3 s only round-off is
+  // left; 1e-6 of delta (1 nm) is far above it.
+  double worst = 0;
+  for (const Vec3& p : last.node_pos) worst = std::max(worst, std::abs(-depth - p.z() - delta) / delta);
+  std::printf("resting joints: max |penetration - w/k| / (w/k) = %.2e\n", worst);
+  for (std::size_t j = 0; j < last.node_pos.size(); ++j)
+    EXPECT_NEAR(-depth - last.node_pos[j].z(), delta, 1e-6 * delta) << "node " << j;
+  EXPECT_NEAR(last.contact_length, cs.length, 1e-12);
+  EXPECT_NEAR(last.seabed_normal, apparent_weight(cs) * cs.length, 1e-6 * apparent_weight(cs) * cs.length);
+  EXPECT_LT(last.seabed_friction, 1e-6);
+}
+
+// ---------------------------------------------------------------------------
+// A cable from a stationary tow point, its lower part on a flat bottom: the
+// suspended part hangs straight down and the part on the bottom carries no
+// tension, so the top tension is the apparent weight per metre times the
+// depth (MODEL.md 9). Statics, then a dynamic run from it that stays there.
+// Bound: the element crossing the bottom hangs at an angle and its top
+// carries between 0 and all of its weight, so |T - w h| <= w (L/2 + delta),
+// plus w delta for the penetration delta = w / k of the joints on the bottom.
+// ---------------------------------------------------------------------------
+struct LyingCase {
+  int n;         // elements of the 150 m cable
+  double depth;  // [m]
+};
+
+class SeabedLying : public ::testing::TestWithParam<LyingCase> {};
+
+Model lying_model(const LyingCase& c, testing::CableSpec& cs) {
+  cs.n = c.n;
+  cs.length = 150;
+  Model m = testing::cable_model(cs);
+  m.seabed = Seabed::flat(c.depth, 1e5, 1e3, 0.5);
+  m.tow.mode = Tow::Mode::Motion;  // no pieces: the tow point stays at the origin
+  return m;
+}
+
+TEST_P(SeabedLying, TopTensionIsWeightTimesDepth) {
+  testing::CableSpec cs;
+  const Model m = lying_model(GetParam(), cs);
+  const double w = apparent_weight(cs), L = cs.length / cs.n, h = GetParam().depth, delta = w / 1e5;
+  const StaticsResult r = solve_statics(m, Vec3::Zero());
+  ASSERT_TRUE(r.converged) << r.message;
+  const double T = r.tow_force.norm();
+  std::printf("lying n = %d: (T - w h) / (w L / 2) = %.4f, contact %.3f m, %d iterations\n", cs.n,
+              (T - w * h) / (0.5 * w * L), r.sample.contact_length, r.iterations);
+  EXPECT_LE(std::abs(T - w * h), w * (0.5 * L + 2 * delta)) << "T = " << T << ", w h = " << w * h;
+  // Sharper, the discrete equilibrium itself: m = floor(h / L) elements hang
+  // vertically, the crossing one adds half its weight whatever its tilt, so
+  // T = w (m L + L / 2) (1e-9 relative: the statics' residual floor).
+  const double m_vertical = std::floor(h / L);
+  EXPECT_NEAR(T, w * (m_vertical * L + 0.5 * L), 1e-9 * T);
+  EXPECT_NEAR(r.tow_force.z(), T, 1e-9 * T);  // straight up: the suspended part hangs vertically
+  // On the bottom: the length beyond the depth, to within the crossing element.
+  EXPECT_NEAR(r.sample.contact_length, cs.length - h, L);
+  EXPECT_NEAR(r.sample.seabed_normal, w * (cs.length - h), w * L);
+  // No joint below the bottom by more than the resting penetration (+ 1 %).
+  for (const Vec3& p : r.sample.node_pos) EXPECT_GE(p.z(), -h - 1.01 * delta);
+}
+
+TEST_P(SeabedLying, DynamicRunStaysOnTheBottom) {
+  testing::CableSpec cs;
+  Model m = lying_model(GetParam(), cs);
+  const double w = apparent_weight(cs), L = cs.length / cs.n, h = GetParam().depth;
+  m.initial.kind = Initial::Kind::Steady;
+  m.sim.duration = 3;
+  // RK4 stable: the free end joint's effective mass is a quarter of its
+  // element's (a free rod pushed at its end) for half an element of contact,
+  // so its damping rate is 2 c / (m + ma) = 1100 /s: 1100 dt = 1.1 < 2.78.
+  m.sim.time_step = 1e-3;
+  m.sim.output_interval = 1;
+  const auto samples = testing::run(m);
+  for (const Sample& s : samples) {
+    EXPECT_LE(std::abs(s.tow_force.norm() - w * h), w * (0.5 * L + 2 * w / 1e5)) << "t = " << s.t;
+    double vmax = 0;
+    std::size_t jmax = 0;
+    for (std::size_t j = 0; j < s.node_vel.size(); ++j)
+      if (s.node_vel[j].norm() > vmax) vmax = s.node_vel[j].norm(), jmax = j;
+    EXPECT_LT(vmax, 1e-4) << "t = " << s.t << " node " << jmax << " v " << s.node_vel[jmax].transpose()
+                          << " p " << s.node_pos[jmax].transpose();  // at rest: the statics is the dynamics' equilibrium
+  }
+}
+
+// A body resting on the bottom at the cable's end adds nothing to the top
+// tension (MODEL.md 9): the part on the bottom carries no tension at V = 0.
+// The body is a clump (no load model: it touches at its CG, as 1 m of
+// cable; link point at the CG, so its rotations are neutral).
+TEST_P(SeabedLying, BodyOnTheBottomAddsNothing) {
+  testing::CableSpec cs;
+  Model m = lying_model(GetParam(), cs);
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
+  b.mass = 200;
+  b.volume = 0.05;
+  b.inertia_cg = 10 * Mat3::Identity();
+  finalize_body(b, m.fluid);
+  const double w = apparent_weight(cs), L = cs.length / cs.n, h = GetParam().depth, delta = w / 1e5;
+  const StaticsResult r = solve_statics(m, Vec3::Zero());
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_LE(std::abs(r.tow_force.norm() - w * h), w * (0.5 * L + 2 * delta)) << r.tow_force.transpose();
+  // The clump rests on the bottom with its apparent weight and half the last
+  // element's, on its own spring (1 m) and the cable's at Q = CG (L/2):
+  // k (1 + L/2) delta_b = W_b + w L / 2 (1e-6: the residual's force noise).
+  const double Wb = (200 - kRho * 0.05) * kG;
+  const double zb = r.sample.bodies[0].pos.z();
+  EXPECT_NEAR((-h - zb) * 1e5 * (1 + 0.5 * L), Wb + 0.5 * w * L, 1e-6 * Wb);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seabed, SeabedLying,
+                         ::testing::Values(LyingCase{75, 101.0}, LyingCase{100, 101.0}, LyingCase{150, 100.3}),
+                         [](const auto& info) { return "n" + std::to_string(info.param.n); });
+
+// ---------------------------------------------------------------------------
+// A sled (a body resting on two runner ends) dragged along the bottom at a
+// steady slow speed: along the tow, the cable's pull balances the friction
+// mu N (N = apparent weight - the pull's vertical part) and the sled's
+// hydrodynamic drag, computed here from the cylinder's skin-friction law.
+// ---------------------------------------------------------------------------
+TEST(SeabedSled, TowingForceIsFrictionPlusDrag) {
+  testing::CableSpec cs;
+  cs.n = 5;
+  cs.length = 10;
+  Model m = testing::cable_model(cs);
+  const double depth = 50, mu = 0.4, U = 0.5, radius = 0.2, length = 2.0, ct = 0.01, mass = 500;
+  m.seabed = Seabed::flat(depth, 1e4, 1e3, mu);
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
+  b.mass = mass;
+  b.inertia_cg = Vec3(10, 170, 170).asDiagonal();
+  b.link_point = Vec3(0.5 * length, 0, 0);                        // the runner's nose, on its axis
+  b.cylinders.push_back({Vec3::Zero(), Vec3::UnitX(), length, 2 * radius, 1.2, ct, 1.0});
+  finalize_body(b, m.fluid);
+  // Tow point 1 m above the runner's axis; cable streaming straight back.
+  m.tow.start = Vec3(0, 0, -depth + radius + 1.0);
+  m.tow.pieces = {testing::ramp_piece(Vec3::UnitX(), U, 5.0)};
+  m.initial.kind = Initial::Kind::Direction;
+  m.initial.direction = Vec3(-cs.length, 0, -1.0).normalized();
+  m.sim.duration = 60;
+  m.sim.time_step = 2e-3;
+  m.sim.output_interval = 1;
+  const auto samples = testing::run(m);
+  const Sample& s = samples.back();
+  const Vec3 FL = s.bodies[0].link_force;  // on the sled from the cable [N]
+  const double volume = std::numbers::pi * radius * radius * length;
+  const double W = (mass - kRho * volume) * kG;                       // apparent weight [N]
+  const double N = W - FL.z();                                        // the bottom's normal load [N]
+  const double smooth = U / std::hypot(U, kSeabedSlipSpeed);          // the law's smoothing at slip U
+  const double drag = 0.5 * kRho * std::numbers::pi * 2 * radius * length * ct * U * U;  // axial skin friction [N]
+  std::printf("sled: F_L,x = %.6f N, mu N s + drag = %.6f N (drag %.4f N), relative difference %.2e\n", FL.x(),
+              mu * N * smooth + drag, drag, (FL.x() - mu * N * smooth - drag) / (mu * N));
+  EXPECT_NEAR(s.bodies[0].vel.x(), U, 1e-3 * U);                      // steady
+  // Steady to 0.1 % of the friction (the body's residual acceleration times
+  // its mass is below that after 55 s at speed).
+  EXPECT_NEAR(FL.x(), mu * N * smooth + drag, 1e-3 * mu * N) << "N = " << N << ", drag = " << drag;
+  EXPECT_NEAR(std::abs(FL.y()), 0, 1e-6 * mu * N);
+  EXPECT_GT(s.seabed_friction, mu * N * smooth * (1 - 1e-3));  // the sled's friction is in the total
+}
+
+}  // namespace
+}  // namespace towsim
