@@ -40,12 +40,14 @@ PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, 
   return s;
 }
 
-/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body].
+/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body,
+/// then per depth controller (bodies in order, surfaces in order) its integral and deflection].
 class DefaultSystem final : public System {
  public:
   explicit DefaultSystem(const Model& m) : model_(m), ws_(m), s_(PhysicalState::hanging(m)) {
     n_ = m.cable.n();
-    size_ = body_offset(m.bodies.size());
+    for (const Body& b : m.bodies) controls_ += static_cast<std::size_t>(control_count(b));
+    size_ = control_offset(controls_);
   }
 
   StateVector initial(const PhysicalState& s, double) override {
@@ -62,6 +64,7 @@ class DefaultSystem final : public System {
       y[o] = q.w(), y[o + 1] = q.x(), y[o + 2] = q.y(), y[o + 3] = q.z();
       set3(y, o + 4, s.bodies[b].w);
     }
+    pack_controls(s, y);
     return y;
   }
 
@@ -92,6 +95,7 @@ class DefaultSystem final : public System {
       dy[o] = 0.5 * dq.w(), dy[o + 1] = 0.5 * dq.x(), dy[o + 2] = 0.5 * dq.y(), dy[o + 3] = 0.5 * dq.z();
       set3(dy, o + 4, ws_.acc.alpha_b[b]);
     }
+    control_rates(dy);
   }
 
   void project(StateVector& y, double t) override {
@@ -128,6 +132,7 @@ class DefaultSystem final : public System {
 
   std::string describe(std::size_t i) const override {
     if (i < 6) return "tow point";
+    if (i >= control_offset(0)) return "depth controller " + std::to_string((i - control_offset(0)) / 2 + 1);
     if (i < body_offset(0)) return "element " + std::to_string((i - 6) % (3 * n_) / 3 + 1);
     const std::size_t b = std::min((i - body_offset(0)) / 7, model_.bodies.size() - 1);
     return "body " + model_.bodies[b].name;
@@ -146,9 +151,39 @@ class DefaultSystem final : public System {
       s.bodies[b].q = Quat(y[o], y[o + 1], y[o + 2], y[o + 3]).normalized();
       s.bodies[b].w = CMap3(&y[o + 4]);
     }
+    unpack_controls(y, s);
   }
-  /// Offset of body b's block in the flat state (b = count: the state's size).
+  /// Offset of body b's block in the flat state (b = count: the controllers' start).
   std::size_t body_offset(std::size_t b) const { return 6 + 6 * static_cast<std::size_t>(n_) + 7 * b; }
+
+  // ---- Depth controllers (docs/theory.md "Depth control"): [I, delta] each.
+  /// Offset of controller i in the flat state (i = count: the state's size).
+  std::size_t control_offset(std::size_t i) const { return body_offset(model_.bodies.size()) + 2 * i; }
+  void pack_controls(const PhysicalState& s, StateVector& y) const {
+    std::size_t i = 0;
+    for (const BodyState& bs : s.bodies)
+      for (const ControlState& c : bs.controls) y[control_offset(i)] = c.integral, y[control_offset(i++) + 1] = c.deflection;
+  }
+  void unpack_controls(const StateVector& y, PhysicalState& s) const {
+    std::size_t i = 0;
+    for (BodyState& bs : s.bodies)
+      for (ControlState& c : bs.controls) c.integral = y[control_offset(i)], c.deflection = y[control_offset(i++) + 1];
+  }
+  /// dI/dt and d delta/dt from the depth of each controlled body (ws_ and s_ of this evaluation).
+  void control_rates(StateVector& dy) const {
+    std::size_t i = 0;
+    for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
+      const BodyWork& bw = ws_.body[b];
+      std::size_t c = 0;
+      for (const LiftingSurface& ls : model_.bodies[b].surfaces) {
+        if (!ls.depth_control) continue;
+        const ControlRates r = depth_control_rates(*ls.depth_control, s_.bodies[b].controls[c++], -bw.O.z(), -bw.vO.z());
+        dy[control_offset(i)] = r.dintegral, dy[control_offset(i++) + 1] = r.ddeflection;
+      }
+    }
+  }
+  std::size_t controls_ = 0;  // number of depth controllers
+  // ---- end of depth controllers
 
   const Model& model_;
   Workspace ws_;
