@@ -109,7 +109,7 @@ TEST(DepthControlLoop, FollowsTheLinearisedClosedLoop) {
     peak_delta = std::max(peak_delta, std::abs(x[3] / kDeg));
     EXPECT_NEAR(b.controls.at(0).depth_error, -b.pos.z() - kTarget, 1e-12);
   }
-  std::cout << "[ linear ] max |d - d_lin| = " << worst_d << " m, max |delta - delta_lin| = " << worst_delta
+  std::cout << "[measured] linearised loop: max |d - d_lin| = " << worst_d << " m, max |delta - delta_lin| = " << worst_delta
             << " deg (peak delta " << peak_delta << " deg)\n";
   EXPECT_LT(worst_d, 1e-3 * step);
   EXPECT_LT(worst_delta, 1e-3);
@@ -181,7 +181,7 @@ TEST(DepthControlFish, ReachesAndHoldsTheTargetDepthWithinTheLimits) {
   const towsim::io::ControlExtremes& ce = record.extremes().controls.at(0);
   EXPECT_NEAR(ce.band, 0.2, 0.01);
   ASSERT_FALSE(std::isnan(ce.settled_since)) << "not settled at the end; final error " << ce.final_error;
-  std::cout << "[ fish ] settling time " << ce.settled_since << " s, final error " << ce.final_error
+  std::cout << "[measured] fish: settling time " << ce.settled_since << " s, final error " << ce.final_error
             << " m, max |deflection| " << max_defl << " deg\n";
   EXPECT_LT(ce.settled_since, 0.7 * m.sim.duration);  // settled well before the end: it holds
   for (const towsim::Sample& s : sink.samples) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -72,20 +73,25 @@ TEST(FairedCableSteady, CriticalAngleAndTopTension) {
   const double w = (kMass - kRho * kPi * kD * kD / 4) * kG;  // apparent weight [N/m]
   const double R = 0.5 * kRho * kCd * kD * kV * kV;           // [N/m]
   const double phi_c = critical_angle(w, R);
-  ASSERT_GT(phi_c, 0.3);  // a real faired-cable angle (about 35 deg), inside the table
+  ASSERT_GT(phi_c, 0.3);  // a faired cable tows steeper than bare (28.9 deg here, bare 18.7)
   ASSERT_LT(phi_c, 1.0);
   // Every element trails at phi_c below the horizontal, behind the tow point.
   // Tolerance: the statics converge to |alpha| < 1e-9 rad/s^2 (angle error
   // ~1e-10); the table's smoothed normal direction changes the normal load by
   // v_s^2 / (2 |u_n|^2) ~ 1e-7 relative: 1e-6 rad covers both.
+  double worst = 0;
   for (std::size_t k = 0; k < r.state.e.size(); ++k) {
     const towsim::Vec3& e = r.state.e[k];
+    worst = std::max(worst, std::abs(std::atan2(-e.z(), -e.x()) - phi_c));
     EXPECT_NEAR(std::atan2(-e.z(), -e.x()), phi_c, 1e-6) << "element " << k + 1;
     EXPECT_NEAR(e.y(), 0.0, 1e-9);
   }
   // Tangential balance of the straight cable: top tension (relative 1e-6, as above).
   const double T = kLength * (w * std::sin(phi_c) + R * kFt(phi_c));
   EXPECT_NEAR(r.tow_force.norm(), T, 1e-6 * T);
+  std::cout << "[measured] faired: phi_c = " << phi_c * 180 / kPi << " deg, max |phi_k - phi_c| = " << worst
+            << " rad, tow tension " << r.tow_force.norm() << " N vs " << T << " N (rel "
+            << std::abs(r.tow_force.norm() - T) / T << ")\n";
 }
 
 // The same cable with the bare-cable laws (cross-flow, Pode f = 0) reaches
@@ -103,5 +109,10 @@ TEST(FairedCableSteady, DefaultLawGivesTheClassicCriticalAngle) {
   ASSERT_TRUE(r.converged) << r.message;
   const double a = (kMass - kRho * kPi * kD * kD / 4) * kG / (0.5 * kRho * kCd * kD * kV * kV);
   const double phi_c = std::acos((-a + std::sqrt(a * a + 4)) / 2);
-  for (const towsim::Vec3& e : r.state.e) EXPECT_NEAR(std::atan2(-e.z(), -e.x()), phi_c, 1e-6);
+  double worst = 0;
+  for (const towsim::Vec3& e : r.state.e) {
+    worst = std::max(worst, std::abs(std::atan2(-e.z(), -e.x()) - phi_c));
+    EXPECT_NEAR(std::atan2(-e.z(), -e.x()), phi_c, 1e-6);
+  }
+  std::cout << "[measured] bare: phi_c = " << phi_c * 180 / kPi << " deg, max |phi_k - phi_c| = " << worst << " rad\n";
 }
