@@ -8,6 +8,8 @@
 
 #include "../support/scenario_files.hpp"
 #include "towsim/integrators/system.hpp"
+#include "towsim/output/output.hpp"
+#include "towsim/sim/simulate.hpp"
 #include "towsim/model/depth_control.hpp"
 
 using towsim::ControlRates;
@@ -154,4 +156,44 @@ TEST_F(ScenarioFile, DepthControlRefusedWithThePaperFormulationAndSlowRk4Servo) 
                               "servo would be unstable)"));
   s = load(kCable + kSim + "  integrator: dopri5\n" + kBody + surf);
   EXPECT_TRUE(s.ok()) << s.diags.str();  // an adaptive step resolves it
+}
+
+// ------------------------------------------------------------ outputs
+
+// Columns per controlled surface, named by body and surface index, after all
+// others; summary.json's `depth_control` entry from the same samples.
+TEST_F(ScenarioFile, DepthControlOutputs) {
+  const auto s = load(kCable + kSim + kBody +
+                      "    - {center: [0, 0, 0], chord: [1, 0, 0], normal: [0, 1, 0], area: 0.5}\n"
+                      "    - {center: [0, 0, 0], chord: [1, 0, 0], normal: [0, 0, 1], area: 0.5,\n"
+                      "       depth_control: {target_depth: 101, kp: 2, max_deflection_deg: 10, max_rate_deg_s: 4,"
+                      " settling_band: 0.5}}\n",
+                      {"simulation.duration=0.5"});
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  const auto cols = towsim::io::timeseries_columns(*s.model);
+  ASSERT_GE(cols.size(), 3u);
+  EXPECT_EQ(std::vector<std::string>(cols.end() - 3, cols.end()),
+            (std::vector<std::string>{"body_surface1_deflection_deg", "body_surface1_deflection_rate_deg_s",
+                                      "body_surface1_depth_error"}));
+  towsim::io::RunRecord record(*s.model);
+  const towsim::RunStats st = towsim::simulate(*s.model, record);
+  ASSERT_EQ(st.status, "ok") << st.message;
+  // Hanging at rest from z = 0 over 100 m: the body origin at 100 m, 1 m above the target.
+  const auto& row = record.last_row();
+  ASSERT_EQ(row.size(), cols.size());
+  const double e = row[cols.size() - 1], defl = row[cols.size() - 3], rate = row[cols.size() - 2];
+  EXPECT_LT(e, 0);
+  EXPECT_GE(defl, -10);
+  EXPECT_LE(std::abs(rate), 4);
+  const auto j = towsim::io::make_summary(nlohmann::ordered_json::object(), "m", st, record, false);
+  ASSERT_TRUE(j.contains("depth_control"));
+  const auto& dc = j["depth_control"].at(0);
+  EXPECT_EQ(dc["body"], "body");
+  EXPECT_EQ(dc["surface"], 1);
+  EXPECT_EQ(dc["target_depth"], 101.0);
+  EXPECT_EQ(dc["settling_band"], 0.5);
+  EXPECT_NEAR(dc["initial_error"].get<double>(), -1.0, 1e-9);
+  EXPECT_TRUE(dc["settling_time"].is_null());  // 1 m off, band 0.5 m: not settled in 0.5 s
+  EXPECT_NEAR(dc["max_abs_deflection_deg"]["value"].get<double>(), std::abs(defl), 1e-6);
+  EXPECT_EQ(dc["max_abs_deflection_rate_deg_s"]["value"], 4.0);  // rate-limited from the start
 }
