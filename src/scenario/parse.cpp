@@ -1,5 +1,7 @@
 #include "towsim/scenario/parse.hpp"
 
+#include <algorithm>
+
 #include "parse_sections.hpp"
 
 namespace towsim::io {
@@ -84,6 +86,14 @@ void read_loading(MapReader& r, const std::string& key, std::vector<RowSpec>& ro
   if (!read_table(*n, r.sub(key), 2, d, rows)) rows.clear();
 }
 
+/// True when `law` is given but is none of `choices` (reported already): the
+/// caller then accepts every law's keys silently instead of adding errors.
+bool unknown_law(const YNode& map, const std::vector<std::string>& choices) {
+  const YNode* law = map.find("law");
+  if (law == nullptr || !law->is_scalar()) return false;
+  return std::find(choices.begin(), choices.end(), law->scalar) == choices.end();
+}
+
 /// tangential_drag: {law: pode, f: ...}, {law: skin, ct: ...} or {law: table, ft: [[phi_deg, ft], ...]}.
 void parse_tangential(MapReader& r, Field<std::string>& law, Field<double>& coef, std::vector<RowSpec>& table,
                       Diagnostics& d) {
@@ -91,6 +101,8 @@ void parse_tangential(MapReader& r, Field<std::string>& law, Field<double>& coef
   if (t == nullptr) return;
   MapReader tr(t, r.sub("tangential_drag"), d);
   tr.choice("law", law, {"pode", "skin", "table"});
+  if (unknown_law(*t, {"pode", "skin", "table"}))
+    for (const char* key : {"f", "ct", "ft"}) tr.get(key);
   coef.value = law.value == "skin" ? 0.008 : 0.0;
   coef.given = law.given;  // the law's default coefficient goes with it
   if (law.value == "skin")
@@ -120,6 +132,7 @@ void parse_normal(MapReader& r, Field<double>& cd, Field<std::string>& law, std:
   law.where = r.where(*n, "normal_drag");
   law.given = true;
   nr.choice("law", law, {"cross_flow", "table"});
+  if (unknown_law(*n, {"cross_flow", "table"})) nr.get("fn");
   nr.read("cd", cd);
   if (law.value == "table") read_loading(nr, "fn", table, d);
   nr.finish();

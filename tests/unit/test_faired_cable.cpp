@@ -171,10 +171,12 @@ TEST_F(ScenarioFile, FairedTableErrors) {
 
 TEST_F(ScenarioFile, FairedLawChoices) {
   auto s = load(kCable + "  normal_drag: {law: tabel, fn: [[0, 0]]}\n" + kSim);
-  // (with an unknown law the cross-flow law's keys are expected: fn is reported too)
+  // (an unknown law: no second error about its keys)
   EXPECT_EQ(s.diags.str(), at("6:22: cable.normal_drag.law: expected one of cross_flow, table (got 'tabel'; did "
-                              "you mean 'table'?)") +
-                               at("6:29: cable.normal_drag.fn: unknown key (expected one of: law, cd)"));
+                              "you mean 'table'?)"));
+  s = load(kCable + "  tangential_drag: {law: tabel, ft: [[0, 0]]}\n" + kSim);
+  EXPECT_EQ(s.diags.str(), at("6:26: cable.tangential_drag.law: expected one of pode, skin, table (got 'tabel'; "
+                              "did you mean 'table'?)"));
   s = load(kCable + "  normal_drag: {cd: 1.1, fn: [[0, 0]]}\n" + kSim);
   EXPECT_EQ(s.diags.str(), at("6:26: cable.normal_drag.fn: unknown key (expected one of: law, cd)"));
   s = load(kCable + "  tangential_drag: {law: table, ft: 0.1}\n" + kSim);
