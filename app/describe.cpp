@@ -56,7 +56,7 @@ void describe_seabed(const Model& m, std::ostream& out) {
 }
 
 /// The properties of one run of equal elements (e: its first element).
-void describe_elements(const Cable& c, const Element& e, int count, std::ostream& out) {
+void describe_elements(const Cable& c, const Section* sec, const Element& e, int count, std::ostream& out) {
   line(out, "element length", fmt_num(e.length) + " m");
   line(out, "diameter", fmt_num(e.diameter) + " m");
   line(out, "mass in air", fmt_num(e.mass / e.length) + " kg/m, " + fmt_num(e.mass) + " kg per element, " +
@@ -67,6 +67,15 @@ void describe_elements(const Cable& c, const Element& e, int count, std::ostream
                                        " kg per element (" +
                                        (c.added_mass_model == AddedMassModel::Morison ? "morison" : "ideal_fluid") + ")");
   line(out, "normal drag factor", "1/2 rho Cd D = " + fmt_num(e.drag_factor / e.length) + " kg/m^2");
+  // Faired cable: a table replaces a default law.
+  auto table = [](const LoadingTable& t, const char* f) {
+    return std::string("table ") + f + "(phi), " + std::to_string(t.f.size()) + " rows, times 1/2 rho Cd D |u|^2";
+  };
+  if (sec != nullptr && !sec->normal_loading.empty()) line(out, "normal loading", table(sec->normal_loading, "fn"));
+  if (sec != nullptr && !sec->tangential_loading.empty()) {
+    line(out, "tangential drag", table(sec->tangential_loading, "ft"));
+    return;
+  }
   line(out, "tangential drag", std::string(c.tangential_law == TangentialLaw::Skin ? "skin: 1/2 rho pi D Ct" : "pode: 1/2 rho Cd f D") +
                                    " = " + fmt_num(e.friction_factor / e.length) + " kg/m^2");
   if (is_elastic(e))
@@ -88,12 +97,12 @@ void describe_cable(const Cable& c, std::ostream& out) {
   const double total = c.total_length();
   out << "cable: " << fmt_num(total) << " m in " << c.n() << " elements\n";
   if (c.sections.size() <= 1) {
-    describe_elements(c, c.elements.front(), c.n(), out);
+    describe_elements(c, c.sections.empty() ? nullptr : &c.sections.front(), c.elements.front(), c.n(), out);
   } else {
     for (const Section& s : c.sections) {
       out << "section " << s.name << ": " << fmt_num(s.length) << " m in " << s.elements << " elements, from "
           << fmt_num(arc_length(c, s.first_element)) << " m\n";
-      describe_elements(c, c.elements[static_cast<std::size_t>(s.first_element)], s.elements, out);
+      describe_elements(c, &s, c.elements[static_cast<std::size_t>(s.first_element)], s.elements, out);
     }
   }
   for (const Section& s : c.sections)
@@ -120,6 +129,15 @@ void describe_body(const Body& b, const Cable& c, const Fluid& f, std::ostream& 
   if (b.inline_body) line(out, "lower link point Q2", vec(b.lower_link_point) + " m (body axes)");
   line(out, "load models", count(b.spheres.size(), "sphere") + ", " + count(b.cylinders.size(), "cylinder") + ", " +
                                count(b.surfaces.size(), "surface"));
+  // Depth controllers (gains back in the keys' units, per degree).
+  constexpr double deg = 180 / 3.14159265358979323846;
+  for (std::size_t j = 0; j < b.surfaces.size(); ++j)
+    if (const auto& c = b.surfaces[j].depth_control)
+      line(out, "depth control (surface " + std::to_string(j) + ")",
+           "target " + fmt_num(c->target_depth) + " m; kp " + fmt_num(c->kp * deg) + " deg/m, ki " +
+               fmt_num(c->ki * deg) + " deg/(m s), kd " + fmt_num(c->kd * deg) + " deg s/m; limits +-" +
+               fmt_num(c->max_deflection * deg) + " deg, " + fmt_num(c->max_rate * deg) + " deg/s; servo " +
+               fmt_num(c->servo_time_constant) + " s, anti-windup " + fmt_num(c->tracking_time) + " s");
 }
 
 std::string piece_text(const Ramp& p) {

@@ -44,13 +44,13 @@ void cylinder_loads(const Fluid& fluid, const CylinderLoad& cy, double t, BodyWo
 }
 
 /// Lift and drag of a lifting surface from its local angle of attack.
-void surface_loads(const Fluid& fluid, const LiftingSurface& ls, double t, BodyWork& ws) {
+/// d: the surface's deflection [rad].
+void surface_loads(const Fluid& fluid, const LiftingSurface& ls, double d, double t, BodyWork& ws) {
   const Vec3 c = ws.R * ls.center;
   const Vec3 span = ws.R * ls.chord.cross(ls.normal);
   // Deflection d: chord and normal turn by +d about the span axis
   // (chord x normal), the leading edge towards +normal, so that with the flow
   // along the undeflected chord alpha = +d and the lift points to +normal.
-  const double d = surface_deflection(ls, t);
   const Vec3 chord = ws.R * (std::cos(d) * ls.chord + std::sin(d) * ls.normal);
   const Vec3 normal = ws.R * (-std::sin(d) * ls.chord + std::cos(d) * ls.normal);
   const Vec3 u = ws.vO + ws.w.cross(c) - fluid.velocity(ws.O + c, t);
@@ -137,7 +137,10 @@ void body_loads(const Fluid& fluid, const Body& b, double t, BodyWork& ws) {
   }
   for (const auto& sp : b.spheres) sphere_loads(fluid, sp, t, ws);
   for (const auto& cy : b.cylinders) cylinder_loads(fluid, cy, t, ws);
-  for (const auto& ls : b.surfaces) surface_loads(fluid, ls, t, ws);
+  // Surfaces: deflection from the depth controller's state, else from the table.
+  std::size_t c = 0;
+  for (const auto& ls : b.surfaces)
+    surface_loads(fluid, ls, ls.depth_control ? ws.deflection[c++] : surface_deflection(ls, t), t, ws);
   // Generic damping on the body-frame velocity relative to the water.
   if (!b.linear_damping.isZero() || !b.quadratic_damping.isZero()) {
     Vec6 nur;

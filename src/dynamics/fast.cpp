@@ -194,7 +194,12 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
 /// The dynamics' entry check (Pinocchio's model.check(data)).
 void check_fits(const Model& model, const PhysicalState& s, const Workspace& ws) {
   if (!ws.fits(model) || s.e.size() != model.cable.elements.size() || s.w.size() != s.e.size() ||
-      s.bodies.size() != model.bodies.size())
+      s.bodies.size() != model.bodies.size() ||
+      !std::all_of(model.bodies.begin(), model.bodies.end(), [&](const Body& b) {
+        const auto i = static_cast<std::size_t>(&b - model.bodies.data());
+        return s.bodies[i].controls.size() == static_cast<std::size_t>(control_count(b)) &&
+               ws.body[i].deflection.size() == s.bodies[i].controls.size();
+      }))
     throw std::logic_error("towsim: workspace or state does not fit the model");
 }
 

@@ -17,7 +17,12 @@ PhysicalState PhysicalState::hanging(const Model& model) {
   s.e.assign(model.cable.elements.size(), -Vec3::UnitZ());
   s.w.assign(model.cable.elements.size(), Vec3::Zero());
   s.bodies.resize(model.bodies.size());
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) s.bodies[b].q = model.bodies[b].initial_attitude;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    s.bodies[b].q = model.bodies[b].initial_attitude;
+    // Depth controllers start with no integral, at their initial deflection.
+    for (const LiftingSurface& ls : model.bodies[b].surfaces)
+      if (ls.depth_control) s.bodies[b].controls.push_back({0.0, ls.depth_control->initial_deflection});
+  }
   for (const Element& el : model.cable.elements) s.length.push_back(el.length);
   s.length_rate.assign(model.cable.elements.size(), 0.0);
   return s;
@@ -43,6 +48,8 @@ Workspace::Workspace(const Model& model) {
   Tr0.assign(n, Eigen::Vector2d::Zero());
   elastic.assign(n, ElasticWork{});
   body.resize(model.bodies.size());
+  for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    body[i].deflection.assign(static_cast<std::size_t>(control_count(model.bodies[i])), 0.0);
   body_at.assign(n + 1, -1);
   for (std::size_t i = 0; i < model.bodies.size(); ++i)
     body_at[static_cast<std::size_t>(body_joint(model, model.bodies[i]))] = static_cast<int>(i);
@@ -78,6 +85,10 @@ void body_kinematics(const Body& body, const BodyState& bs, const Vec3& Q, const
   bw.O = Q - bw.rQ;
   bw.vO = vQ - bs.w.cross(bw.rQ);
   bw.rQ2 = bw.R * body.lower_link_point;
+  // Controlled surfaces: the servo's deflection within the limits.
+  std::size_t c = 0;
+  for (const LiftingSurface& ls : body.surfaces)
+    if (ls.depth_control) bw.deflection[c] = applied_deflection(*ls.depth_control, bs.controls[c]), ++c;
 }
 }  // namespace
 

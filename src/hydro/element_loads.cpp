@@ -25,12 +25,22 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
 
-  // Normal pressure drag (paper 2.41).
-  F -= el.drag_factor * un.norm() * un;
+  // A faired section's loading tables replace the default laws below.
+  const auto sec = static_cast<std::size_t>(el.section);
+  const Section* faired = sec < model.cable.sections.size() ? &model.cable.sections[sec] : nullptr;
+  const double v_s = model.cable.sign_smoothing_speed;
 
-  // Tangential friction: Pode/Landweber (paper 2.43) or skin friction.
-  if (model.cable.tangential_law == TangentialLaw::Pode)
-    F -= el.friction_factor * u.squaredNorm() * smooth_sign(ue, model.cable.sign_smoothing_speed) * e;
+  // Normal pressure drag (paper 2.41), or the table f_n(phi).
+  if (faired != nullptr && !faired->normal_loading.empty())
+    F += faired->normal_loading.normal_force(el.drag_factor, un, ue, v_s);
+  else
+    F -= el.drag_factor * un.norm() * un;
+
+  // Tangential friction: the table f_t(phi), Pode/Landweber (paper 2.43) or skin friction.
+  if (faired != nullptr && !faired->tangential_loading.empty())
+    F += faired->tangential_loading.tangential_force(el.drag_factor, un, ue, e, v_s);
+  else if (model.cable.tangential_law == TangentialLaw::Pode)
+    F -= el.friction_factor * u.squaredNorm() * smooth_sign(ue, v_s) * e;
   else
     F -= el.friction_factor * std::abs(ue) * ue * e;
 

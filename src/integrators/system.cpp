@@ -54,7 +54,8 @@ double winch_jump(const Model& m, const PhysicalState& s, double t) {
 }
 
 /// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body],
-/// then with a winch [l_1, l_1'], then, when the cable has elastic elements, [l_1..l_n, l'_1..l'_n].
+/// then with a winch [l_1, l_1'], then, when the cable has elastic elements, [l_1..l_n, l'_1..l'_n],
+/// then per depth controller (bodies in order, surfaces in order) its integral and deflection.
 class DefaultSystem final : public System {
  public:
   explicit DefaultSystem(const Model& m)
@@ -62,7 +63,8 @@ class DefaultSystem final : public System {
     n_ = m.cable.n();
     winch_ = m.winch.active() && n_ > 0;
     lengths_ = lengths_in_state(m);
-    size_ = length_offset() + (lengths_ ? 2 * static_cast<std::size_t>(n_) : 0);
+    for (const Body& b : m.bodies) controls_ += static_cast<std::size_t>(control_count(b));
+    size_ = control_offset(controls_);
     // Length control: l_1 = L(t) - (the fixed elements below + cable drawn in by removals).
     fixed_length_ = m.winch.length_offset;
     for (int k = 1; k < n_; ++k) fixed_length_ += m.cable.elements[static_cast<std::size_t>(k)].length;
@@ -94,6 +96,7 @@ class DefaultSystem final : public System {
         y[o + n_ + k] = s.length_rate_of(k);
       }
     }
+    pack_controls(s, y);
     return y;
   }
 
@@ -134,6 +137,7 @@ class DefaultSystem final : public System {
         dy[o + n_ + k] = ws_.acc.length_acc[k];
       }
     }
+    control_rates(dy);
   }
 
   void project(StateVector& y, double t) override {
@@ -250,6 +254,7 @@ class DefaultSystem final : public System {
 
   std::string describe(std::size_t i) const override {
     if (i < 6) return "tow point";
+    if (i >= control_offset(0)) return "depth controller " + std::to_string((i - control_offset(0)) / 2 + 1);
     if (lengths_ && i >= length_offset()) return "element " + std::to_string((i - length_offset()) % n_ + 1) + " (length)";
     if (winch_ && i >= winch_offset()) return "winch";
     if (i < body_offset(0)) return "element " + std::to_string((i - 6) % (3 * n_) / 3 + 1);
@@ -278,6 +283,7 @@ class DefaultSystem final : public System {
         s.length_rate[k] = y[o + n_ + k];
       }
     }
+    unpack_controls(y, s);
   }
   /// Length control: the top element's length and rate at t from the schedule.
   void impose_winch(double t, PhysicalState& s) const {
@@ -292,6 +298,37 @@ class DefaultSystem final : public System {
   std::size_t winch_offset() const { return body_offset(model_.bodies.size()); }
   /// Offset of the element lengths' block (when lengths_).
   std::size_t length_offset() const { return winch_offset() + (winch_ ? 2 : 0); }
+
+  // ---- Depth controllers (docs/theory.md "Depth control"): [I, delta] each.
+  /// Offset of controller i in the flat state (i = count: the state's size).
+  std::size_t control_offset(std::size_t i) const {
+    return length_offset() + (lengths_ ? 2 * static_cast<std::size_t>(n_) : 0) + 2 * i;
+  }
+  void pack_controls(const PhysicalState& s, StateVector& y) const {
+    std::size_t i = 0;
+    for (const BodyState& bs : s.bodies)
+      for (const ControlState& c : bs.controls) y[control_offset(i)] = c.integral, y[control_offset(i++) + 1] = c.deflection;
+  }
+  void unpack_controls(const StateVector& y, PhysicalState& s) const {
+    std::size_t i = 0;
+    for (BodyState& bs : s.bodies)
+      for (ControlState& c : bs.controls) c.integral = y[control_offset(i)], c.deflection = y[control_offset(i++) + 1];
+  }
+  /// dI/dt and d delta/dt from the depth of each controlled body (ws_ and s_ of this evaluation).
+  void control_rates(StateVector& dy) const {
+    std::size_t i = 0;
+    for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
+      const BodyWork& bw = ws_.body[b];
+      std::size_t c = 0;
+      for (const LiftingSurface& ls : model_.bodies[b].surfaces) {
+        if (!ls.depth_control) continue;
+        const ControlRates r = depth_control_rates(*ls.depth_control, s_.bodies[b].controls[c++], -bw.O.z(), -bw.vO.z());
+        dy[control_offset(i)] = r.dintegral, dy[control_offset(i++) + 1] = r.ddeflection;
+      }
+    }
+  }
+  std::size_t controls_ = 0;  // number of depth controllers
+  // ---- end of depth controllers
 
   const Model& model_;
   Workspace ws_;

@@ -91,6 +91,11 @@ void finalize_body(Body& body, const Fluid& fluid) {
   body.buoyancy_center = volume > 0 ? Vec3(moment / volume) : body.cg;
 }
 
+int control_count(const Body& body) {
+  return static_cast<int>(std::count_if(body.surfaces.begin(), body.surfaces.end(),
+                                        [](const LiftingSurface& ls) { return ls.depth_control.has_value(); }));
+}
+
 const Body* end_body(const Model& model) {
   if (model.bodies.empty() || model.bodies.back().inline_body) return nullptr;
   return &model.bodies.back();

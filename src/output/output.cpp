@@ -220,6 +220,34 @@ void Extremes::add(const Model& model, const Sample& s) {
       e.max_deg[i].max(bs.rpy_deg[i], s.t);
     }
   }
+  add_controls(model, s);
+}
+
+void Extremes::add_controls(const Model& model, const Sample& s) {
+  std::size_t i = 0;
+  for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b) {
+    std::size_t c = 0;
+    for (const LiftingSurface& ls : model.bodies[b].surfaces) {
+      if (!ls.depth_control || c >= s.bodies[b].controls.size()) continue;
+      const ControlSample& cs = s.bodies[b].controls[c++];
+      if (controls.size() <= i) controls.resize(i + 1);
+      ControlExtremes& e = controls[i++];
+      e.max_abs_deflection.max(std::abs(cs.deflection_deg), s.t);
+      e.max_abs_rate.max(std::abs(cs.rate_deg_s), s.t);
+      e.max_abs_error.max(std::abs(cs.depth_error), s.t);
+      // Settling: the band is the given one, or 1 % of the first error (at least 1 cm).
+      if (std::isnan(e.first_error)) {
+        e.first_error = cs.depth_error;
+        e.band = ls.depth_control->settling_band > 0 ? ls.depth_control->settling_band
+                                                     : std::max(0.01 * std::abs(cs.depth_error), 0.01);
+      }
+      if (std::abs(cs.depth_error) > e.band)
+        e.settled_since = std::numeric_limits<double>::quiet_NaN();
+      else if (std::isnan(e.settled_since))
+        e.settled_since = s.t;
+      e.final_error = cs.depth_error;
+    }
+  }
 }
 
 std::vector<std::string> timeseries_columns(const Model& model) {
@@ -244,6 +272,13 @@ std::vector<std::string> timeseries_columns(const Model& model) {
   }
   if (has_sea(model)) c.insert(c.end(), {"wave_elevation", "tow_wave_x", "tow_wave_y", "tow_wave_z"});
   if (model.seabed) c.insert(c.end(), {"contact_length", "seabed_normal_force", "seabed_friction_force"});
+  // Depth controllers: <body>_surface<j>_... (j: the surface's index in its body's list).
+  for (const Body& b : model.bodies)
+    for (std::size_t j = 0; j < b.surfaces.size(); ++j) {
+      if (!b.surfaces[j].depth_control) continue;
+      const std::string p = (b.inline_body ? b.name : std::string("body")) + "_surface" + std::to_string(j);
+      c.insert(c.end(), {p + "_deflection_deg", p + "_deflection_rate_deg_s", p + "_depth_error"});
+    }
   return c;
 }
 
@@ -292,6 +327,8 @@ void timeseries_values(const Model& model, const Sample& s, std::vector<double>&
     add3(s.tow_wave);
   }
   if (model.seabed) v.insert(v.end(), {s.contact_length, s.seabed_normal, s.seabed_friction});
+  for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b)  // depth controllers
+    for (const ControlSample& c : s.bodies[b].controls) v.insert(v.end(), {c.deflection_deg, c.rate_deg_s, c.depth_error});
   for (std::size_t i = 1; i < v.size(); ++i) v[i] = tidy(v[i]);
 }
 
@@ -487,6 +524,30 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
     e["max_seabed_friction_force"] = json_of(ex.max_seabed_friction);
   }
   j["extremes"] = e;
+  // Depth controllers: settling and the fins' extremes.
+  if (!ex.controls.empty()) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    std::size_t i = 0;
+    for (const Body& body : model.bodies)
+      for (std::size_t k = 0; k < body.surfaces.size(); ++k) {
+        const auto& dc = body.surfaces[k].depth_control;
+        if (!dc || i >= ex.controls.size()) continue;
+        const ControlExtremes& c = ex.controls[i++];
+        nlohmann::ordered_json o;
+        o["body"] = body.inline_body ? body.name : "body";
+        o["surface"] = k;
+        o["target_depth"] = num(dc->target_depth);
+        o["initial_error"] = num(tidy(c.first_error));
+        o["settling_band"] = num(tidy(c.band));
+        o["settling_time"] = num(tidy_time(c.settled_since));  // null: not settled at the end
+        o["final_error"] = num(tidy(c.final_error));
+        o["max_abs_error"] = json_of(c.max_abs_error);
+        o["max_abs_deflection_deg"] = json_of(c.max_abs_deflection);
+        o["max_abs_deflection_rate_deg_s"] = json_of(c.max_abs_rate);
+        list.push_back(o);
+      }
+    j["depth_control"] = list;
+  }
   // With breaking loads: the largest tension / breaking load anywhere, and when;
   // the first crossings of 1/3 (warning) and 1 (failure), null when never.
   if (!std::isnan(ex.max_utilisation.value)) {

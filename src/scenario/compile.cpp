@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "checks.hpp"
+#include "reader.hpp"
 
 namespace towsim::io {
 namespace {
@@ -57,6 +58,32 @@ void check_initial(const InitialSpec& init, const TowSpec& tow, Diagnostics& d) 
             "steady needs tow.mode: motion (the steady velocity comes from the tow's motion; tow.mode is force)");
 }
 
+/// Rules between depth controllers and the simulation: the default
+/// formulation carries their state; a fixed RK4 step must resolve the servo.
+void check_controls(const ScenarioSpec& s, Diagnostics& d) {
+  std::vector<const BodySpec*> bodies{&s.body};
+  for (const BodySpec& b : s.cable.inline_bodies) bodies.push_back(&b);
+  const SimulationSpec& sim = s.simulation;
+  for (const BodySpec* b : bodies) {
+    if (!b->present) continue;
+    for (const SurfaceSpec& surf : b->surfaces) {
+      const DepthControlSpec& c = surf.depth_control;
+      if (!c.present) continue;
+      if (sim.formulation.value == "paper") {
+        d.error(sim.formulation.where.loc, sim.formulation.where.path,
+                "the paper formulation has no depth controller (use formulation: default)");
+        return;
+      }
+      const double tau = c.servo_time_constant.value;
+      if (sim.integrator.value == "rk4" && tau > 0 && sim.time_step.value > 2 * tau)
+        d.error(c.servo_time_constant.given ? c.servo_time_constant.where.loc : c.where.loc,
+                join_path(c.where.path, "servo_time_constant"),
+                "must be >= simulation.time_step / 2 with integrator rk4 (got " + fmt_num(tau) +
+                    " s, time step " + fmt_num(sim.time_step.value) + " s: the servo would be unstable)");
+    }
+  }
+}
+
 Fluid build_fluid(const EnvironmentSpec& e) {
   Fluid f;
   f.rho = e.water_density.value;
@@ -104,6 +131,7 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   check_nonzero(spec.initial.direction, diags);
   check_initial(spec.initial, spec.tow, diags);
   check_simulation(spec.simulation, diags);
+  check_controls(spec, diags);
   check_waves(spec, diags);
   if (spec.winch.present) check_winch(spec, diags);
   check_seabed(spec, diags);

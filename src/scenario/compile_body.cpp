@@ -23,6 +23,29 @@ void check_cylinder(const CylinderSpec& c, Diagnostics& d) {
   check_non_negative(c.added_mass, d);
 }
 
+/// A surface's depth controller: gains, limits, servo.
+void check_depth_control(const SurfaceSpec& s, Diagnostics& d) {
+  const DepthControlSpec& c = s.depth_control;
+  if (!s.deflection.empty())
+    d.error(c.where.loc, c.where.path, "give either deflection_deg or depth_control, not both");
+  check_non_negative(c.target_depth, d);
+  if (c.kp.value == 0 && c.ki.value == 0 && c.kd.value == 0)
+    d.error(c.where.loc, c.where.path, "needs a gain (kp, ki and kd are all 0)");
+  check_positive(c.max_deflection_deg, d);
+  if (c.max_deflection_deg.given && c.max_deflection_deg.value > 90)
+    d.error(c.max_deflection_deg.where.loc, c.max_deflection_deg.where.path,
+            "must be <= 90 (got " + fmt_num(c.max_deflection_deg.value) + ")");
+  check_positive(c.max_rate_deg_s, d);
+  check_positive(c.servo_time_constant, d);
+  check_positive(c.tracking_time, d);
+  check_positive(c.settling_band, d);
+  const Field<double>& d0 = c.initial_deflection_deg;
+  if (c.max_deflection_deg.given && std::abs(d0.value) > c.max_deflection_deg.value)
+    d.error(d0.where.loc, d0.where.path,
+            "must be within +-max_deflection_deg (got " + fmt_num(d0.value) + ", limit " +
+                fmt_num(c.max_deflection_deg.value) + ")");
+}
+
 void check_surface(const SurfaceSpec& s, Diagnostics& d) {
   check_nonzero(s.chord, d);
   check_nonzero(s.normal, d);
@@ -43,6 +66,7 @@ void check_surface(const SurfaceSpec& s, Diagnostics& d) {
   check_non_negative(s.drag0, d);
   check_non_negative(s.induced_drag, d);
   check_increasing(s.deflection, "times", d);
+  if (s.depth_control.present) check_depth_control(s, d);
 }
 
 /// ZYX attitude: R = Rz(yaw) Ry(pitch) Rx(roll), angles in degrees.
@@ -65,6 +89,24 @@ LiftingSurface build_surface(const SurfaceSpec& s) {
   for (const auto& row : s.deflection) {
     f.deflection_time.push_back(row.values[0]);
     f.deflection_angle.push_back(row.values[1] * kDeg);
+  }
+  if (s.depth_control.present) {
+    const DepthControlSpec& c = s.depth_control;
+    DepthControl dc;
+    dc.target_depth = c.target_depth.value;
+    dc.kp = c.kp.value * kDeg;
+    dc.ki = c.ki.value * kDeg;
+    dc.kd = c.kd.value * kDeg;
+    dc.max_deflection = c.max_deflection_deg.value * kDeg;
+    dc.max_rate = c.max_rate_deg_s.value * kDeg;
+    dc.servo_time_constant = c.servo_time_constant.value;
+    // Anti-windup tracking time: the integral time |kp/ki| unless given (1 s without both gains).
+    dc.tracking_time = c.tracking_time.given                 ? c.tracking_time.value
+                       : (c.kp.value != 0 && c.ki.value != 0) ? std::abs(c.kp.value / c.ki.value)
+                                                              : 1.0;
+    dc.initial_deflection = c.initial_deflection_deg.value * kDeg;
+    dc.settling_band = c.settling_band.given ? c.settling_band.value : 0.0;
+    f.depth_control = dc;
   }
   return f;
 }

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <set>
 
 #include "checks.hpp"
@@ -25,6 +26,10 @@ struct Resolved {
   Field<double> mass_per_length, diameter, normal_drag, tangential_coef, added_mass, breaking_load;
   Field<std::string> tangential_law;
   Field<double> axial_stiffness, axial_damping;
+  // Faired cable: the laws' tables (rows {phi [deg], f}), empty with the default laws.
+  Field<std::string> normal_law;
+  const std::vector<RowSpec>* normal_table = nullptr;
+  const std::vector<RowSpec>* tangential_table = nullptr;
 };
 
 /// Field f of the section if given, else the cable's.
@@ -39,7 +44,7 @@ std::vector<Resolved> resolve(const CableSpec& c) {
   if (c.sections.empty() && c.item_body.empty()) {
     out.push_back({c.where, "cable", c.length, c.elements, c.mass_per_length, c.diameter, c.normal_drag,
                    c.tangential_coef, c.added_mass, c.breaking_load, c.tangential_law, c.axial_stiffness,
-                   c.axial_damping});
+                   c.axial_damping, c.normal_law, &c.normal_table, &c.tangential_table});
     return out;
   }
   for (std::size_t i = 0; i < c.sections.size(); ++i) {
@@ -56,16 +61,49 @@ std::vector<Resolved> resolve(const CableSpec& c) {
                pick(s.breaking_load, c.breaking_load),
                pick(s.tangential_law, c.tangential_law),
                pick(s.axial_stiffness, c.axial_stiffness),
-               pick(s.axial_damping, c.axial_damping)};
+               pick(s.axial_damping, c.axial_damping),
+               pick(s.normal_law, c.normal_law),
+               s.normal_law.given ? &s.normal_table : &c.normal_table,
+               s.tangential_law.given ? &s.tangential_table : &c.tangential_table};
     out.push_back(r);
   }
   return out;
+}
+
+/// The cable's tangential law: that of the first section without a table law (pode if none).
+std::string cable_law(const std::vector<Resolved>& secs) {
+  for (const Resolved& s : secs)
+    if (s.tangential_law.value != "table") return s.tangential_law.value;
+  return "pode";
+}
+
+/// The table of a law in radians (empty for the default laws).
+LoadingTable loading_table(const std::vector<RowSpec>* rows, bool table_law) {
+  LoadingTable t;
+  if (!table_law || rows == nullptr) return t;
+  for (const RowSpec& row : *rows) {
+    t.phi.push_back(row.values[0] * std::numbers::pi / 180);
+    t.f.push_back(row.values[1]);
+  }
+  return t;
 }
 
 /// A required property that neither the section nor the cable gives.
 void require(const Field<double>& f, const Where& section, const std::string& key, Diagnostics& d) {
   if (f.given) return;
   d.error(section.loc, join_path(section.path, key), "missing (give it in the section or at cable level)");
+}
+
+/// A faired cable's loading table: angles in [0, 90] deg, strictly increasing; f >= 0.
+void check_loading(const std::vector<RowSpec>& rows, const std::string& f, Diagnostics& d) {
+  for (const RowSpec& row : rows) {
+    if (!(row.values[0] >= 0 && row.values[0] <= 90))
+      d.error(row.where.loc, row.where.path,
+              "the angle between cable and flow must be within [0, 90] deg (got " + fmt_num(row.values[0]) + ")");
+    if (!(row.values[1] >= 0))
+      d.error(row.where.loc, row.where.path, f + " must be >= 0 (got " + fmt_num(row.values[1]) + ")");
+  }
+  check_increasing(rows, "angles", d);
 }
 
 void check_section(const Resolved& s, Diagnostics& d, bool sectioned) {
@@ -204,15 +242,23 @@ void check_cable(const CableSpec& c, const BodySpec& end_body, const SimulationS
     total += std::max(0LL, s.elements.value);
   }
   check_positive(c.sign_smoothing_speed, d);
+  // Loading tables where they are written (inherited ones once).
+  check_loading(c.normal_table, "fn", d);
+  check_loading(c.tangential_table, "ft", d);
+  for (const SectionSpec& s : c.sections) {
+    check_loading(s.normal_table, "fn", d);
+    check_loading(s.tangential_table, "ft", d);
+  }
   if (secs.size() > 1 && total > kMaxElements)
     d.error(c.sections_where.loc, c.sections_where.path,
             "too many elements in all (" + std::to_string(total) + " > " + std::to_string(kMaxElements) + ")");
-  // One tangential law for the whole cable (element loads take the cable's).
+  // One tangential law for the whole cable (element loads take the cable's);
+  // a section's table law replaces it there.
+  const std::string law = cable_law(secs);
   for (const Resolved& s : secs)
-    if (s.tangential_law.value != secs.front().tangential_law.value && s.tangential_law.given)
+    if (s.tangential_law.value != "table" && s.tangential_law.value != law && s.tangential_law.given)
       d.error(s.tangential_law.where.loc, s.tangential_law.where.path,
-              "all sections must use the same tangential drag law (the first uses " +
-                  secs.front().tangential_law.value + ")");
+              "all sections must use the same tangential drag law (the first uses " + law + ")");
   check_topology(c, end_body, d);
   if (!d.ok()) return;
   check_attachments(c, secs, end_body.present, d);
@@ -226,7 +272,7 @@ void check_cable(const CableSpec& c, const BodySpec& end_body, const SimulationS
 void build_chain(const CableSpec& c, const BodySpec& end_body, Model& m) {
   const std::vector<Resolved> secs = resolve(c);
   Cable& cable = m.cable;
-  cable.tangential_law = secs.front().tangential_law.value == "skin" ? TangentialLaw::Skin : TangentialLaw::Pode;
+  cable.tangential_law = cable_law(secs) == "skin" ? TangentialLaw::Skin : TangentialLaw::Pode;
   cable.added_mass_model =
       c.added_mass_model.value == "morison" ? AddedMassModel::Morison : AddedMassModel::IdealFluid;
   cable.sign_smoothing_speed = c.sign_smoothing_speed.value;
@@ -246,7 +292,10 @@ void build_chain(const CableSpec& c, const BodySpec& end_body, Model& m) {
     const Resolved& s = secs[section];
     const long long n = s.elements.value;
     const double le = s.length.value / static_cast<double>(n);
-    cable.sections.push_back({s.name, cable.n(), static_cast<int>(n), s.length.value, s.breaking_load.given ? s.breaking_load.value : 0.0});
+    cable.sections.push_back({s.name, cable.n(), static_cast<int>(n), s.length.value,
+                              s.breaking_load.given ? s.breaking_load.value : 0.0,
+                              loading_table(s.normal_table, s.normal_law.value == "table"),
+                              loading_table(s.tangential_table, s.tangential_law.value == "table")});
     for (long long i = 0; i < n; ++i) {
       Element el = make_element(le, s.mass_per_length.value, s.diameter.value, s.normal_drag.value,
                                 s.tangential_coef.value, cable.tangential_law, s.added_mass.value, m.fluid);

@@ -1,5 +1,7 @@
 #include "towsim/scenario/parse.hpp"
 
+#include <algorithm>
+
 #include "parse_sections.hpp"
 
 namespace towsim::io {
@@ -104,19 +106,63 @@ void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
 
 namespace {
 
-/// tangential_drag: {law: pode, f: ...} or {law: skin, ct: ...}.
-void parse_tangential(MapReader& r, Field<std::string>& law, Field<double>& coef, Diagnostics& d) {
+/// A faired cable's loading table [[phi_deg, f], ...] under `key` (required).
+void read_loading(MapReader& r, const std::string& key, std::vector<RowSpec>& rows, Diagnostics& d) {
+  const YNode* n = r.get(key, true);
+  if (n == nullptr) return;
+  if (!read_table(*n, r.sub(key), 2, d, rows)) rows.clear();
+}
+
+/// True when `law` is given but is none of `choices` (reported already): the
+/// caller then accepts every law's keys silently instead of adding errors.
+bool unknown_law(const YNode& map, const std::vector<std::string>& choices) {
+  const YNode* law = map.find("law");
+  if (law == nullptr || !law->is_scalar()) return false;
+  return std::find(choices.begin(), choices.end(), law->scalar) == choices.end();
+}
+
+/// tangential_drag: {law: pode, f: ...}, {law: skin, ct: ...} or {law: table, ft: [[phi_deg, ft], ...]}.
+void parse_tangential(MapReader& r, Field<std::string>& law, Field<double>& coef, std::vector<RowSpec>& table,
+                      Diagnostics& d) {
   const YNode* t = r.get("tangential_drag");
   if (t == nullptr) return;
   MapReader tr(t, r.sub("tangential_drag"), d);
-  tr.choice("law", law, {"pode", "skin"});
+  tr.choice("law", law, {"pode", "skin", "table"});
+  if (unknown_law(*t, {"pode", "skin", "table"}))
+    for (const char* key : {"f", "ct", "ft"}) tr.get(key);
   coef.value = law.value == "skin" ? 0.008 : 0.0;
   coef.given = law.given;  // the law's default coefficient goes with it
   if (law.value == "skin")
     tr.read("ct", coef);
+  else if (law.value == "table")
+    read_loading(tr, "ft", table, d);
   else
     tr.read("f", coef);
   tr.finish();
+}
+
+/// normal_drag: Cd, or {law: cross_flow, cd: ...} or {law: table, cd: ..., fn: [[phi_deg, fn], ...]}.
+/// A map sets the law (and its table) even without cd; cd then comes from the cable level or its default.
+void parse_normal(MapReader& r, Field<double>& cd, Field<std::string>& law, std::vector<RowSpec>& table,
+                  Diagnostics& d) {
+  const YNode* n = r.get("normal_drag");
+  if (n == nullptr) return;
+  if (!n->is_map()) {
+    r.read("normal_drag", cd);
+    law.value = "cross_flow";
+    law.where = cd.where;
+    law.given = cd.given;
+    return;
+  }
+  MapReader nr(n, r.sub("normal_drag"), d);
+  law.value = "cross_flow";
+  law.where = r.where(*n, "normal_drag");
+  law.given = true;
+  nr.choice("law", law, {"cross_flow", "table"});
+  if (unknown_law(*n, {"cross_flow", "table"})) nr.get("fn");
+  nr.read("cd", cd);
+  if (law.value == "table") read_loading(nr, "fn", table, d);
+  nr.finish();
 }
 
 /// One cable.sections item that is a section (not a body).
@@ -127,8 +173,8 @@ void parse_section(MapReader& r, SectionSpec& sec, Diagnostics& d) {
   r.read("elements", sec.elements, true);
   r.read("mass_per_length", sec.mass_per_length);
   r.read("diameter", sec.diameter);
-  r.read("normal_drag", sec.normal_drag);
-  parse_tangential(r, sec.tangential_law, sec.tangential_coef, d);
+  parse_normal(r, sec.normal_drag, sec.normal_law, sec.normal_table, d);
+  parse_tangential(r, sec.tangential_law, sec.tangential_coef, sec.tangential_table, d);
   r.read("added_mass", sec.added_mass);
   r.read("axial_stiffness", sec.axial_stiffness);
   r.read("axial_damping", sec.axial_damping);
@@ -153,8 +199,8 @@ void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {
   r.read("elements", cable.elements, !sectioned);
   r.read("mass_per_length", cable.mass_per_length, !sectioned);
   r.read("diameter", cable.diameter, !sectioned);
-  r.read("normal_drag", cable.normal_drag);
-  parse_tangential(r, cable.tangential_law, cable.tangential_coef, d);
+  parse_normal(r, cable.normal_drag, cable.normal_law, cable.normal_table, d);
+  parse_tangential(r, cable.tangential_law, cable.tangential_coef, cable.tangential_table, d);
   r.read("added_mass", cable.added_mass);
   r.choice("added_mass_model", cable.added_mass_model, {"ideal_fluid", "morison"});
   r.read("sign_smoothing_speed", cable.sign_smoothing_speed);

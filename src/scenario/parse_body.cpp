@@ -36,6 +36,21 @@ void parse_deflection(MapReader& r, SurfaceSpec& s, Diagnostics& d) {
   if (!read_table(*n, s.deflection_where.path, 2, d, s.deflection)) s.deflection.clear();
 }
 
+/// depth_control: {target_depth, kp, ki, kd, max_deflection_deg, max_rate_deg_s, ...}.
+void parse_depth_control(MapReader& r, DepthControlSpec& c) {
+  c.where = r.where();
+  r.read("target_depth", c.target_depth, true);
+  r.read("kp", c.kp);
+  r.read("ki", c.ki);
+  r.read("kd", c.kd);
+  r.read("max_deflection_deg", c.max_deflection_deg, true);
+  r.read("max_rate_deg_s", c.max_rate_deg_s, true);
+  r.read("servo_time_constant", c.servo_time_constant);
+  r.read("tracking_time", c.tracking_time);
+  r.read("initial_deflection_deg", c.initial_deflection_deg);
+  r.read("settling_band", c.settling_band);
+}
+
 void parse_surface(MapReader& r, SurfaceSpec& s, Diagnostics& d) {
   s.where = r.where();
   r.read("center", s.center, true);
@@ -47,6 +62,10 @@ void parse_surface(MapReader& r, SurfaceSpec& s, Diagnostics& d) {
   r.read("drag0", s.drag0);
   r.read("induced_drag", s.induced_drag);
   parse_deflection(r, s, d);
+  MapReader dc(r.get("depth_control"), r.sub("depth_control"), d);
+  s.depth_control.present = dc.present();
+  if (dc.present()) parse_depth_control(dc, s.depth_control);
+  dc.finish();
 }
 
 /// thrusters item: point, direction, force (a number or a table [[t, N], ...]).

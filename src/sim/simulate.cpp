@@ -137,7 +137,15 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyWork& bw = ws.body[b];
     out.bodies.push_back({bw.O, bw.vO, roll_pitch_yaw(s.bodies[b].q) * kRad2Deg, bw.w, ws.acc.link_force[b],
-                          ws.acc.lower_link_force[b]});
+                          ws.acc.lower_link_force[b], {}});
+    // Depth controllers: deflection, its rate and the depth error.
+    std::size_t c = 0;
+    for (const LiftingSurface& ls : model.bodies[b].surfaces) {
+      if (!ls.depth_control) continue;
+      const ControlState& cs = s.bodies[b].controls[c];
+      const ControlRates r = depth_control_rates(*ls.depth_control, cs, -bw.O.z(), -bw.vO.z());
+      out.bodies.back().controls.push_back({bw.deflection[c++] * kRad2Deg, r.ddeflection * kRad2Deg, r.error});
+    }
   }
   if (has_sea(model)) sea_sample(model, t, out);
   out.node_id.resize(out.node_pos.size());

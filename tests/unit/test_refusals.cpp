@@ -43,7 +43,7 @@ TEST_F(Refusal, UnknownKeyInListItemAndChoiceHaveHints) {
                       "  spheres:\n    - {center: [0, 0, 0], raduis: 0.1}\n"
                       "tow:\n  motion:\n    - {type: heave, amplitude: 1, periode: 10}\n");
   EXPECT_EQ(s.diags.str(),
-            at("6:26: cable.tangential_drag.law: expected one of pode, skin (got 'skn'; did you mean 'skin'?)") +
+            at("6:26: cable.tangential_drag.law: expected one of pode, skin, table (got 'skn'; did you mean 'skin'?)") +
                 at("14:7: body.spheres.0.radius: missing required key") +
                 at("14:27: body.spheres.0.raduis: unknown key (did you mean 'radius'?)") +
                 at("17:7: tow.motion.0.period: missing required key") +
@@ -53,13 +53,13 @@ TEST_F(Refusal, UnknownKeyInListItemAndChoiceHaveHints) {
 // --- wrong types ------------------------------------------------------------
 
 TEST_F(Refusal, WrongTypes) {
-  const auto s = load("environment:\n  current: [1, 0]\n" + kCable + "  normal_drag: {cd: 1}\n" + kSim +
+  const auto s = load("environment:\n  current: [1, 0]\n" + kCable + "  normal_drag: [1, 2]\n" + kSim +
                       "  write_nodes: yes\n  integrator: [rk4]\n"
                       "body: [3]\n"
                       "initial: 12\n");
   EXPECT_EQ(s.diags.str(),
             at("2:12: environment.current: expected a list of 3 numbers (got a list of 2)") +
-                at("8:16: cable.normal_drag: expected a number (got a mapping)") +
+                at("8:16: cable.normal_drag: expected a number (got a list of 2)") +
                 at("11:16: simulation.write_nodes: expected true or false (got 'yes')") +
                 at("12:15: simulation.integrator: expected a single value (got a list of 1)") +
                 at("13:7: body: expected a mapping of keys (got a list of 1)") +

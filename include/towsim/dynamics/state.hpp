@@ -13,6 +13,7 @@ namespace towsim {
 struct BodyState {
   Quat q = Quat::Identity();  // attitude: body axes -> R_g
   Vec3 w = Vec3::Zero();      // angular velocity omega_B [rad/s, R_g]
+  std::vector<ControlState> controls{};  // per surface with a depth controller, in surface order
 };
 
 /// Configuration and velocities in physical (chart-free) variables.
@@ -68,6 +69,7 @@ struct BodyWork {
   Vec3 Q = Vec3::Zero();        // link point Q = bottom of the element above [m, R_g]
   Vec3 vQ = Vec3::Zero();       // its velocity [m/s, R_g]
   Vec3 w = Vec3::Zero();        // angular velocity omega_B [rad/s, R_g]
+  std::vector<double> deflection{};  // applied deflection of each controlled surface (BodyState::controls) [rad]
   // d(momentum, moment of momentum about O_t)/dt = Mw [a_O; alpha] + hw
   Mat6 Mw = Mat6::Zero();       // [kg, kg m, kg m^2] blocks, R_g
   Vec6 hw = Vec6::Zero();       // [N; N m], R_g

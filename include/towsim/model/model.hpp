@@ -12,8 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "towsim/model/depth_control.hpp"
 #include "towsim/model/fluid.hpp"
 #include "towsim/model/seabed.hpp"
+#include "towsim/model/loading_table.hpp"
 #include "towsim/model/types.hpp"
 #include "towsim/model/winch.hpp"
 #include "towsim/tow/tow.hpp"
@@ -68,6 +70,9 @@ struct Section {
   int elements = 0;         // number of elements [-]
   double length = 0;        // [m]
   double breaking_load = 0; // [N]; 0 = not given
+  // Faired cable: loading functions of the flow angle; empty = the default laws.
+  LoadingTable normal_loading{};      // f_n(phi), replaces the cross-flow normal drag [-]
+  LoadingTable tangential_loading{};  // f_t(phi), replaces the cable's tangential law [-]
 };
 
 /// Cable: the chain of elements and its fluid-load options.
@@ -117,6 +122,8 @@ struct LiftingSurface {
   /// one row = constant, empty = 0. Linear interpolation, held at the ends.
   std::vector<double> deflection_time;   // [s]
   std::vector<double> deflection_angle;  // [rad]
+  /// A depth-keeping controller sets the deflection instead of the table.
+  std::optional<DepthControl> depth_control{};
 };
 
 /// A thruster on a body: a force along a fixed body-axes direction, applied
@@ -210,6 +217,9 @@ Element scaled_element(const Element& el, double length);
 
 /// Fill Body's derived fields (rigid_mass, fluid_mass, displaced volume).
 void finalize_body(Body& body, const Fluid& fluid);
+
+/// Number of the body's surfaces with a depth controller (its ControlState entries).
+int control_count(const Body& body);
 
 /// The end body (the one with nothing below it), or nullptr.
 const Body* end_body(const Model& model);

@@ -54,6 +54,18 @@ struct Crossing {
   bool happened() const { return node >= 0; }
 };
 
+/// Figures of one depth controller (docs/outputs: summary.json "depth_control").
+struct ControlExtremes {
+  Extreme max_abs_deflection;    // |delta| [deg]
+  Extreme max_abs_rate;          // |d delta/dt| [deg/s]
+  Extreme max_abs_error;         // |depth - target| [m]
+  double first_error = std::numeric_limits<double>::quiet_NaN();  // e of the first sample [m]
+  double band = std::numeric_limits<double>::quiet_NaN();         // settling band [m]
+  double settled_since = std::numeric_limits<double>::quiet_NaN();  // first time of the current run of
+                                                                     // samples with |e| <= band; NaN when outside [s]
+  double final_error = std::numeric_limits<double>::quiet_NaN();  // e of the last sample [m]
+};
+
 /// Extremes over all written samples.
 struct Extremes {
   Extreme max_tow_tension;    // |F_R| [N]
@@ -70,8 +82,11 @@ struct Extremes {
   Extreme max_seabed_friction;   // sum of |friction force| of the seabed [N]
   BodyExtremes end_body_extremes;           // the end body's (if any)
   std::vector<BodyExtremes> inline_bodies;  // per Model::bodies entry (in-line ones used)
+  std::vector<ControlExtremes> controls;    // per depth controller (bodies, then surfaces, in order)
   /// Update with one sample of `model`.
   void add(const Model& model, const Sample& s);
+  /// The depth controllers' part of add().
+  void add_controls(const Model& model, const Sample& s);
 };
 
 /// Magnitudes below this are written as 0 [any unit: m, N, deg, m/s].

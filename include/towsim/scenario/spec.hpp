@@ -66,8 +66,11 @@ struct SectionSpec {
   Field<double> mass_per_length;    // in air [kg/m]
   Field<double> diameter;           // [m]
   Field<double> normal_drag;        // Cd [-]
-  Field<std::string> tangential_law;  // pode | skin
+  Field<std::string> normal_law;    // cross_flow | table (faired cable)
+  std::vector<RowSpec> normal_table;  // law table: rows {phi [deg], f_n [-]}
+  Field<std::string> tangential_law;  // pode | skin | table
   Field<double> tangential_coef;    // f or ct [-]
+  std::vector<RowSpec> tangential_table;  // law table: rows {phi [deg], f_t [-]}
   Field<double> added_mass;         // Ca [-]
   Field<double> axial_stiffness;    // EA [N]; absent = inextensible
   Field<double> axial_damping;      // c_a [N s]: tension c_a * strain rate while taut
@@ -94,8 +97,11 @@ struct CableSpec {
   Field<double> mass_per_length;    // in air [kg/m]
   Field<double> diameter;           // [m]
   Field<double> normal_drag{1.8};   // Cd [-]
-  Field<std::string> tangential_law{"pode"};  // pode | skin
+  Field<std::string> normal_law{"cross_flow"};  // cross_flow | table (faired cable)
+  std::vector<RowSpec> normal_table;            // law table: rows {phi [deg], f_n [-]}
+  Field<std::string> tangential_law{"pode"};  // pode | skin | table
   Field<double> tangential_coef{0.0};         // f (pode, default 0) or ct (skin, default 0.008) [-]
+  std::vector<RowSpec> tangential_table;      // law table: rows {phi [deg], f_t [-]}
   Field<double> added_mass{1.0};              // Ca [-]
   Field<std::string> added_mass_model{"ideal_fluid"};  // ideal_fluid | morison
   Field<double> sign_smoothing_speed{1e-3};   // [m/s]
@@ -133,6 +139,22 @@ struct CylinderSpec {
   Field<double> added_mass{1.0};   // Ca [-]
 };
 
+/// body.surfaces item depth_control: PID on the body's depth setting the deflection.
+struct DepthControlSpec {
+  bool present = false;
+  Where where;
+  Field<double> target_depth;               // of the body origin, positive down [m] (required)
+  Field<double> kp{0.0};                    // [deg/m]
+  Field<double> ki{0.0};                    // [deg/(m s)]
+  Field<double> kd{0.0};                    // [deg s/m]
+  Field<double> max_deflection_deg;         // [deg] (required)
+  Field<double> max_rate_deg_s;             // [deg/s] (required)
+  Field<double> servo_time_constant{0.1};   // [s]
+  Field<double> tracking_time;              // anti-windup [s]; absent = |kp/ki|, or 1 s
+  Field<double> initial_deflection_deg{0.0};  // [deg]
+  Field<double> settling_band;              // [m]; absent = 1 % of the first depth error
+};
+
 /// body.surfaces item.
 struct SurfaceSpec {
   Where where;
@@ -146,6 +168,7 @@ struct SurfaceSpec {
   Field<double> induced_drag{0.05};      // k [-]
   Where deflection_where;
   std::vector<RowSpec> deflection;       // rows {t [s], delta [deg]}; empty = 0
+  DepthControlSpec depth_control;        // absent: the deflection table sets the deflection
 };
 
 /// body.thrusters item.

@@ -10,6 +10,13 @@
 
 namespace towsim {
 
+/// One depth controller's outputs at a sample time.
+struct ControlSample {
+  double deflection_deg = 0;   // applied deflection delta [deg]
+  double rate_deg_s = 0;       // d delta/dt [deg/s]
+  double depth_error = 0;      // e = depth - target_depth [m]
+};
+
 /// One body's outputs at a sample time.
 struct BodySample {
   Vec3 pos;                     // O_t [m, R_g]
@@ -18,6 +25,7 @@ struct BodySample {
   Vec3 omega;                   // angular velocity [rad/s, R_g]
   Vec3 link_force;              // F_L exerted by the cable above on the body at Q [N, R_g]
   Vec3 lower_link_force;        // in-line body: force on the cable below at Q2 [N, R_g]
+  std::vector<ControlSample> controls{};  // per surface with a depth controller, in surface order
 };
 
 /// Everything written for one output time (docs/scenario.md "Output files").
