@@ -116,7 +116,9 @@ void add_statics_command(CLI::App& app, int& status) {
   cmd->add_option("--out,-o", opts->out_dir, "Write the configuration (timeseries.csv, nodes.csv) here");
   cmd->callback([opts, &status] {
     require_one_input(opts->input);
-    status = statics_command(*opts, std::cout, std::cerr);
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    status = statics_command(*opts, std::cout, std::cerr, &g_stop);
   });
 }
 

@@ -150,6 +150,7 @@ void attach_waves(const ScenarioSpec& s, Model& m) {
                                                      static_cast<int>(w.components.value),
                                                      static_cast<std::uint64_t>(w.seed.value), dir, depth, m.fluid.g);
     built.ramp_time = w.ramp_time.value;
+    built.wheeler = w.stretching.value == "wheeler";
     field = std::make_shared<const WaveField>(std::move(built));
     if (m.fluid.rho > 0) m.fluid.waves = field;
     if (w.statistics_start.given) m.sim.statistics_start = w.statistics_start.value;

@@ -135,7 +135,9 @@ long parse_index(const std::string& s) {
 /// missing. Returns the child, or nullptr after reporting an error.
 YNode* step(YNode* cur, const std::string& part, const std::string& path, const SourceLoc& at,
             Diagnostics& diags) {
-  if (cur->is_null()) cur->kind = YNode::Kind::Map;
+  // Nothing there yet: a list when the key is an index (body.spheres.0.radius
+  // on a body without spheres starts the list), else a mapping.
+  if (cur->is_null()) cur->kind = parse_index(part) >= 0 ? YNode::Kind::Sequence : YNode::Kind::Map;
   if (cur->is_map()) {
     if (YNode* child = cur->find(part)) return child;
     YNode fresh;

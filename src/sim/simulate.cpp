@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "towsim/integrators/system.hpp"
+#include "towsim/sim/statics.hpp"
 #include "towsim/waves/vessel.hpp"
 
 namespace towsim {
@@ -141,7 +142,23 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   RunStats stats;
   const auto wall0 = std::chrono::steady_clock::now();
   auto sys = make_system(model);
-  StateVector y = sys->initial(initial_state(model), 0.0);
+  // A steady start can fail or be interrupted: the run then ends before t = 0.
+  PhysicalState s0;
+  if (model.initial.kind == Initial::Kind::Steady) {
+    const StaticsResult st = steady_state(model, stop_flag);
+    if (!st.converged) {
+      stats.status = st.interrupted ? "interrupted" : "failed";
+      stats.message = st.interrupted ? "interrupted by signal while solving the steady initial state"
+                                     : "initial: steady: " + st.message;
+      stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+      sink.flush();
+      return stats;
+    }
+    s0 = st.state;
+  } else {
+    s0 = initial_state(model);
+  }
+  StateVector y = sys->initial(s0, 0.0);
   if (model.initial.kind != Initial::Kind::Steady) sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
   sys->project(y, 0.0);
   double t = 0;

@@ -165,14 +165,21 @@ double WaveField::elevation(const Vec3& x, double t) const {
   return r * eta;
 }
 
+double WaveField::stretched(double z, double eta) const {
+  if (!wheeler) return z;
+  return std::isfinite(depth) ? (z - eta) * depth / (depth + eta) : z - eta;
+}
+
 Vec3 WaveField::velocity(const Vec3& x, double t) const {
-  if (x.z() > 0) return Vec3::Zero();
+  const double eta = wheeler ? elevation(x, t) : 0.0;  // kinematics up to eta (Wheeler) or z = 0
+  if (x.z() > eta) return Vec3::Zero();
+  const double z = stretched(x.z(), eta);
   const double s = direction.x() * x.x() + direction.y() * x.y();
   double uh = 0, w = 0;
   for (const auto& c : components) {
-    if (c.z_cut > x.z()) break;  // this one and all later ones are negligible here
+    if (c.z_cut > z) break;  // this one and all later ones are negligible here
     double C, S;
-    depth_factors(c.k, x.z(), depth, C, S);
+    depth_factors(c.k, z, depth, C, S);
     const double th = c.omega * t - c.k * s - c.phase, aw = c.amplitude * c.omega;
     uh += aw * C * std::cos(th);
     w -= aw * S * std::sin(th);
@@ -183,15 +190,17 @@ Vec3 WaveField::velocity(const Vec3& x, double t) const {
 }
 
 Vec3 WaveField::acceleration(const Vec3& x, double t) const {
-  if (x.z() > 0) return Vec3::Zero();
+  const double eta = wheeler ? elevation(x, t) : 0.0;
+  if (x.z() > eta) return Vec3::Zero();
+  const double z = stretched(x.z(), eta);
   const double s = direction.x() * x.x() + direction.y() * x.y();
   double r, rd, rdd;
   ramp(t, r, rd, rdd);
   double ah = 0, az = 0, uh = 0, w = 0;
   for (const auto& c : components) {
-    if (c.z_cut > x.z()) break;
+    if (c.z_cut > z) break;
     double C, S;
-    depth_factors(c.k, x.z(), depth, C, S);
+    depth_factors(c.k, z, depth, C, S);
     const double th = c.omega * t - c.k * s - c.phase, aw = c.amplitude * c.omega, aw2 = aw * c.omega;
     const double cs = std::cos(th), sn = std::sin(th);
     ah -= aw2 * C * sn;

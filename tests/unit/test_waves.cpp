@@ -256,3 +256,49 @@ TEST(Waves, BuildUpRampIsSmoothAndConsistent) {
 }
 
 }  // namespace
+
+namespace {
+
+// Wheeler stretching (waves.stretching: wheeler): under a crest the
+// velocity at the surface z = eta equals the linear field's at z = 0, a point
+// d below the surface sees the linear value at depth d (deep water), the
+// seabed stays at -h (finite depth), nothing acts above the surface; without
+// stretching nothing acts above z = 0. The truth is the unstretched linear
+// field evaluated by the same code at the stretched height (closed form:
+// z' = z - eta deep, (z - eta) h / (h + eta) finite); 1e-12: round-off of
+// the sums of a few terms of size a omega ~ 1.6 m/s.
+TEST(Waves, WheelerStretchingMapsTheSurfaceToZ0) {
+  constexpr double kTol = 1e-12;
+  for (double h : {kInf, 30.0}) {
+    const WaveField lin = towsim::make_regular_wave(4.0, 8.0, Vec3::UnitX(), h, kG);
+    WaveField wh = lin;
+    wh.wheeler = true;
+    const double a = 2.0;
+    // Crest at x = 0, t = 0 (eta = a); trough at t = T/2 (eta = -a).
+    const Vec3 crest(0, 0, a);
+    EXPECT_NEAR(wh.elevation(crest, 0), a, kTol);
+    EXPECT_LT((wh.velocity(crest, 0) - lin.velocity(Vec3::Zero(), 0)).norm(), kTol) << "h = " << h;
+    const double coth = std::isfinite(h) ? 1 / std::tanh(lin.components[0].k * h) : 1.0;
+    EXPECT_NEAR(wh.velocity(crest, 0).x(), a * 2 * kPi / 8.0 * coth, kTol) << "a omega coth(kh) at the crest";
+    EXPECT_LT((wh.acceleration(crest, 0) - lin.acceleration(Vec3::Zero(), 0)).norm(), kTol);
+    EXPECT_EQ(wh.velocity(Vec3(0, 0, a + 1e-9), 0), Vec3::Zero()) << "above the crest";
+    EXPECT_EQ(wh.velocity(Vec3(0, 0, -a + 0.5), 4.0), Vec3::Zero()) << "above the trough";
+    EXPECT_EQ(lin.velocity(Vec3(0, 0, 0.5), 0), Vec3::Zero()) << "linear: nothing above z = 0";
+    for (double t : {0.0, 1.3, 4.0}) {
+      const Vec3 x(3.0, 1.0, 0);
+      const double eta = wh.elevation(x, t);
+      for (double d : {0.0, 5.0, 12.0}) {
+        const double z = eta - d;
+        const double zs = std::isfinite(h) ? (z - eta) * h / (h + eta) : z - eta;
+        EXPECT_LT((wh.velocity(Vec3(x.x(), x.y(), z), t) - lin.velocity(Vec3(x.x(), x.y(), zs), t)).norm(), kTol)
+            << "h = " << h << ", t = " << t << ", d = " << d;
+      }
+      if (std::isfinite(h)) {
+        EXPECT_LT((wh.velocity(Vec3(x.x(), x.y(), -h), t) - lin.velocity(Vec3(x.x(), x.y(), -h), t)).norm(), kTol)
+            << "the seabed stays at -h";
+      }
+    }
+  }
+}
+
+}  // namespace

@@ -233,6 +233,7 @@ struct WavesSpec {
   Field<double> water_depth;          // [m]; absent = deep water
   Field<double> statistics_start;     // [s]; absent = half the duration
   Field<double> ramp_time{0.0};       // build-up of the waves and ship motion [s]
+  Field<std::string> stretching{"none"};  // kinematics near the surface: none | wheeler
 };
 
 /// One RAO row: period [s], heading [deg], dof (0..5), amplitude, phase [deg].

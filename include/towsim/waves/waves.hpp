@@ -38,6 +38,8 @@ struct WaveField {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();    // unit horizontal travel direction d [-, R_g]
   std::vector<WaveComponent> components;                   // sorted by z_cut, deepest first
   double ramp_time = 0;  // build-up: everything scaled by r(t), 0 -> 1 over [0, ramp_time] [s]
+  bool wheeler = false;  // Wheeler stretching: kinematics up to the surface eta, at the stretched height
+                         // z' = (z - eta) h / (h + eta) (deep water: z - eta); else linear up to z = 0
 
   /// Build-up factor r(t) = s^3 (10 - 15 s + 6 s^2), s = t / ramp_time in [0, 1]
   /// (twice continuously differentiable), and its first two derivatives.
@@ -45,11 +47,17 @@ struct WaveField {
 
   /// Surface elevation eta at the horizontal position of x [m].
   double elevation(const Eigen::Vector3d& x, double t) const;
-  /// Particle velocity at x [m/s, R_g]; zero above the still surface (z > 0).
+  /// Particle velocity at x [m/s, R_g]; zero above the still surface (z > 0),
+  /// or with `wheeler` above the wave surface eta, the linear velocity at the
+  /// stretched height z' below it (so the crest sees the z = 0 value).
   Eigen::Vector3d velocity(const Eigen::Vector3d& x, double t) const;
   /// Particle (local) acceleration du/dt at x [m/s^2, R_g] (with the
-  /// build-up's rate: d(r u)/dt); zero for z > 0.
+  /// build-up's rate: d(r u)/dt); zero for z > 0 (`wheeler`: z > eta, and
+  /// evaluated at z' like the velocity, without the rate of z' itself).
   Eigen::Vector3d acceleration(const Eigen::Vector3d& x, double t) const;
+  /// The height at which the linear kinematics are evaluated for a point at
+  /// height z under the surface eta: z itself, or Wheeler's stretched z' [m].
+  double stretched(double z, double eta) const;
   /// Sum of the component variances a_i^2 / 2 [m^2] (Hs = 4 sqrt of it).
   double variance() const;
 };
