@@ -182,6 +182,7 @@ struct Run {
   bool has_layback = false;        // timeseries.csv has the layback column
   bool has_spectra = false;        // spectra.csv (a sea-state run) with data rows
   bool spectra_body = false;       // ... with the body's columns filled
+  double spectra_wmax = 0;         // highest omega where the wave spectrum is >= 1e-4 of its peak [rad/s]
   double marker_every = 10;        // s between trajectory markers
   int marker_rows = 1;             // the same in rows
   // Data spans for the equal-scale decisions.
@@ -537,6 +538,10 @@ std::string fig_spectra(const Run& run, const PlotOptions& o) {
     << "set datafile missing ''\n";
   std::ostringstream p;
   p << "set multiplot layout 2,1 title " << quote(run.model + ": spectra (encounter frequencies)") << "\n"
+    << "set key inside top right reverse Left box opaque samplen 2\n";
+  if (run.spectra_wmax > 0)  // where the sea has energy (wave spectrum >= 1e-4 of its peak)
+    p << "set xrange [0:" << num(nice(1.2 * run.spectra_wmax)) << "]\n";
+  p
     << "set title 'one-sided spectral densities'\n"
     << "set xlabel 'omega (rad/s)'\nset ylabel 'S (m^2 s/rad)'\nset logscale y\nset format y '%.0e'\n"
     << "set y2label 'S tension (N^2 s/rad)'\nset logscale y2\nset format y2 '%.0e'\nset y2tics\nset ytics nomirror\n"
@@ -822,8 +827,14 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
     Table sp;
     if (read_csv(root / "spectra.csv", sp) && !sp.rows.empty() && sp.has("omega") && sp.has("tow_heave")) {
       run.has_spectra = true;
-      for (std::size_t r = 0; r < sp.rows.size(); ++r)
+      double peak = 0;
+      for (std::size_t r = 0; r < sp.rows.size(); ++r) {
         run.spectra_body = run.spectra_body || !std::isnan(sp.at(r, "body_depth"));
+        if (sp.at(r, "wave_elevation") > peak) peak = sp.at(r, "wave_elevation");
+      }
+      for (std::size_t r = 0; r < sp.rows.size(); ++r)
+        if (sp.at(r, "wave_elevation") >= 1e-4 * peak) run.spectra_wmax = std::max(run.spectra_wmax, sp.at(r, "omega"));
+
     }
   }
 

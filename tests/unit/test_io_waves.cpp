@@ -27,6 +27,19 @@ const std::string kTow =
     "tow:\n"
     "  motion: [{type: ramp, direction: [0, 1, 0], speed: 2, ramp_time: 0}]\n";
 
+// waves.stretching: none (default) or wheeler.
+TEST_F(ScenarioFile, WaveStretchingChoice) {
+  auto s = load(kCable + kSim + "waves:\n  regular: {height: 2, period: 8}\n  stretching: wheeler\n");
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_TRUE(s.model->fluid.waves->wheeler);
+  s = load(kCable + kSim + "waves:\n  regular: {height: 2, period: 8}\n");
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_FALSE(s.model->fluid.waves->wheeler);
+  s = load(kCable + kSim + "waves:\n  regular: {height: 2, period: 8}\n  stretching: wheel\n");
+  EXPECT_EQ(s.diags.str(), at("10:15: waves.stretching: expected one of none, wheeler (got 'wheel'; did you mean "
+                              "'wheeler'?)"));
+}
+
 TEST_F(ScenarioFile, WavesAndVesselCompile) {
   const auto s = load(kCable + kSim + kTow +
                       "waves:\n"
