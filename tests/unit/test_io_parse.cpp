@@ -211,6 +211,14 @@ TEST_F(ScenarioFile, YamlSyntaxError) {
   EXPECT_EQ(s.diags.str(), at("2:11: (yaml): YAML syntax error: end of sequence flow not found"));
 }
 
+// A tab in the indentation (YAML allows only spaces) is named, not just
+// yaml-cpp's "illegal map value".
+TEST_F(ScenarioFile, TabIndentationIsNamed) {
+  const auto s = load("cable:\n\tlength: 100\n");
+  EXPECT_EQ(s.diags.str(), at("2:8: (yaml): YAML syntax error: illegal map value (line 2 is indented with a tab: "
+                              "YAML indentation must use spaces)"));
+}
+
 TEST_F(ScenarioFile, MissingFile) {
   const auto s = load_scenario_file((dir_ / "nope.yaml").string());
   EXPECT_FALSE(s.ok());
