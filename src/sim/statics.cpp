@@ -234,6 +234,7 @@ bool solve_element(const Model& m, const Element& el, const Vec3& P, const Vec3&
     }
     if (!better) return g.norm() <= 1e3 * kLocalTolerance * scale && e.dot(0.5 * F - f) >= 0;
   }
+  element_moment(m, el, e, P, V, f, F);  // F of the best axis found
   return false;
 }
 
@@ -300,12 +301,15 @@ bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, 
       return g.norm() <= 1e3 * kLocalTolerance * scale;
     }
   }
+  steady_body(m, body, q, Q, V, bw);  // bw at the best attitude found
   return false;
 }
 
 /// One sweep from the bottom up at the positions of p.base (in p.ws): every
-/// part balanced given the force from below. Returns an empty string or why
-/// it failed (a part without balance, a stop request).
+/// part balanced given the force from below. A part without balance keeps
+/// the best attitude found and the sweep goes on (the next sweep may find it
+/// once the positions have moved). Returns an empty string, "interrupted", or
+/// which part had no balance (the lowest).
 std::string sweep_once(SteadyProblem& p, PhysicalState& s, const volatile int* stop_flag) {
   const Model& m = p.model;
   Workspace& ws = p.ws;
@@ -314,6 +318,7 @@ std::string sweep_once(SteadyProblem& p, PhysicalState& s, const volatile int* s
   attachment_loads(m, 0.0, ws);
   Vec3 f = -ws.Fa.back();  // force through the joint below the element
   Vec3 F;
+  std::string failed;
   for (int k = p.n - 1; k >= 0; --k) {
     const auto uk = static_cast<std::size_t>(k);
     if ((k & 4095) == 0 && stopped(stop_flag)) return "interrupted";
@@ -323,15 +328,16 @@ std::string sweep_once(SteadyProblem& p, PhysicalState& s, const volatile int* s
       const Body& body = m.bodies[ub];
       BodyWork& bw = ws.body[ub];
       const Vec3 Q = ws.P[uk] + m.cable.elements[uk].length * s.e[uk];  // upper link at the previous sweep
-      if (!solve_body(m, body, Q, p.V, f, s.bodies[ub].q, bw))
-        return "no balance of " + (body.inline_body ? "body " + body.name : std::string("the body"));
+      if (!solve_body(m, body, Q, p.V, f, s.bodies[ub].q, bw) && failed.empty())
+        failed = "no balance of " + (body.inline_body ? "body " + body.name : std::string("the body"));
       f = bw.hw.head<3>() - bw.Fb + (body.inline_body ? f : Vec3::Zero());  // link force F_L
     }
-    if (!solve_element(m, m.cable.elements[uk], ws.P[uk], p.V, f, s.e[uk], F))
-      return "no balance of element " + std::to_string(k + 1);
+    if (!solve_element(m, m.cable.elements[uk], ws.P[uk], p.V, f, s.e[uk], F) && failed.empty())
+      failed = "no balance of element " + std::to_string(k + 1);
+    if (!s.e[uk].allFinite()) return failed;
     f -= F + ws.Fa[uk];
   }
-  return {};
+  return failed;
 }
 
 /// The O(n) solve: sweeps until the joints stop moving, then the dynamics'
@@ -349,7 +355,7 @@ int solve_by_sweeps(SteadyProblem& p, const volatile int* stop_flag, std::string
     }
     why = sweep_once(p, s, stop_flag);
     ++sweeps;
-    if (!why.empty()) break;
+    if (why == "interrupted" || !s.e.front().allFinite()) break;
     // Converged when the positions the loads saw no longer change.
     P0 = p.ws.P;
     compute_kinematics(p.model, s, p.ws);
