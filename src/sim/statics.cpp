@@ -400,9 +400,17 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
   // problems the sweeps left unconverged (up to kDenseLimit unknowns), or
   // converged only to the floor (up to kPolishLimit: a cheap polish), from
   // the better of their result and their start.
-  const double left = p.max_alpha(r);
-  const bool dense = !out.interrupted && !(left < kTolerance) &&
-                     (N <= kPolishLimit || (!(left < kFloor) && N <= kDenseLimit));
+  // Converged: every angular acceleration below kFloor, or (many short
+  // elements: their accelerations carry the round-off of tensions far larger
+  // than their own loads) every element's moment left below kRelativeFloor of
+  // its scale and the bodies' accelerations below kFloor. Reads p.ws of the
+  // evaluation that gave r.
+  const auto good = [&p](const Eigen::VectorXd& res) {
+    return res.allFinite() && (p.max_alpha(res) < kFloor ||
+                               (p.relative_moment(res) < kRelativeFloor && p.max_body_alpha(res) < kFloor));
+  };
+  const bool dense = !out.interrupted && !(p.max_alpha(r) < kTolerance) &&
+                     (N <= kPolishLimit || (!good(r) && N <= kDenseLimit));
   if (dense) {
     const PhysicalState swept = p.base;
     p.accept_state(start);
@@ -450,13 +458,10 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
     }
     if (!improved) break;
   }
-  out.residual = p.max_alpha(r);
-  // Many short elements: their angular accelerations carry the round-off of
-  // tensions far larger than their own loads, so the moments left are judged
-  // against each element's moment scale (bodies keep the absolute floor).
+  r = p.residual(Eigen::VectorXd::Zero(N));  // p.ws at the result, for good() and the message
+  out.residual = r.allFinite() ? p.max_alpha(r) : std::numeric_limits<double>::quiet_NaN();  // max drops NaNs
   const double rel = p.relative_moment(r);
-  if (!r.allFinite()) out.residual = std::numeric_limits<double>::quiet_NaN();  // std::max drops NaNs
-  out.converged = !out.interrupted && r.allFinite() && (out.residual < kFloor || (rel < kRelativeFloor && p.max_body_alpha(r) < kFloor));
+  out.converged = !out.interrupted && good(r);
   if (out.interrupted) {
     out.message = "statics interrupted by a signal after " + std::to_string(out.iterations) + " iterations";
   } else if (!out.converged) {
