@@ -119,6 +119,7 @@ void parse_waves(MapReader& r, WavesSpec& w, Diagnostics& d) {
     if (w.type.value != "pierson_moskowitz") k.read("gamma", w.gamma);
     k.read("components", w.components);
     k.read("seed", w.seed);
+    k.read("spreading", w.spreading);
   }
   k.read("heading_deg", w.heading_deg);
   k.finish();

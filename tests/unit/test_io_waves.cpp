@@ -40,6 +40,18 @@ TEST_F(ScenarioFile, WaveStretchingChoice) {
                               "'wheeler'?)"));
 }
 
+// spectrum.spreading: s > 0 makes the sea short-crested; absent: long-crested.
+TEST_F(ScenarioFile, SpectrumSpreading) {
+  auto s = load(kCable + kSim + "waves:\n  spectrum: {type: jonswap, hs: 3, tp: 9, spreading: 4}\n");
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_TRUE(s.model->fluid.waves->spread);
+  s = load(kCable + kSim + "waves:\n  spectrum: {type: jonswap, hs: 3, tp: 9}\n");
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_FALSE(s.model->fluid.waves->spread);
+  s = load(kCable + kSim + "waves:\n  spectrum: {type: jonswap, hs: 3, tp: 9, spreading: 0}\n");
+  EXPECT_EQ(s.diags.str(), at("9:54: waves.spectrum.spreading: must be > 0 (got 0)"));
+}
+
 TEST_F(ScenarioFile, WavesAndVesselCompile) {
   const auto s = load(kCable + kSim + kTow +
                       "waves:\n"

@@ -22,6 +22,7 @@ struct WaveComponent {
   double k;          // wavenumber k_i (dispersion relation) [1/m]
   double phase;      // eps_i [rad]
   double z_cut;      // below this height its kinematics are skipped (kWaveCutoff) [m, R_g]
+  double dx = 0, dy = 0;  // its unit horizontal travel direction (short-crested seas) [-, R_g]
 };
 
 /// Relative size of a component's kinematics (to their value at z = 0) below
@@ -38,6 +39,7 @@ struct WaveField {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();    // unit horizontal travel direction d [-, R_g]
   std::vector<WaveComponent> components;                   // sorted by z_cut, deepest first
   double ramp_time = 0;  // build-up: everything scaled by r(t), 0 -> 1 over [0, ramp_time] [s]
+  bool spread = false;   // short-crested: each component travels along its own (dx, dy), else along `direction`
   bool wheeler = false;  // Wheeler stretching: kinematics up to the surface eta, at the stretched height
                          // z' = (z - eta) h / (h + eta) (deep water: z - eta); else linear up to z = 0
 
@@ -61,6 +63,14 @@ struct WaveField {
   /// Sum of the component variances a_i^2 / 2 [m^2] (Hs = 4 sqrt of it).
   double variance() const;
 };
+
+/// Short-crested sea: each component of `w` gets its own travel direction,
+/// `direction` turned by theta drawn from the cos-2s spreading function
+/// D(theta) ~ cos^(2s)(theta / 2), |theta| <= pi (inverse of its CDF,
+/// tabulated, at U = (u >> 11) 2^-53 of std::mt19937_64(seed ^ 0x5eed5eed5eed5eed),
+/// one per component in the sea's order of construction, so the phases stay
+/// those of the long-crested sea). s > 0 [-].
+void spread_directions(WaveField& w, double s, std::uint64_t seed);
 
 /// Wavenumber k [1/m] with omega^2 = g k tanh(k h) (Newton, relative
 /// residual <= 1e-14); h = infinity gives k = omega^2 / g.
