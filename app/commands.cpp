@@ -195,6 +195,20 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     if (!opts.quiet && comp.value < 0 && !all_elastic)
       err << "towsim: warning: the cable was in compression (axial force " << fmt_num(comp.value) << " N at t = "
           << fmt_num(comp.time) << " s; see axial_force in nodes.csv): a real cable would go slack there\n";
+    // An extreme attitude usually means a design that does not fly (stalled
+    // fins, a body hanging nose down): say when, so the user need not dig.
+    constexpr double kAttitudeWarnDeg = 30;  // |roll| or |pitch| beyond this [deg]
+    if (!opts.quiet && end_body(model) != nullptr) {
+      const BodyExtremes& be = writer.extremes().end_body_extremes;
+      static const char* kAngle[2] = {"roll", "pitch"};
+      for (int i = 0; i < 2; ++i) {
+        const Extreme& e = std::abs(be.min_deg[i].value) > std::abs(be.max_deg[i].value) ? be.min_deg[i] : be.max_deg[i];
+        if (std::abs(e.value) > kAttitudeWarnDeg)
+          err << "towsim: warning: the body's " << kAngle[i] << " reached " << fmt_num(e.value) << " deg at t = "
+              << fmt_num(e.time) << " s (beyond " << kAttitudeWarnDeg << " deg: check its fins, link point and "
+              << "weights; body_" << kAngle[i] << "_deg in timeseries.csv)\n";
+      }
+    }
     // Strength: utilisation above 1/3 and above 1 (also in summary.json "warnings").
     if (!opts.quiet)
       for (const std::string& w : strength_warnings(writer.extremes())) err << "towsim: warning: " << w << "\n";

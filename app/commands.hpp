@@ -62,7 +62,8 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err,
 /// velocity; prints tow force, end and body depth, link force, element
 /// angles; writes the configuration when an output directory is given.
 /// Returns an ExitStatus (3 when the solver does not converge).
-int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err);
+int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err,
+                    const volatile int* stop_flag = nullptr);
 
 /// The line `towsim run` prints at the end of a successful run: final
 /// layback, depth of the body (or cable end) and tow tension, the maximum

@@ -33,6 +33,8 @@ void describe_sea(const Model& m, std::ostream& out) {
          "[" + fmt_num(w->direction.x()) + ", " + fmt_num(w->direction.y()) + ", 0]");
     line(out, "water depth", std::isfinite(w->depth) ? fmt_num(w->depth) + " m" : std::string("deep"));
     line(out, "kinematics cut off below", fmt_num(-deepest) + " m depth (harmonics < 0.1 % of their surface value)");
+    line(out, "kinematics up to", w->wheeler ? std::string("the wave surface (Wheeler stretching)")
+                                             : std::string("the still water level z = 0 (no stretching)"));
   }
   if (const Vessel* v = m.tow.vessel.get()) {
     out << "vessel\n";

@@ -118,7 +118,9 @@ void add_statics_command(CLI::App& app, int& status) {
                   "Find the deployed cable length that puts the body (or the cable end) at this depth [m]");
   cmd->callback([opts, &status] {
     require_one_input(opts->input);
-    status = statics_command(*opts, std::cout, std::cerr);
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    status = statics_command(*opts, std::cout, std::cerr, &g_stop);
   });
 }
 

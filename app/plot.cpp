@@ -182,6 +182,9 @@ struct Run {
   bool has_layback = false;        // timeseries.csv has the layback column
   bool has_winch = false;          // timeseries.csv has payout_speed (a winch)
   bool has_rating = false;         // and winch_load_ratio (a winch rating)
+  bool has_spectra = false;        // spectra.csv (a sea-state run) with data rows
+  bool spectra_body = false;       // ... with the body's columns filled
+  double spectra_wmax = 0;         // highest omega where the wave spectrum is >= 1e-4 of its peak [rad/s]
   double marker_every = 10;        // s between trajectory markers
   int marker_rows = 1;             // the same in rows
   // Data spans for the equal-scale decisions.
@@ -531,6 +534,60 @@ std::string fig_tension_along(const Run& run, const PlotOptions& o) {
   return s.str();
 }
 
+/// Script text that renders a multiplot body `plot_cmds` as PNG and SVG (replot
+/// does not repeat a multiplot: the commands are written once per terminal).
+std::string render_multi(const std::string& name, const std::string& plot_cmds, const PlotOptions& o) {
+  std::ostringstream s;
+  const int font = std::max(9, static_cast<int>(std::lround(o.width / 80.0)));
+  s << "set terminal pngcairo size " << o.width << "," << o.height << " noenhanced font 'Sans," << font
+    << "' linewidth 1.5\n"
+    << "set output '" << name << ".png'\n"
+    << plot_cmds << "\n"
+    << "set terminal svg size " << o.width << "," << o.height << " noenhanced font 'Sans," << font
+    << "' linewidth 1.5 background '#ffffff'\n"
+    << "set output '" << name << ".svg'\n"
+    << plot_cmds << "\n"
+    << "unset output\n";
+  return s.str();
+}
+
+std::string fig_spectra(const Run& run, const PlotOptions& o) {
+  const std::string name = "spectra";
+  std::ostringstream s;
+  s << preamble(run, name, "spectra of the sea state's responses and the ship -> fish transfer function");
+  s << "sp = '../spectra.csv'\n"
+    << "# Blank cells (no body, or a gain where the input has < 1e-3 of its peak energy) are missing data.\n"
+    << "set datafile missing ''\n";
+  std::ostringstream p;
+  p << "set multiplot layout 2,1 title " << quote(run.model + ": spectra (encounter frequencies)") << "\n"
+    << "set key inside top right reverse Left box opaque samplen 2\n";
+  if (run.spectra_wmax > 0)  // where the sea has energy (wave spectrum >= 1e-4 of its peak)
+    p << "set xrange [0:" << num(nice(1.2 * run.spectra_wmax)) << "]\n";
+  p
+    << "set title 'one-sided spectral densities'\n"
+    << "set xlabel 'omega (rad/s)'\nset ylabel 'S (m^2 s/rad)'\nset logscale y\nset format y '%.0e'\n"
+    << "set y2label 'S tension (N^2 s/rad)'\nset logscale y2\nset format y2 '%.0e'\nset y2tics\nset ytics nomirror\n"
+    << "plot sp using 'omega':'wave_elevation' with lines lw 2 lc rgb '" << kPalette[0]
+    << "' title 'wave elevation', \\\n"
+    << "  sp using 'omega':'tow_heave' with lines lw 1.5 lc rgb '" << kPalette[2] << "' title 'tow point heave'";
+  if (run.spectra_body)
+    p << ", \\\n  sp using 'omega':'body_depth' with lines lw 2 lc rgb '" << kPalette[3] << "' title 'body heave'";
+  p << ", \\\n  sp using 'omega':'tow_tension' axes x1y2 with lines lw 1.5 dt 2 lc rgb '" << kPalette[1]
+    << "' title 'tow tension (right axis)'\n"
+    << "unset logscale y2\nunset y2tics\nunset y2label\nset ytics mirror\nunset logscale y\nset format y '%g'\n"
+    << "set title 'transfer functions (sqrt of spectral ratios)'\nset ylabel 'gain (m/m)'\n";
+  if (run.spectra_body)
+    p << "plot sp using 'omega':'body_heave_per_tow_heave' with linespoints lw 2 pt 7 ps 0.5 lc rgb '" << kPalette[3]
+      << "' title 'ship -> fish: body heave per tow point heave', \\\n"
+      << "  sp using 'omega':'body_heave_per_wave' with linespoints lw 1.5 pt 6 ps 0.5 lc rgb '" << kPalette[0]
+      << "' title 'body heave per metre of wave'\n";
+  else
+    p << "set label 1 'no body: no transfer function' at graph 0.5, graph 0.5 center\nplot NaN notitle\n";
+  p << "unset multiplot";
+  s << render_multi(name, p.str(), o);
+  return s.str();
+}
+
 /// Write the node data the figures read (cable_shapes.dat, tension_map.dat)
 /// from ONE pass over nodes.csv. False with `error` set on failure.
 bool write_node_data(const fs::path& root, const fs::path& plots, const Run& run, const std::vector<double>& times,
@@ -596,7 +653,7 @@ std::string join(const std::vector<std::string>& v, const std::string& sep, cons
 
 }  // namespace
 
-std::vector<std::string> plot_names(bool has_body, bool three_d, bool single) {
+std::vector<std::string> plot_names(bool has_body, bool three_d, bool single, bool spectra) {
   if (single) {  // one configuration (towsim statics --out): no time histories
     std::vector<std::string> names{"cable_shapes_xz"};
     if (three_d) names.push_back("cable_shapes_xy");
@@ -612,6 +669,7 @@ std::vector<std::string> plot_names(bool has_body, bool three_d, bool single) {
   if (three_d) names.push_back("cable_shapes_xy");
   names.push_back("tension_map");
   if (has_body) names.push_back("link_force");
+  if (spectra) names.push_back("spectra");
   return names;
 }
 
@@ -788,6 +846,22 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
     if (run.snapshot_times.empty() || *it != run.snapshot_times.back()) run.snapshot_times.push_back(*it);
   }
 
+  // A sea-state run's spectra.csv, with at least one estimate.
+  if (exists_file(root / "spectra.csv")) {
+    Table sp;
+    if (read_csv(root / "spectra.csv", sp) && !sp.rows.empty() && sp.has("omega") && sp.has("tow_heave")) {
+      run.has_spectra = true;
+      double peak = 0;
+      for (std::size_t r = 0; r < sp.rows.size(); ++r) {
+        run.spectra_body = run.spectra_body || !std::isnan(sp.at(r, "body_depth"));
+        if (sp.at(r, "wave_elevation") > peak) peak = sp.at(r, "wave_elevation");
+      }
+      for (std::size_t r = 0; r < sp.rows.size(); ++r)
+        if (sp.at(r, "wave_elevation") >= 1e-4 * peak) run.spectra_wmax = std::max(run.spectra_wmax, sp.at(r, "omega"));
+
+    }
+  }
+
   // 3. gnuplot, before writing anything.
   const std::string prog = gnuplot_program();
   int err = 0;
@@ -824,7 +898,7 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   const std::string mag_tow = ts.has("tow_tension") ? "tow_tension" : "";
   const std::string mag_link = ts.has("link_tension") ? "link_tension" : "";
   std::vector<std::pair<std::string, std::string>> scripts;
-  std::vector<std::string> names = plot_names(run.has_body, run.three_d, run.single);
+  std::vector<std::string> names = plot_names(run.has_body, run.three_d, run.single, run.has_spectra);
   if (run.has_winch && !run.single) names.push_back("winch");
   for (const auto& name : names) {
     std::string text;
@@ -850,6 +924,8 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
       text = fig_depth_layback(run, opt);
     else if (name == "winch")
       text = fig_winch(run, opt);
+    else if (name == "spectra")
+      text = fig_spectra(run, opt);
     else if (name == "link_force")
       text = fig_components(run, opt, name, "link force exerted by the cable on the body", "link_force_", mag_link,
                             "F_L");

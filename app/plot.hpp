@@ -21,6 +21,10 @@
 //                    against time, a colour map of up to 200 output times
 //   tension_along_cable  (one output time, `towsim statics --out DIR`) tension
 //                    against distance along the cable
+//   spectra          (with DIR/spectra.csv, a sea-state run) spectral densities
+//                    of wave elevation, tow point heave, body heave and tow
+//                    tension; below, the ship -> fish transfer function (body
+//                    heave per tow point heave) and body heave per metre of wave
 // nodes.csv is read once: the rows the figures need are extracted into
 // DIR/plots/cable_shapes.dat and DIR/plots/tension_map.dat. summary.json is
 // optional (the model name is then the directory's name). DIR/plots/ is
@@ -53,7 +57,8 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& optio
 
 /// The figure names (without extension) plot_run renders for a run with or
 /// without a body, planar or 3D; `single`: one output time (the output of
-/// `towsim statics --out`), where only the cable's shape and tension are drawn.
-std::vector<std::string> plot_names(bool has_body, bool three_d, bool single = false);
+/// `towsim statics --out`), where only the cable's shape and tension are drawn;
+/// `spectra`: DIR/spectra.csv exists (a sea-state run).
+std::vector<std::string> plot_names(bool has_body, bool three_d, bool single = false, bool spectra = false);
 
 }  // namespace towsim::io

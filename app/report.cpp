@@ -114,6 +114,7 @@ const std::vector<std::pair<std::string, std::string>>& figure_captions() {
       {"end_depth", "Depth of the cable's lower end"},
       {"body_angles", "Body roll, pitch and yaw"},
       {"link_force", "Link force on the body"},
+      {"spectra", "Spectra of wave elevation, tow point heave, body heave and tension; ship -> fish transfer function"},
       {"cable_shapes_xz", "Cable shapes, side view"},
       {"cable_shapes_xy", "Cable shapes, plan view"},
   };

@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <iostream>
 #include <optional>
+#include <new>
 
 #include "towsim/dynamics/dynamics.hpp"
 #include "commands.hpp"
@@ -21,7 +22,7 @@ void print_statics(const Model& model, const StaticsResult& r, const Sample& s, 
   out << std::setprecision(6);
   const Vec3 F = r.tow_force;
   out << "steady tow at V = (" << r.tow_velocity.transpose() << ") m/s, |V| = " << r.tow_velocity.norm() << " m/s\n";
-  out << "  converged: " << (r.converged ? "yes" : "NO") << " (" << r.iterations
+  out << "  converged: " << (r.converged ? "yes" : r.interrupted ? "NO, interrupted" : "NO") << " (" << r.iterations
       << " iterations, largest angular acceleration left " << r.residual << " rad/s^2)\n";
   out << "  tow force F_R = (" << F.transpose() << ") N, tension " << F.norm() << " N, "
       << std::atan2(F.z(), std::hypot(F.x(), F.y())) * kDeg << " deg above horizontal\n";
@@ -46,9 +47,9 @@ void print_statics(const Model& model, const StaticsResult& r, const Sample& s, 
   }
 }
 
-}  // namespace
-
-int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err) {
+/// The command; statics_command adds the out-of-memory message.
+int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ostream& err,
+                         const volatile int* stop_flag) {
   const LoadedScenario sc = load_input(opts.input);
   if (!sc.ok()) {
     err << sc.diags.str();
@@ -82,7 +83,7 @@ int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream&
         << " m (" << (end_body(model) != nullptr ? "body" : "cable end") << " at " << target->depth << " m)\n";
   }
   const Model& used = deployed ? *deployed : model;
-  const StaticsResult r = target ? target->statics : solve_statics(model, final_tow_velocity(model.tow));
+  const StaticsResult r = target ? target->statics : solve_statics(model, final_tow_velocity(model.tow), stop_flag);
   const Sample& s = r.sample;
   print_statics(used, r, s, out);
   if (!opts.out_dir.empty()) {
@@ -97,7 +98,7 @@ int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream&
     writer.write(s);
     writer.flush();
     RunStats stats;  // a statics "run": one sample at t = 0
-    stats.status = r.converged ? "ok" : "failed";
+    stats.status = r.converged ? "ok" : r.interrupted ? "interrupted" : "failed";
     stats.message = r.converged ? "" : r.message;
     stats.steps = r.iterations;
     auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, true);
@@ -111,11 +112,27 @@ int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream&
     out << "  written: " << opts.out_dir << "/timeseries.csv, " << opts.out_dir << "/nodes.csv, " << opts.out_dir
         << "/summary.json\n";
   }
+  if (r.interrupted) {
+    err << "towsim: statics: " << r.message << " (the last iterate is printed"
+        << (opts.out_dir.empty() ? "" : " and written") << ")\n";
+    return kExitInterrupted;
+  }
   if (!r.converged) {
     err << "towsim: statics: " << r.message << "\n";
     return kExitFailed;
   }
   return kExitOk;
+}
+
+}  // namespace
+
+int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err, const volatile int* stop_flag) {
+  try {
+    return statics_command_impl(opts, out, err, stop_flag);
+  } catch (const std::bad_alloc&) {
+    err << "towsim: statics: out of memory (the model is too large for this machine)\n";
+    return kExitError;
+  }
 }
 
 }  // namespace towsim::io

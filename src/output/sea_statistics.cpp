@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <fstream>
+#include <iomanip>
 #include <limits>
 #include <numbers>
 
@@ -45,6 +46,7 @@ void SeaStatistics::add(const Model& model, const Sample& s) {
   t_.push_back(s.t);
   eta_.push_back(s.wave_elevation);
   tension_.push_back(s.tow_force.norm());
+  tow_heave_.push_back(s.tow_wave.z());
   if (end_body(model) == nullptr || s.bodies.empty()) return;
   const BodySample& b = s.bodies.back();  // the end body is the last of the chain
   link_.push_back(b.link_force.norm());
@@ -77,21 +79,28 @@ std::vector<std::pair<double, double>> spectral_density_estimate(const std::vect
 
 bool SeaStatistics::write_spectra(const std::string& path) const {
   std::ofstream f(path);
-  f << "omega,wave_elevation,tow_tension,link_force,body_depth,body_heave_per_wave\n";
+  f << std::setprecision(12);  // as the other output files
+  f << "omega,wave_elevation,tow_tension,link_force,body_depth,body_heave_per_wave,tow_heave,"
+       "body_heave_per_tow_heave\n";
   if (t_.size() >= 4) {
     const double dt = (t_.back() - t_.front()) / static_cast<double>(t_.size() - 1);
     constexpr int kBand = 5;  // Fourier bins per estimate: ~10 degrees of freedom
     const auto se = spectral_density_estimate(eta_, dt, kBand), st = spectral_density_estimate(tension_, dt, kBand);
     const auto sl = spectral_density_estimate(link_, dt, kBand), sd = spectral_density_estimate(depth_, dt, kBand);
-    double peak = 0;
+    const auto sh = spectral_density_estimate(tow_heave_, dt, kBand);
+    double peak = 0, peak_h = 0;
     for (const auto& p : se) peak = std::max(peak, p.second);
+    for (const auto& p : sh) peak_h = std::max(peak_h, p.second);
     for (std::size_t j = 0; j < se.size(); ++j) {
       f << se[j].first << ',' << se[j].second << ',' << st[j].second << ',';
       if (!sl.empty()) f << sl[j].second;
       f << ',';
       if (!sd.empty()) f << sd[j].second;
       f << ',';
+      // Gains only where the input carries energy (>= 1e-3 of its peak): elsewhere 0/0.
       if (!sd.empty() && peak > 0 && se[j].second >= 1e-3 * peak) f << std::sqrt(sd[j].second / se[j].second);
+      f << ',' << sh[j].second << ',';
+      if (!sd.empty() && peak_h > 0 && sh[j].second >= 1e-3 * peak_h) f << std::sqrt(sd[j].second / sh[j].second);
       f << '\n';
     }
   }

@@ -115,6 +115,7 @@ void check_waves(const ScenarioSpec& s, Diagnostics& d) {
       check_at_least(w.components, 1, d);
       check_at_most(w.components, kMaxComponents, d);
       check_at_least(w.seed, 0, d);
+      if (w.spreading.given) check_positive(w.spreading, d);
     }
     if (w.water_depth.given) check_positive(w.water_depth, d);
     if (w.statistics_start.given) check_non_negative(w.statistics_start, d);
@@ -152,7 +153,10 @@ void attach_waves(const ScenarioSpec& s, Model& m) {
                                                      w.type.value == "pierson_moskowitz" ? 1.0 : w.gamma.value,
                                                      static_cast<int>(w.components.value),
                                                      static_cast<std::uint64_t>(w.seed.value), dir, depth, m.fluid.g);
+    if (!w.regular && w.spreading.given)
+      spread_directions(built, w.spreading.value, static_cast<std::uint64_t>(w.seed.value));
     built.ramp_time = w.ramp_time.value;
+    built.wheeler = w.stretching.value == "wheeler";
     field = std::make_shared<const WaveField>(std::move(built));
     if (m.fluid.rho > 0) m.fluid.waves = field;
     if (w.statistics_start.given) m.sim.statistics_start = w.statistics_start.value;

@@ -91,7 +91,7 @@ bool parse_track_line(const std::string& line, const SourceLoc& at, const std::s
   return true;
 }
 
-/// track: exactly one of `file` (CSV, relative to base_dir) or `points`.
+/// track: exactly one of `file` (CSV, relative to base_dir; a --set one to the current directory) or `points`.
 void parse_track(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagnostics& d) {
   const YNode* file = r.get("file");
   const YNode* points = r.get("points");
@@ -107,9 +107,7 @@ void parse_track(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagno
   p.track_where = r.where(*file, "file");
   std::string name;
   if (!convert(*file, p.track_where.path, d, name)) return;
-  const std::filesystem::path fp(name);
-  const bool as_is = fp.is_absolute() || base_dir.empty();
-  p.track = read_track_csv(as_is ? name : (std::filesystem::path(base_dir) / fp).string(), p.track_where, d);
+  p.track = read_track_csv(resolve_file(name, *file, base_dir), p.track_where, d);
 }
 
 void parse_piece(MapReader& r, PieceSpec& p, const std::string& base_dir, Diagnostics& d) {

@@ -90,11 +90,6 @@ void read_csv(const std::string& file, const Where& where, const std::string& wh
   if (rows == 0) d.error(SourceLoc{file, std::max(lineno, 1), 1}, where.path, "the " + what + " file has no data rows");
 }
 
-/// The absolute or base_dir-relative path of a file key.
-std::string resolve(const std::string& name, const std::string& base_dir) {
-  const std::filesystem::path fp(name);
-  return fp.is_absolute() || base_dir.empty() ? name : (std::filesystem::path(base_dir) / fp).string();
-}
 
 }  // namespace
 
@@ -105,6 +100,7 @@ void parse_waves(MapReader& r, WavesSpec& w, Diagnostics& d) {
   r.read("water_depth", w.water_depth);
   r.read("statistics_start", w.statistics_start);
   r.read("ramp_time", w.ramp_time);
+  r.choice("stretching", w.stretching, {"none", "wheeler"});
   if ((reg == nullptr) == (spec == nullptr)) {
     d.error(w.where.loc, w.where.path.empty() ? "waves" : w.where.path,
             "give exactly one of 'regular' or 'spectrum'");
@@ -123,6 +119,7 @@ void parse_waves(MapReader& r, WavesSpec& w, Diagnostics& d) {
     if (w.type.value != "pierson_moskowitz") k.read("gamma", w.gamma);
     k.read("components", w.components);
     k.read("seed", w.seed);
+    k.read("spreading", w.spreading);
   }
   k.read("heading_deg", w.heading_deg);
   k.finish();
@@ -154,7 +151,7 @@ void parse_vessel(MapReader& r, VesselSpec& v, const std::string& base_dir, Diag
     } else {
       std::string name;
       if (convert(*n, path, d, name))
-        read_csv(resolve(name, base_dir), v.raos_where, "RAO", d, [&](const auto& f, const SourceLoc& at) {
+        read_csv(resolve_file(name, *n, base_dir), v.raos_where, "RAO", d, [&](const auto& f, const SourceLoc& at) {
           RaoRowSpec out;
           if (rao_row(f, at, path, d, out)) v.raos.push_back(out);
         });
@@ -168,7 +165,7 @@ void parse_vessel(MapReader& r, VesselSpec& v, const std::string& base_dir, Diag
     const std::size_t before = d.size();
     std::string name;
     if (convert(*n, path, d, name))
-      read_csv(resolve(name, base_dir), v.motions_where, "motion", d, [&](const auto& f, const SourceLoc& at) {
+      read_csv(resolve_file(name, *n, base_dir), v.motions_where, "motion", d, [&](const auto& f, const SourceLoc& at) {
         if (f.size() != 7) {
           d.error(at, path,
                   "expected 7 values time,surge,sway,heave,roll_deg,pitch_deg,yaw_deg (got " +

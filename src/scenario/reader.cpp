@@ -1,6 +1,7 @@
 #include "reader.hpp"
 
 #include <algorithm>
+#include <filesystem>
 
 #include "scalar.hpp"
 
@@ -56,6 +57,12 @@ bool read_square(const YNode& n, const std::string& path, Diagnostics& d,
 }
 
 }  // namespace
+
+std::string resolve_file(const std::string& name, const YNode& node, const std::string& base_dir) {
+  const std::filesystem::path fp(name);
+  const bool as_is = fp.is_absolute() || base_dir.empty() || node.loc.file == "--set";
+  return as_is ? name : (std::filesystem::path(base_dir) / fp).string();
+}
 
 std::string join_path(const std::string& parent, const std::string& key) {
   return parent.empty() ? key : parent + "." + key;

@@ -14,6 +14,11 @@ namespace towsim::io {
 /// "a.b" + "c" -> "a.b.c"; "" + "c" -> "c".
 std::string join_path(const std::string& parent, const std::string& key);
 
+/// The path a file key names: as written when absolute or given with --set
+/// (relative to the current directory, like any command-line path), else
+/// relative to base_dir (the scenario file's folder).
+std::string resolve_file(const std::string& name, const YNode& node, const std::string& base_dir);
+
 /// Read a finite number; report "expected a number (got ...)" otherwise.
 bool convert(const YNode& n, const std::string& path, Diagnostics& d, double& out);
 /// Read an integer.

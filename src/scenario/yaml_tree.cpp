@@ -84,6 +84,21 @@ YNode convert(const YAML::Node& n, const Origin& o, const SourceLoc& fallback, s
   return out;
 }
 
+/// " (line N is indented with a tab: ...)" when a line up to the error's
+/// (0-based `err_line`) has a tab in its indentation, else "".
+std::string tab_hint(const std::string& text, int err_line, const Origin& o) {
+  std::size_t pos = 0;
+  for (int line = 0; line <= err_line && pos <= text.size(); ++line) {
+    const std::size_t end = std::min(text.find('\n', pos), text.size());
+    for (std::size_t i = pos; i < end && (text[i] == ' ' || text[i] == '\t'); ++i)
+      if (text[i] == '\t')
+        return " (line " + std::to_string(o.line_override > 0 ? o.line_override : line + 1) +
+               " is indented with a tab: YAML indentation must use spaces)";
+    pos = end + 1;
+  }
+  return {};
+}
+
 /// Parse text with the given origin; syntax errors go to diags.
 YNode parse_with_origin(const std::string& text, const Origin& o, Diagnostics& diags,
                         const std::string& err_path) {
@@ -103,7 +118,7 @@ YNode parse_with_origin(const std::string& text, const Origin& o, Diagnostics& d
     return YNode{};
   } catch (const YAML::Exception& e) {
     diags.error(loc_of(e.mark, o.file, o.line_override, o.col_offset), err_path,
-                "YAML syntax error: " + e.msg);
+                "YAML syntax error: " + e.msg + tab_hint(text, e.mark.line, o));
     return YNode{};
   }
 }
@@ -135,7 +150,9 @@ long parse_index(const std::string& s) {
 /// missing. Returns the child, or nullptr after reporting an error.
 YNode* step(YNode* cur, const std::string& part, const std::string& path, const SourceLoc& at,
             Diagnostics& diags) {
-  if (cur->is_null()) cur->kind = YNode::Kind::Map;
+  // Nothing there yet: a list when the key is an index (body.spheres.0.radius
+  // on a body without spheres starts the list), else a mapping.
+  if (cur->is_null()) cur->kind = parse_index(part) >= 0 ? YNode::Kind::Sequence : YNode::Kind::Map;
   if (cur->is_map()) {
     if (YNode* child = cur->find(part)) return child;
     YNode fresh;

@@ -12,6 +12,7 @@
 #include "towsim/integrators/rosenbrock.hpp"
 #include "towsim/integrators/system.hpp"
 #include "towsim/sim/winch_events.hpp"
+#include "towsim/sim/statics.hpp"
 #include "towsim/waves/vessel.hpp"
 
 namespace towsim {
@@ -360,10 +361,26 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   RunStats stats;
   stats.integrator = integrator_key(model.sim.integrator);
   const auto wall0 = std::chrono::steady_clock::now();
+  // A steady start can fail or be interrupted: the run then ends before t = 0.
+  PhysicalState s0;
+  if (model.initial.kind == Initial::Kind::Steady) {
+    const StaticsResult st = steady_state(model, stop_flag);
+    if (!st.converged) {
+      stats.status = st.interrupted ? "interrupted" : "failed";
+      stats.message = st.interrupted ? "interrupted by signal while solving the steady initial state"
+                                     : "initial: steady: " + st.message;
+      stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+      sink.flush();
+      return stats;
+    }
+    s0 = st.state;
+  } else {
+    s0 = initial_state(model);
+  }
   Chain chain;
   chain.model = &model;
   chain.sys = make_system(model);
-  StateVector y = chain.sys->initial(initial_state(model), 0.0);
+  StateVector y = chain.sys->initial(s0, 0.0);
   if (model.initial.kind != Initial::Kind::Steady) chain.sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
   chain.sys->project(y, 0.0);
   double t = 0;

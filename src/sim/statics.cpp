@@ -17,6 +17,15 @@ namespace {
 constexpr double kTolerance = 1e-12;  // converged when every |alpha| < this [rad/s^2]
 constexpr double kFloor = 1e-9;       // ... or below this when round-off stops further progress
 constexpr int kMaxIterations = 60;
+constexpr double kRelativeFloor = 1e-12;  // ... or every element's moment left below this of its scale (round-off: ~1e-15)
+constexpr int kMaxSweeps = 200;        // sweeps of the O(n) solver before it gives up
+constexpr int kDenseLimit = 1200;      // largest dense (Levenberg-Marquardt) problem [unknowns]: J is N^2 doubles,
+                                       // each iteration 2N evaluations of O(n): ~1 s at this size
+constexpr int kPolishLimit = 200;      // ... and polishing a result converged to the floor only [unknowns]
+constexpr double kLocalTolerance = 1e-14;  // a part's own balance: |moment| below this times its scale
+
+/// True when the caller asked to stop.
+bool stopped(const volatile int* stop_flag) { return stop_flag != nullptr && *stop_flag != 0; }
 
 /// The residual's round-off floor [rad/s^2]: kFloor, or with a seabed the
 /// noise its springs make of the positions' round-off. A joint at distance R
@@ -111,6 +120,33 @@ struct SteadyProblem {
 
   std::vector<double> scale;  // inertia about the top joint (elements), about Q (bodies) [kg m^2]
 
+  /// Largest element moment left in r over its moment scale L_k (|f_k-1| + |f_k| + |F_k|),
+  /// from the workspace of the evaluation that gave r [-].
+  double relative_moment(const Eigen::VectorXd& r) const {
+    double m = 0;
+    for (int k = 0; k < n; ++k) {
+      const auto u = static_cast<std::size_t>(k);
+      const double s = model.cable.elements[u].length *
+                       (ws.acc.joint_force[u].norm() + ws.acc.joint_force[u + 1].norm() + ws.F[u].norm());
+      m = std::max(m, std::hypot(r[2 * k], r[2 * k + 1]) / (s + 1e-300));
+    }
+    return m;
+  }
+
+  /// Largest body angular acceleration in r [rad/s^2].
+  double max_body_alpha(const Eigen::VectorXd& r) const {
+    double m = 0;
+    for (int i = 2 * n; i < r.size(); ++i)
+      m = std::max(m, std::abs(r[i]) / scale[static_cast<std::size_t>(n + (i - 2 * n) / 3)]);
+    return m;
+  }
+
+  /// Make s the iterate and rebuild the tangent bases.
+  void accept_state(const PhysicalState& s) {
+    base = s;
+    for (int k = 0; k < n; ++k) tangent_basis(base.e[k], t1[k], t2[k]);
+  }
+
   /// Move the iterate by x and rebuild the tangent bases.
   void accept(const Eigen::VectorXd& x) {
     base = displaced(x);
@@ -200,6 +236,196 @@ void sweep_from_bottom(SteadyProblem& p) {
   p.accept(Eigen::VectorXd::Zero(p.size()));
 }
 
+// ---------------------------------------------------------------------------
+// O(n) steady solve (docs/theory.md §7.2): with every point moving at V and
+// no acceleration, each part's balance involves only its own loads and the
+// force from the part below it. A sweep from the bottom up solves each part
+// for its attitude (an element: 2 angles, a body: 3) given that force, then
+// passes on the force through its top joint. Loads depend on positions only
+// through the water's velocity at a depth (a current profile); positions come
+// from the previous sweep, so sweeps repeat until the joints stop moving (in
+// a uniform current the first sweep is the answer).
+// ---------------------------------------------------------------------------
+
+/// Moment about element k's top joint P of everything on it, in the plane
+/// normal to e: its loads (at G = P + L/2 e) and the force f it exerts
+/// on the part below through its bottom joint [N m, R_g]. F: its loads [N].
+Vec3 element_moment(const Model& m, const Element& el, const Vec3& e, const Vec3& P, const Vec3& V, const Vec3& f,
+                    Vec3& F) {
+  Vec3 M;
+  const double L = el.length;
+  element_loads(m, el, e, Vec3::Zero(), V, P + 0.5 * L * e, 0.0, F, M);
+  return e.cross(0.5 * L * F - L * f) + M - e.dot(M) * e;
+}
+
+/// Element k's axis balancing its loads and the force f through its bottom
+/// joint, from the start e0 (kept on the stable side: the element hangs along
+/// the pull 0.5 F - f on it). Newton in the tangent plane, steps limited and
+/// backtracked. Returns false when no balance was found.
+bool solve_element(const Model& m, const Element& el, const Vec3& P, const Vec3& V, const Vec3& f, Vec3& e, Vec3& F) {
+  const double L = el.length;
+  for (int it = 0; it < 60; ++it) {
+    Vec3 t1, t2;
+    tangent_basis(e, t1, t2);
+    const Vec3 r = element_moment(m, el, e, P, V, f, F);
+    const double scale = L * (0.5 * F.norm() + f.norm()) + 1e-300;
+    const Eigen::Vector2d g(r.dot(t1), r.dot(t2));
+    if (g.norm() <= kLocalTolerance * scale) return e.dot(0.5 * F - f) >= 0;
+    // Jacobian by central differences in the tangent plane.
+    constexpr double h = 1e-7;  // [rad]
+    Eigen::Matrix2d J;
+    Vec3 Fh;
+    for (int j = 0; j < 2; ++j) {
+      const Vec3& t = j == 0 ? t1 : t2;
+      const Vec3 rp = element_moment(m, el, (e + h * t).normalized(), P, V, f, Fh);
+      const Vec3 rm = element_moment(m, el, (e - h * t).normalized(), P, V, f, Fh);
+      J.col(j) = Eigen::Vector2d((rp - rm).dot(t1), (rp - rm).dot(t2)) / (2 * h);
+    }
+    Eigen::Vector2d dx = J.fullPivLu().solve(-g);
+    if (!dx.allFinite()) return false;
+    if (dx.norm() > 0.3) dx *= 0.3 / dx.norm();  // at most ~17 degrees a step
+    // Backtrack until the moment shrinks.
+    bool better = false;
+    for (int ls = 0; ls < 30 && !better; ++ls, dx *= 0.5) {
+      const Vec3 en = (e + dx[0] * t1 + dx[1] * t2).normalized();
+      const Vec3 rn = element_moment(m, el, en, P, V, f, Fh);
+      if (Eigen::Vector2d(rn.dot(t1), rn.dot(t2)).norm() < g.norm()) e = en, better = true;
+    }
+    if (!better) return g.norm() <= 1e3 * kLocalTolerance * scale && e.dot(0.5 * F - f) >= 0;
+  }
+  element_moment(m, el, e, P, V, f, F);  // F of the best axis found
+  return false;
+}
+
+/// A body's steady kinematics and loads at attitude q hanging from Q, all
+/// moving at V without rotating (as compute_kinematics and compute_loads).
+void steady_body(const Model& m, const Body& body, const Quat& q, const Vec3& Q, const Vec3& V, BodyWork& bw) {
+  bw.R = q.toRotationMatrix();
+  bw.w.setZero();
+  bw.Q = Q;
+  bw.vQ = V;
+  bw.rQ = bw.R * body.link_point;
+  bw.O = Q - bw.rQ;
+  bw.vO = V;
+  bw.rQ2 = bw.R * body.lower_link_point;
+  body_inertia(m.fluid, body, bw, 0.0);
+  body_loads(m.fluid, body, 0.0, bw);
+}
+
+/// The body's moment balance about its link Q with the cable below pulling
+/// f2 at Q2 (in-line bodies): the recursion's rhs at zero acceleration [N m].
+Vec3 body_moment(const Body& body, const BodyWork& bw, const Vec3& f2) {
+  const Vec3 hl = bw.hw.head<3>(), ha = bw.hw.tail<3>();
+  Vec3 r = bw.Mb - bw.rQ.cross(bw.Fb) - ha + bw.rQ.cross(hl);
+  if (body.inline_body) r += bw.rQ.cross(f2) - bw.rQ2.cross(f2);
+  return r;
+}
+
+/// Body attitude balancing its moments about Q, from q: Newton with
+/// minimum-norm steps (a sphere's rotation about its link line is neutral).
+/// On return bw holds the body at q; false when no balance was found.
+bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2, Quat& q,
+                BodyWork& bw) {
+  BodyWork tmp = bw;
+  auto rotated = [&q](const Vec3& x) {
+    return x.norm() > 0 ? Quat((Quat(Eigen::AngleAxisd(x.norm(), x.normalized())) * q).normalized()) : q;
+  };
+  for (int it = 0; it < 100; ++it) {
+    steady_body(m, body, q, Q, V, bw);
+    const Vec3 g = body_moment(body, bw, f2);
+    const double scale = bw.Mb.norm() + bw.rQ.norm() * (bw.Fb.norm() + bw.hw.head<3>().norm() + f2.norm()) +
+                         bw.hw.tail<3>().norm() + bw.rQ2.norm() * f2.norm() + 1e-300;
+    if (g.norm() <= kLocalTolerance * scale) return true;
+    constexpr double h = 1e-7;  // [rad]
+    Mat3 J;
+    for (int j = 0; j < 3; ++j) {
+      steady_body(m, body, rotated(h * Vec3::Unit(j)), Q, V, tmp);
+      const Vec3 gp = body_moment(body, tmp, f2);
+      steady_body(m, body, rotated(-h * Vec3::Unit(j)), Q, V, tmp);
+      J.col(j) = (gp - body_moment(body, tmp, f2)) / (2 * h);
+    }
+    // Damped least squares: a neutral rotation (J's null space) takes no step.
+    Mat3 A = J.transpose() * J;
+    A.diagonal().array() += 1e-10 * A.diagonal().maxCoeff() + 1e-300;
+    Vec3 dx = A.ldlt().solve(-J.transpose() * g);
+    if (!dx.allFinite()) return false;
+    if (dx.norm() > 0.3) dx *= 0.3 / dx.norm();
+    bool better = false;
+    for (int ls = 0; ls < 30 && !better; ++ls, dx *= 0.5) {
+      steady_body(m, body, rotated(dx), Q, V, tmp);
+      if (body_moment(body, tmp, f2).norm() < g.norm()) q = rotated(dx), better = true;
+    }
+    if (!better) {
+      steady_body(m, body, q, Q, V, bw);
+      return g.norm() <= 1e3 * kLocalTolerance * scale;
+    }
+  }
+  steady_body(m, body, q, Q, V, bw);  // bw at the best attitude found
+  return false;
+}
+
+/// One sweep from the bottom up at the positions of p.base (in p.ws): every
+/// part balanced given the force from below. A part without balance keeps
+/// the best attitude found and the sweep goes on (the next sweep may find it
+/// once the positions have moved). Returns an empty string, "interrupted", or
+/// which part had no balance (the lowest).
+std::string sweep_once(SteadyProblem& p, PhysicalState& s, const volatile int* stop_flag) {
+  const Model& m = p.model;
+  Workspace& ws = p.ws;
+  compute_kinematics(m, s, ws);  // positions of the previous sweep
+  for (auto& v : ws.vP) v = p.V;
+  attachment_loads(m, 0.0, ws);
+  Vec3 f = -ws.Fa.back();  // force through the joint below the element
+  Vec3 F;
+  std::string failed;
+  for (int k = p.n - 1; k >= 0; --k) {
+    const auto uk = static_cast<std::size_t>(k);
+    if ((k & 4095) == 0 && stopped(stop_flag)) return "interrupted";
+    const int bi = ws.body_at[uk + 1];
+    if (bi >= 0) {
+      const auto ub = static_cast<std::size_t>(bi);
+      const Body& body = m.bodies[ub];
+      BodyWork& bw = ws.body[ub];
+      const Vec3 Q = ws.P[uk] + m.cable.elements[uk].length * s.e[uk];  // upper link at the previous sweep
+      if (!solve_body(m, body, Q, p.V, f, s.bodies[ub].q, bw) && failed.empty())
+        failed = "no balance of " + (body.inline_body ? "body " + body.name : std::string("the body"));
+      f = bw.hw.head<3>() - bw.Fb + (body.inline_body ? f : Vec3::Zero());  // link force F_L
+    }
+    if (!solve_element(m, m.cable.elements[uk], ws.P[uk], p.V, f, s.e[uk], F) && failed.empty())
+      failed = "no balance of element " + std::to_string(k + 1);
+    if (!s.e[uk].allFinite()) return failed;
+    f -= F + ws.Fa[uk];
+  }
+  return failed;
+}
+
+/// The O(n) solve: sweeps until the joints stop moving, then the dynamics'
+/// own angular accelerations as the residual. Returns the number of sweeps;
+/// p.base holds the result; `why` is empty or why it stopped early.
+int solve_by_sweeps(SteadyProblem& p, const volatile int* stop_flag, std::string& why) {
+  PhysicalState s = p.base;
+  const double length = p.model.cable.total_length();
+  std::vector<Vec3> P0 = p.ws.P;
+  int sweeps = 0;
+  while (sweeps < kMaxSweeps) {
+    if (stopped(stop_flag)) {
+      why = "interrupted";
+      break;
+    }
+    why = sweep_once(p, s, stop_flag);
+    ++sweeps;
+    if (why == "interrupted" || !s.e.front().allFinite()) break;
+    // Converged when the positions the loads saw no longer change.
+    P0 = p.ws.P;
+    compute_kinematics(p.model, s, p.ws);
+    double moved = 0;
+    for (std::size_t k = 0; k < P0.size(); ++k) moved = std::max(moved, (p.ws.P[k] - P0[k]).norm());
+    if (moved <= 1e-13 * (length + 1)) break;
+  }
+  p.accept_state(s);
+  return sweeps;
+}
+
 }  // namespace
 
 Vec3 final_tow_velocity(const Tow& tow) {
@@ -219,26 +445,56 @@ Vec3 final_tow_velocity(const Tow& tow) {
 
 namespace {
 
-/// Levenberg-Marquardt from the problem's current iterate to the
-/// equilibrium of its (inextensible) elements; sets out.iterations,
-/// residual, converged, message.
-void newton(SteadyProblem& p, StaticsResult& out) {
+/// The equilibrium of the problem's (inextensible) elements from its current
+/// iterate: the O(n) sweeps, then for small problems Levenberg-Marquardt;
+/// sets out.iterations, residual, converged, interrupted, message.
+void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult& out) {
+  const PhysicalState start = p.base;
+  // The O(n) sweeps first.
+  std::string why;
+  out.iterations = solve_by_sweeps(p, stop_flag, why);
+  out.interrupted = why == "interrupted";
   const int N = p.size();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
   Eigen::VectorXd r = p.residual(zero);
-  Eigen::MatrixXd J(N, N);
+  // Fallback: Levenberg-Marquardt on all angles with a dense Jacobian, for
+  // problems the sweeps left unconverged (up to kDenseLimit unknowns), or
+  // converged only to the floor (up to kPolishLimit: a cheap polish), from
+  // the better of their result and their start.
+  // Converged: every angular acceleration below kFloor, or (many short
+  // elements: their accelerations carry the round-off of tensions far larger
+  // than their own loads) every element's moment left below kRelativeFloor of
+  // its scale and the bodies' accelerations below kFloor. Reads p.ws of the
+  // evaluation that gave r.
+  const double floor = residual_floor(p.model);  // kFloor, or the seabed springs' round-off
+  const auto good = [&p, floor](const Eigen::VectorXd& res) {
+    return res.allFinite() && (p.max_alpha(res) < floor ||
+                               (p.relative_moment(res) < kRelativeFloor && p.max_body_alpha(res) < floor));
+  };
+  const bool dense = !out.interrupted && !(p.max_alpha(r) < kTolerance) &&
+                     (N <= kPolishLimit || (!good(r) && N <= kDenseLimit));
+  if (dense) {
+    const PhysicalState swept = p.base;
+    p.accept_state(start);
+    const Eigen::VectorXd r0 = p.residual(zero);
+    if (r.allFinite() && r.norm() < r0.norm()) p.accept_state(swept);
+    else r = r0;
+  }
+  Eigen::MatrixXd J(dense ? N : 0, dense ? N : 0);
   double mu = -1;  // Levenberg-Marquardt damping, set from J on first use
-  for (out.iterations = 0; out.iterations < kMaxIterations; ++out.iterations) {
+  for (int it = 0; dense && it < kMaxIterations; ++it, ++out.iterations) {
     if (p.max_alpha(r) < kTolerance) break;
     // Jacobian by central differences (each column one O(n) evaluation pair).
     constexpr double h = 1e-7;
-    for (int j = 0; j < N; ++j) {
+    for (int j = 0; j < N && !out.interrupted; ++j) {
       Eigen::VectorXd x = zero;
       x[j] = h;
       const Eigen::VectorXd rp = p.residual(x);
       x[j] = -h;
       J.col(j) = (rp - p.residual(x)) / (2 * h);
+      out.interrupted = stopped(stop_flag);
     }
+    if (out.interrupted) break;
     // Levenberg-Marquardt: (J^T J + mu I) dx = -J^T r. Damping handles the
     // neutral rotations of a body (a sphere about its link line) and far
     // starting points; it shrinks to plain Newton near the solution.
@@ -264,12 +520,20 @@ void newton(SteadyProblem& p, StaticsResult& out) {
     }
     if (!improved) break;
   }
-  out.residual = p.max_alpha(r);
-  out.converged = out.residual < residual_floor(p.model);
-  if (!out.converged) {
+  r = p.residual(Eigen::VectorXd::Zero(N));  // p.ws at the result, for good() and the message
+  out.residual = r.allFinite() ? p.max_alpha(r) : std::numeric_limits<double>::quiet_NaN();  // max drops NaNs
+  const double rel = p.relative_moment(r);
+  out.converged = !out.interrupted && good(r);
+  if (out.interrupted) {
+    out.message = "statics interrupted by a signal after " + std::to_string(out.iterations) + " iterations";
+  } else if (!out.converged) {
     std::ostringstream os;
-    os << "statics did not converge: largest angular acceleration left " << out.residual << " rad/s^2 after "
-       << out.iterations << " iterations";
+    os << "statics did not converge: largest angular acceleration left " << out.residual << " rad/s^2 (moment "
+       << rel << " of its scale) after " << out.iterations << " iterations";
+    if (!why.empty()) os << " (" << why << ")";
+    if (N > kDenseLimit) os << "; the dense fallback solver is limited to " << kDenseLimit / 2 << " elements";
+    os << ". Try: a body.initial_attitude_deg near its flying attitude (yaw relative to the tow heading), fewer "
+          "elements, or a weaker current shear; a body without a stable attitude in this flow has no steady tow";
     out.message = os.str();
   }
 }
@@ -281,7 +545,7 @@ void newton(SteadyProblem& p, StaticsResult& out) {
 /// lengths no longer change. The tensions depend on the lengths only through
 /// the geometry (depth in a current profile, the body's place), so this
 /// converges in a few passes, each a warm-started Newton solve.
-void stretch(const Model& elastic, SteadyProblem& p, StaticsResult& out) {
+void stretch(const Model& elastic, SteadyProblem& p, const volatile int* stop_flag, StaticsResult& out) {
   constexpr int kMaxPasses = 30;
   constexpr double kLengthTolerance = 1e-13;  // relative change of every length [-]: strain to round-off
   const auto& els = elastic.cable.elements;
@@ -299,7 +563,7 @@ void stretch(const Model& elastic, SteadyProblem& p, StaticsResult& out) {
       p.model.cable.elements[k].length = l;
     }
     if (change <= kLengthTolerance) return;
-    newton(p, out);
+    solve_rigid(p, stop_flag, out);
     if (!out.converged) return;
   }
   out.converged = false;
@@ -309,12 +573,12 @@ void stretch(const Model& elastic, SteadyProblem& p, StaticsResult& out) {
 
 }  // namespace
 
-StaticsResult solve_statics(const Model& model, const Vec3& V) {
+StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile int* stop_flag) {
   // A steady tow holds the winch: the configuration at the current length.
   if (model.winch.active()) {
     Model held = model;
     held.winch = Winch{};
-    return solve_statics(held, V);
+    return solve_statics(held, V, stop_flag);
   }
   SteadyProblem p(model, V);
   const Model elastic = p.model;  // with the steady tow, before its elements are made rigid
@@ -322,8 +586,8 @@ StaticsResult solve_statics(const Model& model, const Vec3& V) {
   for (Element& el : p.model.cable.elements) el.axial_stiffness = 0;  // the Newton problem: rigid elements
   sweep_from_bottom(p);
   StaticsResult out;
-  newton(p, out);
-  if (stretches && out.converged) stretch(elastic, p, out);
+  solve_rigid(p, stop_flag, out);
+  if (stretches && out.converged) stretch(elastic, p, stop_flag, out);
   // Forces at the equilibrium (the elastic model's own evaluation).
   out.state = p.base;
   out.state.length_rate.assign(out.state.length.size(), 0.0);
@@ -338,17 +602,19 @@ StaticsResult solve_statics(const Model& model, const Vec3& V) {
 }
 
 StaticsResult steady_state(const Model& model) {
+  StaticsResult res = steady_state(model, nullptr);
+  if (!res.converged) throw std::runtime_error(res.message);
+  return res;
+}
+
+StaticsResult steady_state(const Model& model, const volatile int* stop_flag) {
   if (model.tow.mode != Tow::Mode::Motion)
     throw std::runtime_error("initial: steady needs tow.mode: motion (the steady velocity comes from the tow law)");
   const TowKinematics k = tow_kinematics(model.tow, 0.0);
-  StaticsResult res = solve_statics(model, tow_law_kinematics(model.tow, 0.0).vel);  // the mean tow velocity
-  if (!res.converged) {
-    std::string msg = res.message;
-    if (model.seabed && res.tow_velocity.norm() > 0)
-      msg += " (a tow moving with cable on the seabed is not solved in this version: start at rest, or from a "
-             "direction above the bottom)";
-    throw std::runtime_error(msg);
-  }
+  StaticsResult res = solve_statics(model, tow_law_kinematics(model.tow, 0.0).vel, stop_flag);  // mean tow velocity
+  if (!res.converged && !res.interrupted && model.seabed && res.tow_velocity.norm() > 0)
+    res.message += " (a tow moving with cable on the seabed is not solved in this version: start at rest, or from a "
+                   "direction above the bottom)";
   res.state.r0 = k.pos;
   res.state.v0 = k.vel;
   return res;

@@ -113,44 +113,57 @@ VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
   const double dx = d.x() * origin.pos.x() + d.y() * origin.pos.y();
   const double dv = d.x() * origin.vel.x() + d.y() * origin.vel.y();
   const double da = d.x() * origin.acc.x() + d.y() * origin.acc.y();
-  // Relative heading: wave direction minus course, in [0, 360); mirrored into
-  // [0, 180] with sway, roll and yaw reversed when the table is one-sided.
-  double beta = std::fmod((std::atan2(d.y(), d.x()) - m.course) / kDeg, 360.0);
-  if (beta < 0) beta += 360;
-  // Its rate: beta' = -psi' [deg/s] (reversed when mirrored).
-  double sign[6] = {1, 1, 1, 1, 1, 1};
-  double beta_rate = -m.course_rate / kDeg;
-  if (mirror_ && beta > 180) {
-    beta = 360 - beta;
-    beta_rate = -beta_rate;
-    sign[1] = sign[3] = sign[5] = -1;
-  }
+  // RAO heading weights for a travel direction dir: relative heading = wave
+  // direction minus course, in [0, 360); mirrored into [0, 180] with sway,
+  // roll and yaw reversed when the table is one-sided. Its rate beta' = -psi'.
+  struct Weights {
+    std::size_t h0 = 0, h1 = 0;
+    double w = 0, wd = 0;  // interpolation weight in heading and its rate [1/s]
+    double sign[6] = {1, 1, 1, 1, 1, 1};
+  };
   const std::size_t nh = headings_.size();
-  std::size_t h0, h1;
-  double w, wd = 0;  // interpolation weight in heading and its rate [1/s]
-  if (!mirror_ && nh > 1 && (beta < headings_.front() || beta > headings_.back())) {
-    // Periodic table: between the last heading and the first + 360.
-    h0 = nh - 1, h1 = 0;
-    const double span = headings_.front() + 360 - headings_.back();
-    w = (beta < headings_.front() ? beta + 360 - headings_.back() : beta - headings_.back()) / span;
-    wd = beta_rate / span;
-  } else {
-    bracket(headings_, beta, h0, h1, w);
-    if (h1 != h0) wd = beta_rate / (headings_[h1] - headings_[h0]);
-  }
+  const auto weights = [&](double dir_x, double dir_y) {
+    Weights q;
+    double beta = std::fmod((std::atan2(dir_y, dir_x) - m.course) / kDeg, 360.0);
+    if (beta < 0) beta += 360;
+    double beta_rate = -m.course_rate / kDeg;  // [deg/s]
+    if (mirror_ && beta > 180) {
+      beta = 360 - beta;
+      beta_rate = -beta_rate;
+      q.sign[1] = q.sign[3] = q.sign[5] = -1;
+    }
+    if (!mirror_ && nh > 1 && (beta < headings_.front() || beta > headings_.back())) {
+      // Periodic table: between the last heading and the first + 360.
+      q.h0 = nh - 1, q.h1 = 0;
+      const double span = headings_.front() + 360 - headings_.back();
+      q.w = (beta < headings_.front() ? beta + 360 - headings_.back() : beta - headings_.back()) / span;
+      q.wd = beta_rate / span;
+    } else {
+      bracket(headings_, beta, q.h0, q.h1, q.w);
+      if (q.h1 != q.h0) q.wd = beta_rate / (headings_[q.h1] - headings_[q.h0]);
+    }
+    return q;
+  };
+  const Weights common = weights(d.x(), d.y());  // long-crested: one heading for all components
   const auto& comps = wf.components;
   for (std::size_t i = 0; i < comps.size(); ++i) {
     const auto& c = comps[i];
-    const double th = c.omega * t - c.k * dx - c.phase, thd = c.omega - c.k * dv, thdd = -c.k * da;
-    const double* A0 = &amp_[(i * nh + h0) * 6];
-    const double* A1 = &amp_[(i * nh + h1) * 6];
-    const double* L0 = &lag_[(i * nh + h0) * 6];
-    const double* L1 = &lag_[(i * nh + h1) * 6];
+    // Short-crested: each component at its own direction and relative heading.
+    const Weights q = wf.spread ? weights(c.dx, c.dy) : common;
+    const double cx = wf.spread ? c.dx * origin.pos.x() + c.dy * origin.pos.y() : dx;
+    const double cv = wf.spread ? c.dx * origin.vel.x() + c.dy * origin.vel.y() : dv;
+    const double ca = wf.spread ? c.dx * origin.acc.x() + c.dy * origin.acc.y() : da;
+    const double th = c.omega * t - c.k * cx - c.phase, thd = c.omega - c.k * cv, thdd = -c.k * ca;
+    const double* A0 = &amp_[(i * nh + q.h0) * 6];
+    const double* A1 = &amp_[(i * nh + q.h1) * 6];
+    const double* L0 = &lag_[(i * nh + q.h0) * 6];
+    const double* L1 = &lag_[(i * nh + q.h1) * 6];
+    const double w = q.w, wd = q.wd;
     for (int j = 0; j < 6; ++j) {
       // A and the lag are linear in the heading weight w (A'' = lag'' = 0
       // within a table interval; beta'' = -psi'' is taken as 0, see tow_point).
-      const double A = sign[j] * ((1 - w) * A0[j] + w * A1[j]);
-      const double Ad = sign[j] * wd * (A1[j] - A0[j]);
+      const double A = q.sign[j] * ((1 - w) * A0[j] + w * A1[j]);
+      const double Ad = q.sign[j] * wd * (A1[j] - A0[j]);
       if (A == 0 && Ad == 0) continue;
       const double dL = std::remainder(L1[j] - L0[j], 2 * std::numbers::pi);
       const double lag = L0[j] + w * dL, phd = thd - wd * dL;  // phase th - lag and its rate

@@ -71,6 +71,7 @@ void finish(WaveField& w) {
     c.k = wave_number(c.omega, w.depth, w.g);
     c.z_cut = cut_height(c.k, w.depth);
   }
+  for (auto& c : w.components) c.dx = w.direction.x(), c.dy = w.direction.y();
   std::stable_sort(w.components.begin(), w.components.end(),
                    [](const WaveComponent& a, const WaveComponent& b) { return a.z_cut < b.z_cut; });
 }
@@ -159,46 +160,101 @@ void WaveField::ramp(double t, double& r, double& rd, double& rdd) const {
 double WaveField::elevation(const Vec3& x, double t) const {
   const double s = direction.x() * x.x() + direction.y() * x.y();
   double eta = 0;
-  for (const auto& c : components) eta += c.amplitude * std::cos(c.omega * t - c.k * s - c.phase);
+  for (const auto& c : components) {
+    const double si = spread ? c.dx * x.x() + c.dy * x.y() : s;  // distance along its direction
+    eta += c.amplitude * std::cos(c.omega * t - c.k * si - c.phase);
+  }
   double r, rd, rdd;
   ramp(t, r, rd, rdd);
   return r * eta;
 }
 
+double WaveField::stretched(double z, double eta) const {
+  if (!wheeler) return z;
+  return std::isfinite(depth) ? (z - eta) * depth / (depth + eta) : z - eta;
+}
+
 Vec3 WaveField::velocity(const Vec3& x, double t) const {
-  if (x.z() > 0) return Vec3::Zero();
+  const double eta = wheeler ? elevation(x, t) : 0.0;  // kinematics up to eta (Wheeler) or z = 0
+  if (x.z() > eta) return Vec3::Zero();
+  const double z = stretched(x.z(), eta);
   const double s = direction.x() * x.x() + direction.y() * x.y();
-  double uh = 0, w = 0;
+  double uh = 0, w = 0, ux = 0, uy = 0;
   for (const auto& c : components) {
-    if (c.z_cut > x.z()) break;  // this one and all later ones are negligible here
+    if (c.z_cut > z) break;  // this one and all later ones are negligible here
     double C, S;
-    depth_factors(c.k, x.z(), depth, C, S);
-    const double th = c.omega * t - c.k * s - c.phase, aw = c.amplitude * c.omega;
-    uh += aw * C * std::cos(th);
+    depth_factors(c.k, z, depth, C, S);
+    const double si = spread ? c.dx * x.x() + c.dy * x.y() : s;
+    const double th = c.omega * t - c.k * si - c.phase, aw = c.amplitude * c.omega;
+    const double u = aw * C * std::cos(th);
+    if (spread) ux += u * c.dx, uy += u * c.dy;
+    else uh += u;
     w -= aw * S * std::sin(th);
   }
+  if (!spread) ux = uh * direction.x(), uy = uh * direction.y();
   double r, rd, rdd;
   ramp(t, r, rd, rdd);
-  return r * Vec3(uh * direction.x(), uh * direction.y(), w);
+  return r * Vec3(ux, uy, w);
 }
 
 Vec3 WaveField::acceleration(const Vec3& x, double t) const {
-  if (x.z() > 0) return Vec3::Zero();
+  const double eta = wheeler ? elevation(x, t) : 0.0;
+  if (x.z() > eta) return Vec3::Zero();
+  const double z = stretched(x.z(), eta);
   const double s = direction.x() * x.x() + direction.y() * x.y();
   double r, rd, rdd;
   ramp(t, r, rd, rdd);
   double ah = 0, az = 0, uh = 0, w = 0;
+  Eigen::Vector2d ahv = Eigen::Vector2d::Zero(), uhv = Eigen::Vector2d::Zero();  // short-crested: horizontal vectors
   for (const auto& c : components) {
-    if (c.z_cut > x.z()) break;
+    if (c.z_cut > z) break;
     double C, S;
-    depth_factors(c.k, x.z(), depth, C, S);
-    const double th = c.omega * t - c.k * s - c.phase, aw = c.amplitude * c.omega, aw2 = aw * c.omega;
+    depth_factors(c.k, z, depth, C, S);
+    const double si = spread ? c.dx * x.x() + c.dy * x.y() : s;
+    const double th = c.omega * t - c.k * si - c.phase, aw = c.amplitude * c.omega, aw2 = aw * c.omega;
     const double cs = std::cos(th), sn = std::sin(th);
-    ah -= aw2 * C * sn;
+    if (spread) {
+      ahv -= aw2 * C * sn * Eigen::Vector2d(c.dx, c.dy);
+      if (rd != 0) uhv += aw * C * cs * Eigen::Vector2d(c.dx, c.dy);
+    } else {
+      ah -= aw2 * C * sn;
+      if (rd != 0) uh += aw * C * cs;
+    }
     az -= aw2 * S * cs;
-    if (rd != 0) uh += aw * C * cs, w -= aw * S * sn;  // d(r u)/dt = r' u + r du/dt during the build-up
+    if (rd != 0) w -= aw * S * sn;  // d(r u)/dt = r' u + r du/dt during the build-up
+  }
+  if (spread) {
+    const Eigen::Vector2d h = r * ahv + rd * uhv;
+    return Vec3(h.x(), h.y(), r * az + rd * w);
   }
   return Vec3((r * ah + rd * uh) * direction.x(), (r * ah + rd * uh) * direction.y(), r * az + rd * w);
+}
+
+void spread_directions(WaveField& w, double s, std::uint64_t seed) {
+  // CDF of D(theta) ~ cos^(2s)(theta / 2) on [-pi, pi], trapezoid on a fine grid.
+  constexpr int kN = 20000;  // intervals: the CDF to ~1e-8 for s up to ~100
+  std::vector<double> cdf(kN + 1, 0.0);
+  const double h = kTwoPi / kN;
+  auto D = [s](double th) { return std::pow(std::cos(0.5 * th), 2 * s); };
+  for (int i = 1; i <= kN; ++i) cdf[static_cast<std::size_t>(i)] =
+      cdf[static_cast<std::size_t>(i - 1)] + 0.5 * h * (D(-std::numbers::pi + (i - 1) * h) + D(-std::numbers::pi + i * h));
+  std::mt19937_64 gen(seed ^ 0x5eed5eed5eed5eedULL);
+  // One draw per component in its order of construction (increasing frequency), then finish's sort.
+  std::vector<std::size_t> order(w.components.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&w](std::size_t a, std::size_t b) { return w.components[a].omega < w.components[b].omega; });
+  for (std::size_t i : order) {
+    const double u = static_cast<double>(gen() >> 11) * 0x1.0p-53 * cdf.back();
+    const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
+    const std::size_t j = std::clamp<std::size_t>(static_cast<std::size_t>(it - cdf.begin()), 1, kN);
+    const double f = (u - cdf[j - 1]) / (cdf[j] - cdf[j - 1]);
+    const double theta = -std::numbers::pi + (static_cast<double>(j - 1) + f) * h;
+    auto& c = w.components[i];
+    c.dx = std::cos(theta) * w.direction.x() - std::sin(theta) * w.direction.y();
+    c.dy = std::sin(theta) * w.direction.x() + std::cos(theta) * w.direction.y();
+  }
+  w.spread = true;
 }
 
 double WaveField::variance() const {

@@ -104,3 +104,27 @@ TEST_F(CliStaticsVsRun, NodesEqualTheSteadyRunAtTimeZero) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 15: 100000 elements used to end in "internal error: std::bad_alloc"
+// (a dense 200000 x 200000 Jacobian); the O(n) sweeps solve it (about 1 s).
+TEST(CliStaticsLarge, HundredThousandElementsConverge) {
+  const CliResult r = run_towsim("statics --example sea-state-tow --set cable.elements=100000");
+  EXPECT_EQ(r.status, 0) << r.out.substr(0, 2000);
+  EXPECT_NE(r.out.find("converged: yes"), std::string::npos) << r.out.substr(0, 2000);
+  EXPECT_EQ(r.out.find("bad_alloc"), std::string::npos);
+}
+
+// A body at an extreme attitude is named with the time it happened.
+TEST(CliRunWarnings, ExtremeAttitudeIsReported) {
+  const fs::path dir = fresh_dir("attitude_warning") / "out";
+  const CliResult r = run_towsim("run --example paper-3d-turn --out " + quoted(dir) +
+                                 " --set simulation.duration=1 --set 'body.initial_attitude_deg=[0, 50, 0]'");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("towsim: warning: the body's pitch reached 50 deg at t = 0 s (beyond 30 deg"),
+            std::string::npos)
+      << r.out;
+}
+
+}  // namespace

@@ -143,6 +143,33 @@ TEST_F(ScenarioFile, SetCreatesSectionsAndIndexesLists) {
   EXPECT_DOUBLE_EQ(s.model->fluid.current_velocity[0].x(), 0.5);
 }
 
+// A file named with --set is relative to the current directory (like any
+// command-line path), one in the scenario to the scenario's folder: the same
+// name in both places, different contents, tell which was read.
+TEST_F(ScenarioFile, SetFilePathIsRelativeToTheCurrentDirectory) {
+  write("time,x,y,z\n0,0,0,0\n1,1,0,0\n", "t.csv");  // valid, in the scenario's folder
+  const fs::path cwd = dir_ / "cwd";
+  fs::create_directories(cwd);
+  std::ofstream(cwd / "t.csv") << "time,x,y,z\n0,0,0,0\n1,1,0,0\n0.5,2,0,0\n";  // invalid
+  const fs::path before = fs::current_path();
+  fs::current_path(cwd);
+  const auto s = load(kCable + kSim, {"tow.motion.0={type: track, file: t.csv}"});
+  const auto in_file = load(kCable + kSim + "tow:\n  motion:\n    - {type: track, file: t.csv}\n");
+  fs::current_path(before);
+  EXPECT_EQ(s.diags.str(), "t.csv:4:1: tow.motion.0.file: times must be strictly increasing (got 0.5 after 1)\n");
+  EXPECT_TRUE(in_file.ok()) << in_file.diags.str();
+}
+
+// An index into a list the scenario does not have starts the list; the new
+// item's missing keys are reported (not "expected a list (got a mapping)").
+TEST_F(ScenarioFile, SetIndexStartsAMissingList) {
+  const auto s = load(kCable + kSim +
+                          "body:\n  mass: 3\n  inertia: [1, 1, 1]\n  link_point: [0, 0, 0]\n"
+                          "  cylinders:\n    - {center: [0, 0, 0], axis: [1, 0, 0], length: 1, diameter: 0.2}\n",
+                      {"body.spheres.0.radius=0.1"});
+  EXPECT_EQ(s.diags.str(), "--set:1:1: body.spheres.0.center: missing required key\n");
+}
+
 TEST_F(ScenarioFile, SetBadValueNamesSet) {
   const auto s = load(kCable + kSim, {"cable.elements=40", "cable.diameter=-1"});
   EXPECT_EQ(s.diags.str(), "--set:2:16: cable.diameter: must be > 0 (got -1)\n");
@@ -193,6 +220,14 @@ TEST_F(ScenarioFile, DuplicateKey) {
 TEST_F(ScenarioFile, YamlSyntaxError) {
   const auto s = load("cable: [1, 2\nsimulation: 3\n");
   EXPECT_EQ(s.diags.str(), at("2:11: (yaml): YAML syntax error: end of sequence flow not found"));
+}
+
+// A tab in the indentation (YAML allows only spaces) is named, not just
+// yaml-cpp's "illegal map value".
+TEST_F(ScenarioFile, TabIndentationIsNamed) {
+  const auto s = load("cable:\n\tlength: 100\n");
+  EXPECT_EQ(s.diags.str(), at("2:8: (yaml): YAML syntax error: illegal map value (line 2 is indented with a tab: "
+                              "YAML indentation must use spaces)"));
 }
 
 TEST_F(ScenarioFile, MissingFile) {

@@ -1,11 +1,16 @@
 // The waves: and vessel: sections: compiled values and exact error texts
 // (docs/scenario.md "waves", "vessel"), and the sea-state statistics.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <numbers>
 #include <random>
 
+#include "../support/models.hpp"
 #include "../support/scenario_files.hpp"
 #include "towsim/scenario/examples.hpp"
 #include "towsim/output/sea_statistics.hpp"
@@ -21,6 +26,31 @@ using towsim::testing::kSim;
 const std::string kTow =
     "tow:\n"
     "  motion: [{type: ramp, direction: [0, 1, 0], speed: 2, ramp_time: 0}]\n";
+
+// waves.stretching: none (default) or wheeler.
+TEST_F(ScenarioFile, WaveStretchingChoice) {
+  auto s = load(kCable + kSim + "waves:\n  regular: {height: 2, period: 8}\n  stretching: wheeler\n");
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_TRUE(s.model->fluid.waves->wheeler);
+  s = load(kCable + kSim + "waves:\n  regular: {height: 2, period: 8}\n");
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_FALSE(s.model->fluid.waves->wheeler);
+  s = load(kCable + kSim + "waves:\n  regular: {height: 2, period: 8}\n  stretching: wheel\n");
+  EXPECT_EQ(s.diags.str(), at("10:15: waves.stretching: expected one of none, wheeler (got 'wheel'; did you mean "
+                              "'wheeler'?)"));
+}
+
+// spectrum.spreading: s > 0 makes the sea short-crested; absent: long-crested.
+TEST_F(ScenarioFile, SpectrumSpreading) {
+  auto s = load(kCable + kSim + "waves:\n  spectrum: {type: jonswap, hs: 3, tp: 9, spreading: 4}\n");
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_TRUE(s.model->fluid.waves->spread);
+  s = load(kCable + kSim + "waves:\n  spectrum: {type: jonswap, hs: 3, tp: 9}\n");
+  ASSERT_TRUE(s.ok()) << s.diags.str();
+  EXPECT_FALSE(s.model->fluid.waves->spread);
+  s = load(kCable + kSim + "waves:\n  spectrum: {type: jonswap, hs: 3, tp: 9, spreading: 0}\n");
+  EXPECT_EQ(s.diags.str(), at("9:54: waves.spectrum.spreading: must be > 0 (got 0)"));
+}
 
 TEST_F(ScenarioFile, WavesAndVesselCompile) {
   const auto s = load(kCable + kSim + kTow +
@@ -180,6 +210,75 @@ TEST(SeaStatistics, SpectralEstimateParsevalAndPeak) {
   }
   EXPECT_NEAR(sum, var, 1e-12 * var);
   EXPECT_NEAR(wbest, w0, 2.5 * dw) << "the peak band holds the sine's frequency";
+}
+
+
+// spectra.csv's transfer functions against known gains: the wave elevation,
+// the tow point's heave and the body's depth are sums of sines at Fourier
+// frequencies (one per 5-bin band, so no leakage between bands), the heave
+// G1(omega) and the depth G2(omega) times the elevation's amplitude with
+// other phases: body_heave_per_wave must be G2 and body_heave_per_tow_heave
+// G2 / G1 in the bands holding a sine (1e-9: the periodogram of a sine at a
+// Fourier frequency is exact up to the sums' round-off, ~1e-13, and the file
+// has 12 significant digits), blank in the bands without energy.
+TEST(SeaStatistics, TransferFunctionsOfKnownGains) {
+  towsim::Model m = towsim::testing::cable_model(towsim::testing::CableSpec{});
+  towsim::testing::add_sphere_body(m);
+  const double dt = 0.5;
+  const std::size_t N = 2000;  // N/2 = 1000 = 200 bands of 5
+  const double dw = 2 * std::numbers::pi / (N * dt);
+  const std::vector<int> bins = {43, 68, 103, 153, 208};  // centre bins 3 + 5 j of bands j = 8, 13, 20, 30, 41
+  auto G1 = [](double w) { return 0.8 / (1 + w * w); };  // tow heave per metre of wave [m/m]
+  auto G2 = [](double w) { return 0.3 * std::exp(-w); };  // body depth per metre of wave [m/m]
+  towsim::io::SeaStatistics stats;
+  for (std::size_t n = 0; n < N; ++n) {
+    towsim::Sample s;
+    s.t = static_cast<double>(n) * dt;
+    s.tow_force = towsim::Vec3(1000, 0, 0);
+    s.bodies.resize(1);
+    s.bodies[0].pos = towsim::Vec3(0, 0, -50);
+    for (std::size_t i = 0; i < bins.size(); ++i) {
+      const double w = dw * bins[i], a = 0.5 + 0.1 * static_cast<double>(i);
+      s.wave_elevation += a * std::cos(w * s.t + 0.3 * static_cast<double>(i));
+      s.tow_wave.z() += G1(w) * a * std::cos(w * s.t + 1.1 + 0.3 * static_cast<double>(i));
+      s.bodies[0].pos.z() += G2(w) * a * std::cos(w * s.t - 0.7);
+    }
+    stats.add(m, s);
+  }
+  const auto path = std::filesystem::temp_directory_path() / ("towsim_spectra_" + std::to_string(::getpid()) + ".csv");
+  ASSERT_TRUE(stats.write_spectra(path.string()));
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "omega,wave_elevation,tow_tension,link_force,body_depth,body_heave_per_wave,tow_heave,"
+                  "body_heave_per_tow_heave");
+  int rows = 0, checked = 0, blank = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) f.push_back(cell);
+    if (line.back() == ',') f.emplace_back();
+    ASSERT_EQ(f.size(), 8u) << line;
+    const double w = std::stod(f[0]);
+    const double bin = w / dw;  // band centre
+    bool holds = false;
+    for (int b : bins) holds = holds || std::abs(bin - b) < 2.6;
+    if (holds) {
+      const double wb = dw * std::round(bin);
+      EXPECT_NEAR(std::stod(f[5]), G2(wb), 1e-9) << "body_heave_per_wave at omega " << w;
+      EXPECT_NEAR(std::stod(f[7]), G2(wb) / G1(wb), 1e-9) << "body_heave_per_tow_heave at omega " << w;
+      ++checked;
+    } else {
+      EXPECT_TRUE(f[5].empty() && f[7].empty()) << line;
+      ++blank;
+    }
+    ++rows;
+  }
+  std::filesystem::remove(path);
+  EXPECT_EQ(rows, 200);
+  EXPECT_EQ(checked, 5);
+  EXPECT_EQ(blank, 195);
 }
 
 }  // namespace

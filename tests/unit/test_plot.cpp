@@ -87,6 +87,8 @@ TEST(PlotNames, DependOnBodyAndDimension) {
             (std::vector<std::string>{"trajectories_xz", "tow_force", "paths_xy", "end_depth", "depth_layback",
                                       "body_angles", "cable_shapes_xz", "cable_shapes_xy", "tension_map",
                                       "link_force"}));
+  // A sea-state run (spectra.csv): the spectra figure last.
+  EXPECT_EQ(plot_names(false, false, false, true).back(), "spectra");
   // One output time (towsim statics --out): shapes and tension only.
   EXPECT_EQ(plot_names(true, true, true),
             (std::vector<std::string>{"cable_shapes_xz", "cable_shapes_xy", "tension_along_cable"}));
@@ -122,6 +124,34 @@ TEST_F(PlotRun, RendersTheFiguresOfAPlanarCableRun) {
   expect_figures(plot_names(false, false));
   for (const char* n : {"paths_xy", "body_angles", "link_force", "cable_shapes_xy"})
     EXPECT_FALSE(fs::exists(dir_ / "plots" / (std::string(n) + ".png"))) << n;
+}
+
+// A sea-state run's spectra.csv (blank cells where a gain is undefined)
+// adds the spectra figure: densities and the ship -> fish transfer function.
+TEST_F(PlotRun, SpectraFigureOfASeaStateRun) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
+  write_run(true, false);
+  {
+    std::ofstream sp(dir_ / "spectra.csv");
+    sp << "omega,wave_elevation,tow_tension,link_force,body_depth,body_heave_per_wave,tow_heave,"
+          "body_heave_per_tow_heave\n";
+    for (int k = 1; k <= 40; ++k) {
+      const double w = 0.05 * k, S = std::exp(-std::pow(w - 0.7, 2) / 0.02) + 1e-8;
+      const bool gain = S > 1e-3;
+      sp << w << ',' << S << ',' << 1e4 * S << ',' << 1e3 * S << ',' << 0.04 * S << ',';
+      if (gain) sp << 0.2;
+      sp << ',' << 0.25 * S << ',';
+      if (gain) sp << 0.4;
+      sp << '\n';
+    }
+  }
+  std::ostringstream log;
+  ASSERT_EQ(plot_run(dir_.string(), log), 0) << log.str();
+  expect_figures(plot_names(true, false, false, true));
+  std::stringstream gp;
+  gp << std::ifstream(dir_ / "plots" / "spectra.gp").rdbuf();
+  EXPECT_NE(gp.str().find("'body_heave_per_tow_heave'"), std::string::npos);
+  EXPECT_NE(gp.str().find("ship -> fish"), std::string::npos);
 }
 
 TEST_F(PlotRun, WithoutNodesWhenTheRunWroteNone) {

@@ -45,12 +45,15 @@ class SeaStatistics {
   nlohmann::ordered_json json() const;
   /// spectra.csv: omega, spectral densities of wave elevation, tow tension,
   /// link force and body depth, and sqrt(S_depth / S_eta) (the body heave per
-  /// metre of wave, blank where S_eta < 1e-3 of its peak). False on I/O error.
+  /// metre of wave, blank where S_eta < 1e-3 of its peak), then the tow
+  /// point's wave heave and sqrt(S_depth / S_tow_heave) (the ship -> fish
+  /// heave transfer function, blank where S_tow_heave < 1e-3 of its peak).
+  /// False on I/O error.
   bool write_spectra(const std::string& path) const;
 
  private:
   double start_;  // [s]
-  std::vector<double> t_, eta_, tension_, link_, depth_;
+  std::vector<double> t_, eta_, tension_, link_, depth_, tow_heave_;  // tow_heave_: Sample::tow_wave.z [m]
 };
 
 }  // namespace towsim::io

@@ -268,9 +268,11 @@ struct WavesSpec {
   Field<double> gamma{3.3};           // spectrum (jonswap): peak enhancement [-]
   Field<long long> components{200};   // spectrum: number of harmonics [-]
   Field<long long> seed{1};           // spectrum: phase seed [-]
+  Field<double> spreading;            // spectrum: cos-2s spreading exponent s [-]; absent = long-crested
   Field<double> water_depth;          // [m]; absent = deep water
   Field<double> statistics_start;     // [s]; absent = half the duration
   Field<double> ramp_time{0.0};       // build-up of the waves and ship motion [s]
+  Field<std::string> stretching{"none"};  // kinematics near the surface: none | wheeler
 };
 
 /// One RAO row: period [s], heading [deg], dof (0..5), amplitude, phase [deg].

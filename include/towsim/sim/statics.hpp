@@ -21,6 +21,7 @@ struct StaticsResult {
   double residual = 0;      // largest angular acceleration left [rad/s^2]
   int iterations = 0;       // Newton iterations
   bool converged = false;
+  bool interrupted = false;  // the stop flag was set: the state is the last iterate
   std::string message;      // why it did not converge
 };
 
@@ -32,10 +33,13 @@ Vec3 final_tow_velocity(const Tow& tow);
 
 /// Equilibrium of the model's cable and body when the tow point moves at the
 /// constant velocity V (in the model's current): zero accelerations in the
-/// same equations the dynamics use. A sweep from the body up gives the
-/// starting point; Newton on all angles (minimum-norm steps where the body
-/// has a neutral rotation) then converges. The tow point sits at tow.start.
-StaticsResult solve_statics(const Model& model, const Vec3& V);
+/// same equations the dynamics use. Sweeps from the body up, each part
+/// balanced given the force from below (O(n) each; repeated while a current
+/// profile moves the loads), then, for small problems the sweeps leave
+/// unconverged, Levenberg-Marquardt on all angles. The tow point sits at
+/// tow.start. `stop_flag`, when non-null and set, ends the solve early
+/// (result.interrupted, not converged).
+StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile int* stop_flag = nullptr);
 
 /// `model` with a deployed length L: the top section's elements (their
 /// number kept) stretched or shortened together, per-length properties kept,
@@ -56,7 +60,11 @@ struct TargetDepthResult {
 /// (Illinois) on the steady depth, to 1e-6 m of depth.
 TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double depth);
 
-/// Equilibrium at the tow's velocity at t = 0 (what `initial: steady` starts from).
+/// Equilibrium at the tow's velocity at t = 0 (what `initial: steady` starts
+/// from); throws std::runtime_error with the message when it does not converge.
 StaticsResult steady_state(const Model& model);
+
+/// The same without throwing: the result says whether it converged or was interrupted.
+StaticsResult steady_state(const Model& model, const volatile int* stop_flag);
 
 }  // namespace towsim

@@ -22,6 +22,7 @@ struct WaveComponent {
   double k;          // wavenumber k_i (dispersion relation) [1/m]
   double phase;      // eps_i [rad]
   double z_cut;      // below this height its kinematics are skipped (kWaveCutoff) [m, R_g]
+  double dx = 0, dy = 0;  // its unit horizontal travel direction (short-crested seas) [-, R_g]
 };
 
 /// Relative size of a component's kinematics (to their value at z = 0) below
@@ -38,6 +39,9 @@ struct WaveField {
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();    // unit horizontal travel direction d [-, R_g]
   std::vector<WaveComponent> components;                   // sorted by z_cut, deepest first
   double ramp_time = 0;  // build-up: everything scaled by r(t), 0 -> 1 over [0, ramp_time] [s]
+  bool spread = false;   // short-crested: each component travels along its own (dx, dy), else along `direction`
+  bool wheeler = false;  // Wheeler stretching: kinematics up to the surface eta, at the stretched height
+                         // z' = (z - eta) h / (h + eta) (deep water: z - eta); else linear up to z = 0
 
   /// Build-up factor r(t) = s^3 (10 - 15 s + 6 s^2), s = t / ramp_time in [0, 1]
   /// (twice continuously differentiable), and its first two derivatives.
@@ -45,14 +49,28 @@ struct WaveField {
 
   /// Surface elevation eta at the horizontal position of x [m].
   double elevation(const Eigen::Vector3d& x, double t) const;
-  /// Particle velocity at x [m/s, R_g]; zero above the still surface (z > 0).
+  /// Particle velocity at x [m/s, R_g]; zero above the still surface (z > 0),
+  /// or with `wheeler` above the wave surface eta, the linear velocity at the
+  /// stretched height z' below it (so the crest sees the z = 0 value).
   Eigen::Vector3d velocity(const Eigen::Vector3d& x, double t) const;
   /// Particle (local) acceleration du/dt at x [m/s^2, R_g] (with the
-  /// build-up's rate: d(r u)/dt); zero for z > 0.
+  /// build-up's rate: d(r u)/dt); zero for z > 0 (`wheeler`: z > eta, and
+  /// evaluated at z' like the velocity, without the rate of z' itself).
   Eigen::Vector3d acceleration(const Eigen::Vector3d& x, double t) const;
+  /// The height at which the linear kinematics are evaluated for a point at
+  /// height z under the surface eta: z itself, or Wheeler's stretched z' [m].
+  double stretched(double z, double eta) const;
   /// Sum of the component variances a_i^2 / 2 [m^2] (Hs = 4 sqrt of it).
   double variance() const;
 };
+
+/// Short-crested sea: each component of `w` gets its own travel direction,
+/// `direction` turned by theta drawn from the cos-2s spreading function
+/// D(theta) ~ cos^(2s)(theta / 2), |theta| <= pi (inverse of its CDF,
+/// tabulated, at U = (u >> 11) 2^-53 of std::mt19937_64(seed ^ 0x5eed5eed5eed5eed),
+/// one per component in the sea's order of construction, so the phases stay
+/// those of the long-crested sea). s > 0 [-].
+void spread_directions(WaveField& w, double s, std::uint64_t seed);
 
 /// Wavenumber k [1/m] with omega^2 = g k tanh(k h) (Newton, relative
 /// residual <= 1e-14); h = infinity gives k = omega^2 / g.
