@@ -232,16 +232,18 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
   return {};
 }
 
-template <class Controlled>
-std::string advance_adaptive(const Model& model, System& sys, Controlled& ctrl, StateVector& y, double& t,
-                             double target, double& h, RunStats& stats, bool& event) {
+/// Advance y to `target` by adaptive steps that land on it. `try_step(y, t,
+/// dt)` attempts a step (true: accepted, t and y advanced; dt the proposal
+/// for the next step either way); `accepted(y, t)` runs after each accepted
+/// step (projection). Returns an error text or empty.
+template <class TryStep, class Accepted>
+std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step, Accepted&& accepted,
+                             StateVector& y, double& t, double target, double& h, RunStats& stats, bool& event) {
   const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
   while (t < target - 1e-12 * std::max(1.0, target)) {
     const double h_try = std::min({h, model.sim.max_step, target - t});
     double dt = h_try;
-    sys.set_window(t, t + h_try);
-    const auto res = ctrl.try_step(std::ref(sys), y, t, dt);  // t, dt updated
-    if (res == odeint::fail) {
+    if (!try_step(y, t, dt)) {
       ++stats.rejected_steps;
       h = dt;
       if (h < h_min) {
@@ -255,8 +257,7 @@ std::string advance_adaptive(const Model& model, System& sys, Controlled& ctrl, 
     // Keep the controller's proposal unless this step was shortened to land.
     if (h_try >= h || dt > h) h = dt;
     if (std::abs(target - t) < 1e-12 * std::max(1.0, target)) t = target;
-    sys.project(y, t);
-    if constexpr (requires { ctrl.reset(); }) ctrl.reset();  // projection changed y: no stale FSAL derivative
+    accepted(y, t);
     ++stats.steps;
     if (auto err = check_state(model, sys, y); !err.empty()) return err;
     if ((event = winch_due(model, sys, y))) return {};
@@ -265,33 +266,29 @@ std::string advance_adaptive(const Model& model, System& sys, Controlled& ctrl, 
   return {};
 }
 
-/// Advance y to `target` by Rosenbrock-W steps (error control on state and forces).
+/// The same with an odeint controlled stepper (dopri5, Cash-Karp): the tow
+/// law is evaluated inside each trial step's window; accepted steps are
+/// projected.
+template <class Controlled>
+std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, StateVector& y, double& t,
+                           double target, double& h, RunStats& stats, bool& event) {
+  auto try_step = [&](StateVector& yy, double& tt, double& dt) {
+    sys.set_window(tt, tt + dt);
+    return ctrl.try_step(std::ref(sys), yy, tt, dt) != odeint::fail;  // tt, dt updated
+  };
+  auto accepted = [&](StateVector& yy, double tt) {
+    sys.project(yy, tt);
+    if constexpr (requires { ctrl.reset(); }) ctrl.reset();  // projection changed y: no stale FSAL derivative
+  };
+  return advance_adaptive(model, sys, try_step, accepted, y, t, target, h, stats, event);
+}
+
+/// The same with Rosenbrock-W steps (error control on state and forces).
 std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros, StateVector& y, double& t,
                                double target, double& h, RunStats& stats, bool& event) {
-  const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
-  while (t < target - 1e-12 * std::max(1.0, target)) {
-    const double h_try = std::min({h, model.sim.max_step, target - t});
-    double dt = h_try;
-    if (!ros.try_step(y, t, dt)) {
-      ++stats.rejected_steps;
-      h = dt;
-      if (h < h_min) {
-        std::ostringstream os;
-        os << "step size collapsed below " << h_min << " s (tolerance " << model.sim.tolerance
-           << " cannot be met)";
-        return os.str();
-      }
-      continue;
-    }
-    // Keep the controller's proposal unless this step was shortened to land.
-    if (h_try >= h || dt > h) h = dt;
-    if (std::abs(target - t) < 1e-12 * std::max(1.0, target)) t = target;
-    ++stats.steps;
-    if (auto err = check_state(model, sys, y); !err.empty()) return err;
-    if ((event = winch_due(model, sys, y))) return {};
-    track_elastic(model, sys, y, t, stats);
-  }
-  return {};
+  auto try_step = [&](StateVector& yy, double& tt, double& dt) { return ros.try_step(yy, tt, dt); };
+  auto accepted = [](StateVector&, double) {};
+  return advance_adaptive(model, sys, try_step, accepted, y, t, target, h, stats, event);
 }
 
 /// The largest error estimates so far, kept across winch events (which
@@ -445,8 +442,8 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       bool event = false;
       switch (model.sim.integrator) {
         case Integrator::RK4: err = advance_fixed(m, sys, rk4, y, t, target, stats, event); break;
-        case Integrator::DOPRI5: err = advance_adaptive(m, sys, dopri, y, t, target, h, stats, event); break;
-        case Integrator::CashKarp54: err = advance_adaptive(m, sys, cashkarp, y, t, target, h, stats, event); break;
+        case Integrator::DOPRI5: err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event); break;
+        case Integrator::CashKarp54: err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event); break;
         case Integrator::Rosenbrock: err = advance_rosenbrock(m, sys, *ros, y, t, target, h, stats, event); break;
       }
       if (!event || !err.empty()) continue;
