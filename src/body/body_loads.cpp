@@ -46,28 +46,35 @@ void cylinder_loads(const Fluid& fluid, const CylinderLoad& cy, double t, BodyWo
 /// Lift and drag of a lifting surface from its local angle of attack.
 /// d: the surface's deflection [rad].
 void surface_loads(const Fluid& fluid, const LiftingSurface& ls, double d, double t, BodyWork& ws) {
+  const SurfaceFlow f = surface_flow(fluid, ls, d, t, ws);
+  if (f.speed < 1e-12) return;
+  const double alpha = f.alpha;
+  const double cl = lift_coefficient(ls, alpha);
+  const double as = ls.stall_angle;
+  double cd = ls.drag0 + ls.induced_drag * cl * cl;
+  const double sa = std::abs(std::sin(alpha));
+  if (std::abs(alpha) > as) cd += 2 * (sa * sa - std::sin(as) * std::sin(as));
+  const double qA = 0.5 * fluid.rho * f.speed * f.speed * ls.area;
+  const Vec3 lift_dir = f.span.cross(f.up) / f.speed;
+  add_force(ws, ws.R * ls.center, qA * (cl * lift_dir - cd * f.up / f.speed));
+}
+}  // namespace
+
+SurfaceFlow surface_flow(const Fluid& fluid, const LiftingSurface& ls, double d, double t, const BodyWork& ws) {
+  SurfaceFlow f;
   const Vec3 c = ws.R * ls.center;
-  const Vec3 span = ws.R * ls.chord.cross(ls.normal);
+  f.span = ws.R * ls.chord.cross(ls.normal);
   // Deflection d: chord and normal turn by +d about the span axis
   // (chord x normal), the leading edge towards +normal, so that with the flow
   // along the undeflected chord alpha = +d and the lift points to +normal.
   const Vec3 chord = ws.R * (std::cos(d) * ls.chord + std::sin(d) * ls.normal);
   const Vec3 normal = ws.R * (-std::sin(d) * ls.chord + std::cos(d) * ls.normal);
   const Vec3 u = ws.vO + ws.w.cross(c) - fluid.velocity(ws.O + c, t);
-  const Vec3 up = u - u.dot(span) * span;  // velocity in the surface's plane
-  const double V = up.norm();
-  if (V < 1e-12) return;
-  const double alpha = std::atan2(-up.dot(normal), up.dot(chord));
-  const double cl = lift_coefficient(ls, alpha);
-  const double as = ls.stall_angle;
-  double cd = ls.drag0 + ls.induced_drag * cl * cl;
-  const double sa = std::abs(std::sin(alpha));
-  if (std::abs(alpha) > as) cd += 2 * (sa * sa - std::sin(as) * std::sin(as));
-  const double qA = 0.5 * fluid.rho * V * V * ls.area;
-  const Vec3 lift_dir = span.cross(up) / V;
-  add_force(ws, c, qA * (cl * lift_dir - cd * up / V));
+  f.up = u - u.dot(f.span) * f.span;  // velocity in the surface's plane
+  f.speed = f.up.norm();
+  if (f.speed >= 1e-12) f.alpha = std::atan2(-f.up.dot(normal), f.up.dot(chord));
+  return f;
 }
-}  // namespace
 
 double lift_coefficient(const LiftingSurface& ls, double alpha) {
   // Reverse flow (|alpha| > 90 deg) mirrors the forward curve.
@@ -81,6 +88,15 @@ double lift_coefficient(const LiftingSurface& ls, double alpha) {
   // Past stall: falls as a cosine from CL_max at stall to zero at 90 degrees.
   const double s = (std::abs(alpha) - as) / (half - as);
   return (alpha > 0 ? 1 : -1) * ls.lift_slope * as * std::cos(s * half);
+}
+
+double current_deflection(const Body& b, std::size_t j, const BodyWork& ws, double t) {
+  const LiftingSurface& ls = b.surfaces[j];
+  if (!ls.depth_control) return surface_deflection(ls, t);
+  // The controller's index: controlled surfaces before j.
+  std::size_t c = 0;
+  for (std::size_t i = 0; i < j; ++i) c += b.surfaces[i].depth_control ? 1 : 0;
+  return ws.deflection[c];
 }
 
 double surface_deflection(const LiftingSurface& ls, double t) {
@@ -138,9 +154,8 @@ void body_loads(const Fluid& fluid, const Body& b, double t, BodyWork& ws) {
   for (const auto& sp : b.spheres) sphere_loads(fluid, sp, t, ws);
   for (const auto& cy : b.cylinders) cylinder_loads(fluid, cy, t, ws);
   // Surfaces: deflection from the depth controller's state, else from the table.
-  std::size_t c = 0;
-  for (const auto& ls : b.surfaces)
-    surface_loads(fluid, ls, ls.depth_control ? ws.deflection[c++] : surface_deflection(ls, t), t, ws);
+  for (std::size_t j = 0; j < b.surfaces.size(); ++j)
+    surface_loads(fluid, b.surfaces[j], current_deflection(b, j, ws, t), t, ws);
   // Generic damping on the body-frame velocity relative to the water.
   if (!b.linear_damping.isZero() || !b.quadratic_damping.isZero()) {
     Vec6 nur;

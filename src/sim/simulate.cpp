@@ -10,6 +10,7 @@
 
 #include "towsim/dynamics/implicit.hpp"
 #include "towsim/integrators/rosenbrock.hpp"
+#include "towsim/hydro/loads.hpp"
 #include "towsim/integrators/system.hpp"
 #include "towsim/sim/winch_events.hpp"
 #include "towsim/sim/statics.hpp"
@@ -70,11 +71,35 @@ std::string check_rk4_step(const Model& model, const Workspace& ws, double t, Ru
   return {};
 }
 
+/// The first time each lifting surface is seen stalled (|angle of attack|
+/// beyond its stall angle) at an output sample: a warning with the time.
+void check_stall(const Model& model, const Workspace& ws, double t, RunStats& stats) {
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const Body& body = model.bodies[b];
+    for (std::size_t j = 0; j < body.surfaces.size(); ++j) {
+      const LiftingSurface& ls = body.surfaces[j];
+      const SurfaceFlow f = surface_flow(model.fluid, ls, current_deflection(body, j, ws.body[b], t), t, ws.body[b]);
+      if (f.speed < 1e-6 || std::abs(f.alpha) <= ls.stall_angle) continue;
+      const std::string who =
+          (body.inline_body ? "body " + body.name + "'s" : std::string("the body's")) + " surface " + std::to_string(j);
+      if (std::any_of(stats.warnings.begin(), stats.warnings.end(),
+                      [&](const std::string& w) { return w.rfind(who + " stalled", 0) == 0; }))
+        continue;
+      std::ostringstream os;
+      os << who << " stalled at t = " << t << " s: angle of attack " << f.alpha * kRad2Deg
+         << " deg beyond its stall angle " << ls.stall_angle * kRad2Deg
+         << " deg (its lift falls off; check the body's trim, link point and deflections)";
+      stats.warnings.push_back(os.str());
+    }
+  }
+}
+
 /// Output sample of state y at time t; tracks the element length drift.
 Sample sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats,
                  std::string* err = nullptr) {
   const Workspace& ws = sys.evaluate(y, t);
   if (err) *err = check_rk4_step(model, ws, t, stats);
+  check_stall(model, ws, t, stats);
   const PhysicalState s = sys.physical(y);
   Sample out = make_sample(model, s, ws, t);
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {

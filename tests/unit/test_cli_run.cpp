@@ -1,6 +1,7 @@
 // The built program (TOWSIM_BINARY): exit statuses, nothing written on bad input.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -102,4 +103,26 @@ TEST_F(Cli, UsageErrorsExit2) {
   EXPECT_EQ(run_towsim("").status, 2);                         // no subcommand
   EXPECT_EQ(run_towsim("check").status, 2);                    // no input
   EXPECT_EQ(run_towsim("--help").status, 0);
+}
+
+// A lifting surface beyond its stall angle is named with the first output
+// time it is seen there, once, on stderr and in summary.json "warnings".
+// Here the fish starts hanging at rest under a tow already at 4 kn: at t = 1 s
+// its tail fin meets the flow at ~33 deg, beyond its 15 deg stall angle.
+TEST_F(Cli, StalledSurfaceIsWarnedAboutWithItsTime) {
+  const fs::path out = dir_ / "out";
+  const CliResult r = run_towsim("run --example fish-depth-change --set initial=hanging --set simulation.duration=5 "
+                                 "--out " + quoted(out));
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::string prefix = "towsim: warning: the body's surface 0 stalled at t = 1 s: angle of attack ";
+  const auto at = r.out.find(prefix);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double alpha = std::stod(r.out.substr(at + prefix.size()));
+  EXPECT_GT(std::abs(alpha), 15.0);  // beyond the stall angle the message names
+  EXPECT_EQ(r.out.find(prefix, at + 1), std::string::npos) << "warned once per surface";
+  // The steady tow of the same example flies unstalled: no such warning.
+  const CliResult ok = run_towsim("run --example fish-depth-change --set simulation.duration=5 --out " +
+                                  quoted(dir_ / "ok"));
+  ASSERT_EQ(ok.status, 0) << ok.out;
+  EXPECT_EQ(ok.out.find("stalled"), std::string::npos) << ok.out;
 }

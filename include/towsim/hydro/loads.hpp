@@ -57,6 +57,19 @@ void seabed_loads(const Model& model, Workspace& ws);
 /// bottom or without a seabed. For implicit integrators (a joint's local stiffness).
 double seabed_normal_stiffness(const Model& model, const Workspace& ws, int k);
 
+/// The flow a lifting surface sees (body kinematics in ws, deflection d [rad]).
+struct SurfaceFlow {
+  double alpha = 0;            // angle of attack [rad] (0 without flow)
+  double speed = 0;            // relative speed in the surface's plane [m/s]
+  Vec3 up = Vec3::Zero();      // body velocity relative to the water, in the surface's plane [m/s, R_g]
+  Vec3 span = Vec3::Zero();    // span axis, chord x normal [-, R_g]
+};
+SurfaceFlow surface_flow(const Fluid& fluid, const LiftingSurface& ls, double d, double t, const BodyWork& ws);
+
+/// Deflection of surface j of body b as the dynamics use it: the depth
+/// controller's state (ws.deflection) or the table at t [rad].
+double current_deflection(const Body& b, std::size_t j, const BodyWork& ws, double t);
+
 /// Lift coefficient of a lifting surface at angle of attack alpha [rad]:
 /// linear up to stall, then falling smoothly to zero at 90 degrees.
 double lift_coefficient(const LiftingSurface& ls, double alpha);
