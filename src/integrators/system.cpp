@@ -218,6 +218,7 @@ class DefaultSystem final : public System {
   void stage_solve(double hg, const StateVector& r, StateVector& k) override {
     // Velocity rows: (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x), k_v = r_v + z.
     rhs_.dv0 = CMap3(&r[3]);
+    rhs_.dx0 = CMap3(&r[0]);
     for (int i = 0; i < n_; ++i) {
       rhs_.dw[i] = CMap3(&r[6 + 3 * n_ + 3 * i]);
       rhs_.rot[i] = js_.e[i].cross(CMap3(&r[6 + 3 * i]));
