@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "towsim/dynamics/elastic.hpp"
 #include "towsim/hydro/loads.hpp"
 
 namespace towsim {
@@ -224,6 +225,11 @@ ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
   brhs.assign(nb, Vec3::Zero());
   bbQ.assign(nb, Vec3::Zero());
   FQ.assign(nb, Vec3::Zero());
+  Fd.assign(n, Vec3::Zero());
+  EAinv.assign(n, Mat3::Zero());
+  EG.assign(n, Mat3::Zero());
+  Er.assign(n, Vec3::Zero());
+  zl.assign(n, 0.0);
   dvP.assign(n + 1, Vec3::Zero());
   dxP.assign(n + 1, Vec3::Zero());
   alpha.assign(n, Vec3::Zero());
@@ -252,6 +258,25 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
     const Element& el = current_element(model, ws, k);
     const double L = el.length;
     const Mat3 Mt = ws.Mt[k] + hg * jac.element_damping[k];
+    if (is_elastic(els[k])) {
+      // Elastic element (elastic.cpp's step on d_k = l e): A = Mt/3 + Kk + S,
+      // S = (hg c_a + hg^2 EA/L) e e^T + hg^2 K_rock / l^2 (I - e e^T) (the
+      // spring's axial and geometric stiffness in d). K = Mt/3 + S - N A^-1 N,
+      // N = Mt/6 - S (= Mt + Kk - G A^-1 G, G = Mt/2 + Kk, without the
+      // difference of large terms when Kk >> Mt).
+      const Vec3& e = s.e[k];
+      const double l = s.length_of(model, k);
+      const Mat3 ee = e * e.transpose();
+      const Mat3 S = (hg * element_axial_damping_rate(els[k], l) + hg * hg * element_axial_stiffness(els[k], l)) * ee +
+                     hg * hg * jac.element_stiffness[k] / (l * l) * (Mat3::Identity() - ee);
+      iw.EAinv[k] = (Mt / 3 + *Kk + S).inverse();
+      iw.EG[k] = 0.5 * Mt + *Kk;
+      const Mat3 N = Mt / 6 - S;
+      const Mat3 Kn = Mt / 3 + S - N * iw.EAinv[k] * N;
+      iw.K[k] = 0.5 * (Kn + Kn.transpose());
+      iw.K[k] += ws.Ma[k] + joint_terms(k);
+      continue;
+    }
     const auto& T = iw.T[k] = tangent_basis(s.e[k]);
     const Eigen::Matrix<double, 3, 2> KT = *Kk * T;
     iw.GT[k] = 0.5 * L * Mt * T + L * KT;
@@ -286,10 +311,25 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
     const Vec3 dw = r.dw[k] - r.dw[k].dot(e) * e;
     const Vec3 rot = r.rot[k] - r.rot[k].dot(e) * e;
     const Vec3 de = dw.cross(e);
-    iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * L * de));
-    iw.Mom[k] = -hg * jac.element_stiffness[k] * (hg * dw + rot);
-    dv += L * de;
-    dx += L * rot.cross(e);
+    if (is_elastic(els[k])) {
+      // Increments of d' and d: the stretch's along e, the rotation's normal to it.
+      const double l = s.length_of(model, k);
+      const double dl = k < r.dl.size() ? r.dl[k] : 0.0, dlr = k < r.dlr.size() ? r.dlr[k] : 0.0;
+      const Vec3 ddv = dlr * e + l * de, ddx = dl * e + l * rot.cross(e);
+      const double ka = element_axial_stiffness(els[k], l), ca = element_axial_damping_rate(els[k], l);
+      const double kr = jac.element_stiffness[k] / (l * l);
+      iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * ddv));
+      iw.Mom[k].setZero();
+      iw.Fd[k] = -hg * (ca * e.dot(ddv) + ka * (hg * e.dot(ddv) + e.dot(ddx))) * e -
+                 hg * kr * (hg * l * de + l * rot.cross(e));
+      dv += ddv;
+      dx += ddx;
+    } else {
+      iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * L * de));
+      iw.Mom[k] = -hg * jac.element_stiffness[k] * (hg * dw + rot);
+      dv += L * de;
+      dx += L * rot.cross(e);
+    }
     const int bi = ws.body_at[k + 1];
     if (bi >= 0) {
       const std::size_t b = idx(bi);
@@ -326,6 +366,11 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
       iw.bbQ[b] -= iw.FQ[b];
       bk = &iw.bbQ[b];
     }
+    if (is_elastic(els[k])) {
+      iw.Er[k] = 0.5 * iw.F[k] + iw.Fd[k] - *bk;
+      iw.b[k] = iw.EG[k] * (iw.EAinv[k] * iw.Er[k]) + *bk - iw.F[k] - iw.Fa[k];
+      continue;
+    }
     const double L = current_element(model, ws, k).length;
     const Vec3 r0 = 0.5 * L * iw.F[k] - L * *bk - s.e[k].cross(iw.Mom[k]);
     iw.Tr0[k] = iw.T[k].transpose() * r0;
@@ -336,9 +381,19 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
   Vec3 a = free_top ? Vec3(iw.K[0].ldlt().solve(-iw.b[0])) : Vec3::Zero();
   iw.a0 = a;
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec3 beta = iw.T[k] * (iw.Phi[k] * (iw.Tr0[k] - iw.GT[k].transpose() * a));
-    iw.alpha[k] = s.e[k].cross(beta);
-    a += current_element(model, ws, k).length * beta;
+    if (is_elastic(els[k])) {
+      // z_d = A^-1 (r - G a): its part along e is l', normal to it l (alpha x e).
+      const Vec3 zd = iw.EAinv[k] * (iw.Er[k] - iw.EG[k] * a);
+      const Vec3& e = s.e[k];
+      iw.zl[k] = e.dot(zd);
+      iw.alpha[k] = e.cross(zd) / s.length_of(model, k);
+      a += zd;
+    } else {
+      iw.zl[k] = 0;
+      const Vec3 beta = iw.T[k] * (iw.Phi[k] * (iw.Tr0[k] - iw.GT[k].transpose() * a));
+      iw.alpha[k] = s.e[k].cross(beta);
+      a += current_element(model, ws, k).length * beta;
+    }
     const int bi = ws.body_at[k + 1];
     if (bi < 0) continue;
     const std::size_t b = idx(bi);

@@ -64,6 +64,7 @@ struct ImplicitWorkspace {
   std::vector<Vec3> Fa;       // per joint (attachments) [N, R_g]
   std::vector<Vec3> Fb, Mb;   // per body: force and moment about O_t [N], [N m], R_g
   std::vector<Vec3> FQ;       // per body: seabed force at its link point Q [N, R_g]
+  std::vector<Vec3> Fd;       // per elastic element: spring and axial damper force on d_k [N, R_g]
   // Recursion with modified inertias (zero velocities: no centripetal terms).
   std::vector<Mat3> K;        // f_k = K_k a_k + b_k [kg] (k = 0..n)
   std::vector<Vec3> b;        // [N]
@@ -72,6 +73,9 @@ struct ImplicitWorkspace {
   std::vector<Eigen::Matrix2d> Phi;                // inverse rotational block [1/(kg m^2)]
   std::vector<Eigen::Matrix<double, 3, 2>> H;      // G T Phi [1/m]
   std::vector<Mat3> bPhi, bC, bKQ;                 // per body: as BodyWork, modified inertia
+  std::vector<Mat3> EAinv, EG;                     // per elastic element: as ElasticWork, modified
+                                                   // (A^-1 [1/kg], G [kg])
+  std::vector<Vec3> Er;                            // per elastic element: d-equation's right side [N]
   double hg = -1;                                  // h gamma of the factorisation [s]; < 0: none
   // Right-hand-side sweeps (implicit_stage_solve):
   std::vector<Eigen::Vector2d> Tr0;                // T^T r_0 [N m]
@@ -82,6 +86,7 @@ struct ImplicitWorkspace {
   Vec3 a0 = Vec3::Zero();     // [m/s] (0 in Motion mode)
   std::vector<Vec3> alpha;    // per element, normal to e_k [rad/s]
   std::vector<Vec3> alpha_b;  // per body [rad/s]
+  std::vector<double> zl;     // per elastic element: increment of l_k' [m/s] (0 for rigid ones)
 };
 
 /// Velocity-side inputs of one stage solve (increments r_v of the velocities
@@ -93,6 +98,7 @@ struct StageRhs {
   std::vector<Vec3> rot;          // per element: e_k x (increment of e_k) [rad]
   std::vector<Vec3> dwb;          // per body: omega_B increment [rad/s]
   std::vector<Vec3> rotb;         // per body: rotation vector of the attitude increment [rad]
+  std::vector<double> dl, dlr;    // per element: increments of l_k [m] and l_k' [m/s] (elastic; else 0)
 };
 
 /// Factorise M + hg C + hg^2 K in O(n): the backward pass of the recursion
