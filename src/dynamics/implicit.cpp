@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "towsim/dynamics/elastic.hpp"
 #include "towsim/hydro/loads.hpp"
 
 namespace towsim {
@@ -142,6 +143,23 @@ Mat3 attachment_local_damping(const Model& model, const Attachment& a, const Vec
   return 0.5 * fluid.rho * a.drag_area * (un * Mat3::Identity() + u * u.transpose() / un);
 }
 
+void seabed_local_terms(const Seabed& sb, const Vec3& p, const Vec3& v, double length, const Vec3& f, Mat3& C,
+                        Mat3& K) {
+  if (length <= 0) return;
+  const Vec3 nrm = sb.normal(p.x());
+  const Mat3 nn = nrm * nrm.transpose();
+  K += sb.stiffness * length * nn;
+  C += sb.damping * length * nn;
+  // Friction mu |F_n| u_t / q, q = sqrt(|u_t|^2 + v_s^2): its slope on u_t,
+  // mu |F_n| (P - u_t u_t^T / q^2) / q (P: projector onto the bottom's plane).
+  const double fn = std::max(0.0, f.dot(nrm));
+  if (sb.friction <= 0 || fn <= 0) return;
+  const Mat3 P = Mat3::Identity() - nn;
+  const Vec3 ut = P * v;
+  const double q2 = ut.squaredNorm() + sb.slip_speed * sb.slip_speed;
+  C += sb.friction * fn / std::sqrt(q2) * (P - ut * ut.transpose() / q2);
+}
+
 void local_jacobian(const Model& model, const PhysicalState& s, const Workspace& ws, double t, LocalJacobian& jac) {
   const auto& els = model.cable.elements;
   for (std::size_t k = 0; k < els.size(); ++k) {
@@ -155,6 +173,26 @@ void local_jacobian(const Model& model, const PhysicalState& s, const Workspace&
     const auto k = idx(a.joint);
     jac.joint_damping[k] += attachment_local_damping(model, a, ws.P[k], ws.vP[k], t);
   }
+  // Seabed springs: at the joints, and at the bodies' link points Q (the end
+  // body's contact at P_n, an in-line body's upper link).
+  for (auto& K : jac.joint_stiffness) K.setZero();
+  for (auto& C : jac.bodyq_damping) C.setZero();
+  for (auto& K : jac.bodyq_stiffness) K.setZero();
+  if (model.seabed) {
+    const Seabed& sb = *model.seabed;
+    const std::size_t n = els.size();
+    for (std::size_t k = 0; k <= n; ++k) {
+      const int bi = k > 0 ? ws.body_at[k] : -1;
+      const bool end_body = bi >= 0 && !model.bodies[idx(bi)].inline_body;
+      Mat3& C = end_body ? jac.bodyq_damping[idx(bi)] : jac.joint_damping[k];
+      Mat3& K = end_body ? jac.bodyq_stiffness[idx(bi)] : jac.joint_stiffness[k];
+      seabed_local_terms(sb, ws.P[k], ws.vP[k], ws.ls[k], ws.Fs[k], C, K);
+      if (bi >= 0 && !end_body) {
+        const BodyWork& bw = ws.body[idx(bi)];
+        seabed_local_terms(sb, bw.Q, bw.vQ, bw.ls_q, bw.Fs_q, jac.bodyq_damping[idx(bi)], jac.bodyq_stiffness[idx(bi)]);
+      }
+    }
+  }
   for (std::size_t b = 0; b < model.bodies.size(); ++b)
     body_local_jacobian(model.fluid, model.bodies[b], ws.body[b], t, jac.body_damping[b], jac.body_stiffness[b]);
 }
@@ -164,6 +202,9 @@ ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
   jac.element_damping.assign(n, Mat3::Zero());
   jac.element_stiffness.assign(n, 0.0);
   jac.joint_damping.assign(n + 1, Mat3::Zero());
+  jac.joint_stiffness.assign(n + 1, Mat3::Zero());
+  jac.bodyq_damping.assign(nb, Mat3::Zero());
+  jac.bodyq_stiffness.assign(nb, Mat3::Zero());
   jac.body_damping.assign(nb, Mat6::Zero());
   jac.body_stiffness.assign(nb, Mat3::Zero());
   F.assign(n, Vec3::Zero());
@@ -183,7 +224,14 @@ ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
   bKQ.assign(nb, Mat3::Zero());
   brhs.assign(nb, Vec3::Zero());
   bbQ.assign(nb, Vec3::Zero());
+  FQ.assign(nb, Vec3::Zero());
+  Fd.assign(n, Vec3::Zero());
+  EAinv.assign(n, Mat3::Zero());
+  EG.assign(n, Mat3::Zero());
+  Er.assign(n, Vec3::Zero());
+  zl.assign(n, 0.0);
   dvP.assign(n + 1, Vec3::Zero());
+  dxP.assign(n + 1, Vec3::Zero());
   alpha.assign(n, Vec3::Zero());
   alpha_b.assign(nb, Vec3::Zero());
 }
@@ -194,7 +242,8 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
   const std::size_t n = els.size();
   const LocalJacobian& jac = iw.jac;
   // Backward pass of fast.cpp (c = 0, w = 0), inertias only.
-  iw.K[n] = ws.Ma[n] + hg * jac.joint_damping[n];
+  auto joint_terms = [&](std::size_t k) { return Mat3(hg * jac.joint_damping[k] + hg * hg * jac.joint_stiffness[k]); };
+  iw.K[n] = ws.Ma[n] + joint_terms(n);
   for (std::size_t k = n; k-- > 0;) {
     const int bi = ws.body_at[k + 1];
     const Mat3* Kk = &iw.K[k + 1];
@@ -203,11 +252,31 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
       Mat6 Me = ws.body[b].Mw + hg * jac.body_damping[b];
       Me.bottomRightCorner<3, 3>() += hg * hg * jac.body_stiffness[b];
       body_factor(model.bodies[b], ws.body[b], Me, Kk, b, iw);
+      iw.bKQ[b] += hg * jac.bodyq_damping[b] + hg * hg * jac.bodyq_stiffness[b];  // seabed at Q
       Kk = &iw.bKQ[b];
     }
     const Element& el = current_element(model, ws, k);
     const double L = el.length;
     const Mat3 Mt = ws.Mt[k] + hg * jac.element_damping[k];
+    if (is_elastic(els[k])) {
+      // Elastic element (elastic.cpp's step on d_k = l e): A = Mt/3 + Kk + S,
+      // S = (hg c_a + hg^2 EA/L) e e^T + hg^2 K_rock / l^2 (I - e e^T) (the
+      // spring's axial and geometric stiffness in d). K = Mt/3 + S - N A^-1 N,
+      // N = Mt/6 - S (= Mt + Kk - G A^-1 G, G = Mt/2 + Kk, without the
+      // difference of large terms when Kk >> Mt).
+      const Vec3& e = s.e[k];
+      const double l = s.length_of(model, k);
+      const Mat3 ee = e * e.transpose();
+      const Mat3 S = (hg * element_axial_damping_rate(els[k], l) + hg * hg * element_axial_stiffness(els[k], l)) * ee +
+                     hg * hg * jac.element_stiffness[k] / (l * l) * (Mat3::Identity() - ee);
+      iw.EAinv[k] = (Mt / 3 + *Kk + S).inverse();
+      iw.EG[k] = 0.5 * Mt + *Kk;
+      const Mat3 N = Mt / 6 - S;
+      const Mat3 Kn = Mt / 3 + S - N * iw.EAinv[k] * N;
+      iw.K[k] = 0.5 * (Kn + Kn.transpose());
+      iw.K[k] += ws.Ma[k] + joint_terms(k);
+      continue;
+    }
     const auto& T = iw.T[k] = tangent_basis(s.e[k]);
     const Eigen::Matrix<double, 3, 2> KT = *Kk * T;
     iw.GT[k] = 0.5 * L * Mt * T + L * KT;
@@ -217,7 +286,7 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
     iw.H[k] = iw.GT[k] * iw.Phi[k];
     const Mat3 Kn = Mt + *Kk - iw.H[k] * iw.GT[k].transpose();
     iw.K[k] = 0.5 * (Kn + Kn.transpose());
-    iw.K[k] += ws.Ma[k] + hg * jac.joint_damping[k];
+    iw.K[k] += ws.Ma[k] + joint_terms(k);
   }
   iw.hg = hg;
 }
@@ -230,18 +299,37 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
   const LocalJacobian& jac = iw.jac;
   const bool free_top = model.tow.mode != Tow::Mode::Motion;
   // Right-hand side as loads: -hg C dv at each damper (dv: the velocity
-  // increments r_v carried down the chain), -hg K (hg dw + rot) on rotations.
+  // increments r_v carried down the chain), -hg K (hg dw + rot) on rotations,
+  // -hg K (hg dv + dx) on joint springs (dx: the joints' displacements).
   Vec3 dv = free_top ? r.dv0 : Vec3::Zero();
+  Vec3 dx = free_top ? r.dx0 : Vec3::Zero();
   iw.dvP[0] = dv;
+  iw.dxP[0] = dx;
   for (std::size_t k = 0; k < n; ++k) {
     const Vec3& e = s.e[k];
     const double L = current_element(model, ws, k).length;
     const Vec3 dw = r.dw[k] - r.dw[k].dot(e) * e;
     const Vec3 rot = r.rot[k] - r.rot[k].dot(e) * e;
     const Vec3 de = dw.cross(e);
-    iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * L * de));
-    iw.Mom[k] = -hg * jac.element_stiffness[k] * (hg * dw + rot);
-    dv += L * de;
+    if (is_elastic(els[k])) {
+      // Increments of d' and d: the stretch's along e, the rotation's normal to it.
+      const double l = s.length_of(model, k);
+      const double dl = k < r.dl.size() ? r.dl[k] : 0.0, dlr = k < r.dlr.size() ? r.dlr[k] : 0.0;
+      const Vec3 ddv = dlr * e + l * de, ddx = dl * e + l * rot.cross(e);
+      const double ka = element_axial_stiffness(els[k], l), ca = element_axial_damping_rate(els[k], l);
+      const double kr = jac.element_stiffness[k] / (l * l);
+      iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * ddv));
+      iw.Mom[k].setZero();
+      iw.Fd[k] = -hg * (ca * e.dot(ddv) + ka * (hg * e.dot(ddv) + e.dot(ddx))) * e -
+                 hg * kr * (hg * l * de + l * rot.cross(e));
+      dv += ddv;
+      dx += ddx;
+    } else {
+      iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * L * de));
+      iw.Mom[k] = -hg * jac.element_stiffness[k] * (hg * dw + rot);
+      dv += L * de;
+      dx += L * rot.cross(e);
+    }
     const int bi = ws.body_at[k + 1];
     if (bi >= 0) {
       const std::size_t b = idx(bi);
@@ -253,11 +341,19 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
       const Vec6 g = -hg * (jac.body_damping[b] * dnu);
       iw.Fb[b] = g.head<3>();
       iw.Mb[b] = g.tail<3>() - hg * (jac.body_stiffness[b] * (hg * dwb + r.rotb[b]));
-      if (model.bodies[b].inline_body) dv = dvO + dwb.cross(bw.rQ2);
+      // Seabed at Q (a force there, on the articulated body at Q: see the bias sweep).
+      iw.FQ[b] = -hg * (jac.bodyq_damping[b] * dv) - hg * (jac.bodyq_stiffness[b] * (hg * dv + dx));
+      if (model.bodies[b].inline_body) {
+        const Vec3 dxO = dx - r.rotb[b].cross(bw.rQ);
+        dv = dvO + dwb.cross(bw.rQ2);
+        dx = dxO + r.rotb[b].cross(bw.rQ2);
+      }
     }
     iw.dvP[k + 1] = dv;
+    iw.dxP[k + 1] = dx;
   }
-  for (std::size_t k = 0; k <= n; ++k) iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]);
+  for (std::size_t k = 0; k <= n; ++k)
+    iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]) - hg * (jac.joint_stiffness[k] * (hg * iw.dvP[k] + iw.dxP[k]));
 
   // Bias sweep up the chain (the inertias are factorised).
   iw.b[n] = -iw.Fa[n];
@@ -267,7 +363,13 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
     if (bi >= 0) {
       const std::size_t b = idx(bi);
       body_bias(model.bodies[b], ws.body[b], iw.Fb[b], iw.Mb[b], bk, b, iw);
+      iw.bbQ[b] -= iw.FQ[b];
       bk = &iw.bbQ[b];
+    }
+    if (is_elastic(els[k])) {
+      iw.Er[k] = 0.5 * iw.F[k] + iw.Fd[k] - *bk;
+      iw.b[k] = iw.EG[k] * (iw.EAinv[k] * iw.Er[k]) + *bk - iw.F[k] - iw.Fa[k];
+      continue;
     }
     const double L = current_element(model, ws, k).length;
     const Vec3 r0 = 0.5 * L * iw.F[k] - L * *bk - s.e[k].cross(iw.Mom[k]);
@@ -279,9 +381,19 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
   Vec3 a = free_top ? Vec3(iw.K[0].ldlt().solve(-iw.b[0])) : Vec3::Zero();
   iw.a0 = a;
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec3 beta = iw.T[k] * (iw.Phi[k] * (iw.Tr0[k] - iw.GT[k].transpose() * a));
-    iw.alpha[k] = s.e[k].cross(beta);
-    a += current_element(model, ws, k).length * beta;
+    if (is_elastic(els[k])) {
+      // z_d = A^-1 (r - G a): its part along e is l', normal to it l (alpha x e).
+      const Vec3 zd = iw.EAinv[k] * (iw.Er[k] - iw.EG[k] * a);
+      const Vec3& e = s.e[k];
+      iw.zl[k] = e.dot(zd);
+      iw.alpha[k] = e.cross(zd) / s.length_of(model, k);
+      a += zd;
+    } else {
+      iw.zl[k] = 0;
+      const Vec3 beta = iw.T[k] * (iw.Phi[k] * (iw.Tr0[k] - iw.GT[k].transpose() * a));
+      iw.alpha[k] = s.e[k].cross(beta);
+      a += current_element(model, ws, k).length * beta;
+    }
     const int bi = ws.body_at[k + 1];
     if (bi < 0) continue;
     const std::size_t b = idx(bi);

@@ -72,6 +72,8 @@ class DefaultSystem final : public System {
     rhs_.rot.assign(s_.e.size(), Vec3::Zero());
     rhs_.dwb.assign(s_.bodies.size(), Vec3::Zero());
     rhs_.rotb.assign(s_.bodies.size(), Vec3::Zero());
+    rhs_.dl.assign(s_.e.size(), 0.0);
+    rhs_.dlr.assign(s_.e.size(), 0.0);
   }
 
   StateVector initial(const PhysicalState& s, double) override {
@@ -218,6 +220,7 @@ class DefaultSystem final : public System {
   void stage_solve(double hg, const StateVector& r, StateVector& k) override {
     // Velocity rows: (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x), k_v = r_v + z.
     rhs_.dv0 = CMap3(&r[3]);
+    rhs_.dx0 = CMap3(&r[0]);
     for (int i = 0; i < n_; ++i) {
       rhs_.dw[i] = CMap3(&r[6 + 3 * n_ + 3 * i]);
       rhs_.rot[i] = js_.e[i].cross(CMap3(&r[6 + 3 * i]));
@@ -227,6 +230,15 @@ class DefaultSystem final : public System {
       rhs_.dwb[b] = CMap3(&r[o + 4]);
       // dq = 1/2 (0, rot) q  =>  rot = 2 vec(dq q^-1).
       rhs_.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * js_.bodies[b].q.conjugate()).vec();
+    }
+    // Lengths' rows (elastic elements; a winch's top length keeps W = I).
+    if (lengths_) {
+      const std::size_t o = length_offset();
+      for (int i = 0; i < n_; ++i) {
+        const bool el = is_elastic(model_.cable.elements[static_cast<std::size_t>(i)]) && !(winch_ && i == 0);
+        rhs_.dl[i] = el ? r[o + i] : 0.0;
+        rhs_.dlr[i] = el ? r[o + n_ + i] : 0.0;
+      }
     }
     implicit_stage_solve(model_, js_, jws_, hg, rhs_, iw_);
     // Rows without local terms keep k = r (W = I there: still a W-method).
@@ -239,6 +251,16 @@ class DefaultSystem final : public System {
       const Vec3 kw = rhs_.dw[i] + iw_.alpha[i];
       set3(k, 6 + 3 * n_ + 3 * i, kw);
       set3(k, 6 + 3 * i, CMap3(&r[6 + 3 * i]) + hg * kw.cross(js_.e[i]));
+    }
+    if (lengths_) {
+      // k_l' = r_l' + z_l, k_l = r_l + hg k_l' (elastic elements; z_l = 0 else).
+      const std::size_t o = length_offset();
+      for (int i = 0; i < n_; ++i) {
+        if (!is_elastic(model_.cable.elements[static_cast<std::size_t>(i)]) || (winch_ && i == 0)) continue;
+        const double klr = r[o + n_ + i] + iw_.zl[i];
+        k[o + n_ + i] = klr;
+        k[o + i] = r[o + i] + hg * klr;
+      }
     }
     for (std::size_t b = 0; b < js_.bodies.size(); ++b) {
       const std::size_t o = body_offset(b);

@@ -22,7 +22,10 @@ struct LocalJacobian {
   std::vector<Mat3> element_damping;     // C_k = -dF_k/dv(G_k), drag at G_k [kg/s, R_g]
   std::vector<double> element_stiffness; // K_k, rocking stiffness of element k about its top joint
                                          // (geometric: axial force times length) [N m/rad]
-  std::vector<Mat3> joint_damping;       // attachments at joint k: -dF_a/dv(P_k) [kg/s, R_g]
+  std::vector<Mat3> joint_damping;       // attachments and seabed at joint k: -dF_a/dv(P_k) [kg/s, R_g]
+  std::vector<Mat3> joint_stiffness;     // seabed spring at joint k: -dF_s/dx(P_k) [N/m, R_g]
+  std::vector<Mat3> bodyq_damping;       // seabed at body b's link point Q (end body's P_n, or an
+  std::vector<Mat3> bodyq_stiffness;     //   in-line body's upper link): [kg/s], [N/m], R_g
   std::vector<Mat6> body_damping;        // -d(F; M about O_t)/d(v_O; omega_B) [SI, R_g]
   std::vector<Mat3> body_stiffness;      // rotation of the body about its link point Q, loads held
                                          // in space: moment per radian [N m/rad, R_g]
@@ -42,6 +45,13 @@ void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& b
 /// Per-part hook, attachment at a joint: drag damping on the joint's velocity.
 Mat3 attachment_local_damping(const Model& model, const Attachment& a, const Vec3& x, const Vec3& v, double t);
 
+/// Per-part hook, seabed contact at a point p moving at v that represents
+/// `length` [m] in contact (0: none) and bears the contact force f [N, R_g]:
+/// C += c l n n^T + the friction's slope mu |F_n| d(u_t/q)/du_t, K += k l n n^T
+/// (n: the bottom normal; the friction's dependence on the penetration is left out).
+void seabed_local_terms(const Seabed& sb, const Vec3& p, const Vec3& v, double length, const Vec3& f, Mat3& C,
+                        Mat3& K);
+
 /// Fill `jac` for the state whose evaluation `ws` holds (forward_dynamics at (s, t)).
 void local_jacobian(const Model& model, const PhysicalState& s, const Workspace& ws, double t, LocalJacobian& jac);
 
@@ -53,6 +63,8 @@ struct ImplicitWorkspace {
   std::vector<Vec3> F, Mom;   // per element: force at G [N] and couple [N m], R_g
   std::vector<Vec3> Fa;       // per joint (attachments) [N, R_g]
   std::vector<Vec3> Fb, Mb;   // per body: force and moment about O_t [N], [N m], R_g
+  std::vector<Vec3> FQ;       // per body: seabed force at its link point Q [N, R_g]
+  std::vector<Vec3> Fd;       // per elastic element: spring and axial damper force on d_k [N, R_g]
   // Recursion with modified inertias (zero velocities: no centripetal terms).
   std::vector<Mat3> K;        // f_k = K_k a_k + b_k [kg] (k = 0..n)
   std::vector<Vec3> b;        // [N]
@@ -61,25 +73,32 @@ struct ImplicitWorkspace {
   std::vector<Eigen::Matrix2d> Phi;                // inverse rotational block [1/(kg m^2)]
   std::vector<Eigen::Matrix<double, 3, 2>> H;      // G T Phi [1/m]
   std::vector<Mat3> bPhi, bC, bKQ;                 // per body: as BodyWork, modified inertia
+  std::vector<Mat3> EAinv, EG;                     // per elastic element: as ElasticWork, modified
+                                                   // (A^-1 [1/kg], G [kg])
+  std::vector<Vec3> Er;                            // per elastic element: d-equation's right side [N]
   double hg = -1;                                  // h gamma of the factorisation [s]; < 0: none
   // Right-hand-side sweeps (implicit_stage_solve):
   std::vector<Eigen::Vector2d> Tr0;                // T^T r_0 [N m]
   std::vector<Vec3> brhs, bbQ;                     // per body [N m], [N]
   std::vector<Vec3> dvP;                           // velocity increments of the joints [m/s]
+  std::vector<Vec3> dxP;                           // position increments of the joints [m]
   // Solution: tow point (Force mode) and angular increments (z below).
   Vec3 a0 = Vec3::Zero();     // [m/s] (0 in Motion mode)
   std::vector<Vec3> alpha;    // per element, normal to e_k [rad/s]
   std::vector<Vec3> alpha_b;  // per body [rad/s]
+  std::vector<double> zl;     // per elastic element: increment of l_k' [m/s] (0 for rigid ones)
 };
 
 /// Velocity-side inputs of one stage solve (increments r_v of the velocities
 /// and the rotation vectors of the position increments r_x, all R_g).
 struct StageRhs {
   Vec3 dv0 = Vec3::Zero();        // tow point velocity increment (Force mode) [m/s]
+  Vec3 dx0 = Vec3::Zero();        // tow point position increment (Force mode) [m]
   std::vector<Vec3> dw;           // per element: omega increment [rad/s]
   std::vector<Vec3> rot;          // per element: e_k x (increment of e_k) [rad]
   std::vector<Vec3> dwb;          // per body: omega_B increment [rad/s]
   std::vector<Vec3> rotb;         // per body: rotation vector of the attitude increment [rad]
+  std::vector<double> dl, dlr;    // per element: increments of l_k [m] and l_k' [m/s] (elastic; else 0)
 };
 
 /// Factorise M + hg C + hg^2 K in O(n): the backward pass of the recursion
@@ -89,7 +108,8 @@ struct StageRhs {
 void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
                      ImplicitWorkspace& iw);
 
-/// Solve (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x) in O(n)
+/// Solve (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K r_x in O(n)
+/// (r_x: the rotations rot(r_x), and the joints' displacements for springs at joints)
 /// with the factorisation of implicit_factor (same hg, same s and ws): the
 /// right-hand side as loads, the bias sweep up the chain, the accelerations
 /// down. Result z in iw.a0, iw.alpha, iw.alpha_b; the stage increment of the
