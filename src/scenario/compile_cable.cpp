@@ -153,7 +153,7 @@ void check_elastic(const Resolved& s, const SimulationSpec& sim, Diagnostics& d)
     d.error(s.axial_stiffness.where.loc, s.axial_stiffness.where.path,
             "with integrator: rk4, the axial wave (speed " + sig(axial_wave_speed(el), 4, false) + " m/s over " +
                 fmt_num(el.length) + " m elements) needs simulation.time_step <= " + sig(h_max, 3, true) +
-                " s (it is " + fmt_num(sim.time_step.value) + " s); use integrator: dopri5 or a smaller step");
+                " s (it is " + fmt_num(sim.time_step.value) + " s); use integrator: rosenbrock (implicit in the axial mode) or a smaller step");
 }
 
 /// The order of sections and bodies: a section first, never two bodies in a

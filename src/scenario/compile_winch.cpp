@@ -74,6 +74,10 @@ void check_winch(const ScenarioSpec& s, Diagnostics& d) {
   if (s.simulation.formulation.value == "paper")
     report_at(s.simulation.formulation.where, d,
               "the paper formulation has a fixed cable length: winch: needs formulation: default");
+  // An elastic cable: EA given for the whole cable or for any section.
+  if (s.cable.axial_stiffness.given)
+    report_at(w.where, d, "not supported with an elastic cable (axial_stiffness at " +
+                              s.cable.axial_stiffness.where.path + ")");
   for (const SectionSpec& sec : s.cable.sections)
     if (sec.axial_stiffness.given)
       report_at(w.where, d, "not supported with an elastic cable (axial_stiffness at " +

@@ -45,6 +45,13 @@ TEST_F(WinchKeys, RefusedCombinations) {
                                 at("14:13: winch.split_at: split_at (1.05) must be above 1 + remove_at (0.1) so that a split element is not removed at once"));
 }
 
+// An elastic cable is refused whether EA is given for the whole cable or
+// for a section (the winch's top element is inextensible in this version).
+TEST_F(WinchKeys, ElasticCableRefused) {
+  const auto s = load(kCable + "  axial_stiffness: 1.0e7\n" + kSim + "  integrator: rosenbrock\nwinch:\n  rate: 1\n");
+  EXPECT_EQ(s.diags.str(), at("11:3: winch: not supported with an elastic cable (axial_stiffness at cable.axial_stiffness)"));
+}
+
 TEST_F(WinchKeys, ValidRateCompiles) {
   const auto s = load(kCable + kSim + "winch:\n  rate: [[0, 0], [10, 1], [20, 1], [30, 0]]\n  max_length: 120\n" +
                       "  rating: 1.0e4\n");
