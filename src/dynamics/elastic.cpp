@@ -37,7 +37,7 @@ void elastic_backward(const Vec3& e, double l, const Mat3& Mt, const Vec3& F, co
 
 Vec3 elastic_forward(const ElasticWork& ew, const Vec3& e, const Vec3& w, double l, double l_rate, const Vec3& a,
                      Vec3& alpha, double& l_acc) {
-  const Vec3 dd = ew.Ainv * (ew.r - ew.G * a);
+  Vec3 dd = ew.Ainv * (ew.r - ew.G * a);
   // d'' = l'' e + 2 l' (w x e) + l (alpha x e) - l |w|^2 e.
   const double along = e.dot(dd);
   l_acc = along + l * w.squaredNorm();

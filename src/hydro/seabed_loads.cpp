@@ -17,7 +17,7 @@ void add_body_contact(BodyWork& bw, const Vec3& p, const Vec3& f) {
 
 /// Contact of a body point p (body-fixed) representing `length` [m].
 SeabedForce body_point(const Seabed& sb, BodyWork& bw, const Vec3& p, double length) {
-  const SeabedForce f = sb.contact(p, bw.vO + bw.w.cross(p - bw.O), length);
+  SeabedForce f = sb.contact(p, bw.vO + bw.w.cross(p - bw.O), length);
   if (f.length > 0) add_body_contact(bw, p, f.total());
   return f;
 }

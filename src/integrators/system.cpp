@@ -220,7 +220,7 @@ class DefaultSystem final : public System {
   void stage_solve(double hg, const StateVector& r, StateVector& k) override {
     // Velocity rows: (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x), k_v = r_v + z.
     rhs_.dv0 = CMap3(&r[3]);
-    rhs_.dx0 = CMap3(&r[0]);
+    rhs_.dx0 = CMap3(r.data());
     for (int i = 0; i < n_; ++i) {
       rhs_.dw[i] = CMap3(&r[6 + 3 * n_ + 3 * i]);
       rhs_.rot[i] = js_.e[i].cross(CMap3(&r[6 + 3 * i]));
@@ -246,7 +246,7 @@ class DefaultSystem final : public System {
     // Position rows: k_x = r_x + hg B k_v (B: velocities -> position rates at the step's start).
     const Vec3 kv0 = CMap3(&r[3]) + iw_.a0;
     set3(k, 3, kv0);
-    set3(k, 0, CMap3(&r[0]) + hg * kv0);
+    set3(k, 0, CMap3(r.data()) + hg * kv0);
     for (int i = 0; i < n_; ++i) {
       const Vec3 kw = rhs_.dw[i] + iw_.alpha[i];
       set3(k, 6 + 3 * n_ + 3 * i, kw);

@@ -19,8 +19,8 @@ struct LoadingTable {
   std::vector<double> f;    // loading function at phi, >= 0 [-]
 
   bool empty() const { return f.empty(); }
-  /// f at angle phi [rad].
-  double at(double phi) const;
+  /// f at the flow angle `angle` [rad].
+  double at(double angle) const;
   /// Normal load of a table law on an element: -k |u|^2 f(phi) u_n/|u_n|, the
   /// direction smoothed as u_n / sqrt(|u_n|^2 + v_s^2) (continuous at u_n = 0).
   /// k = 1/2 rho Cd D L [kg/m], un, ue: the relative velocity across and along the axis [m/s], v_s [m/s].
