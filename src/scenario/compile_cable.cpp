@@ -148,11 +148,14 @@ void check_elastic(const Resolved& s, const SimulationSpec& sim, Diagnostics& d)
   el.length = s.length.value / static_cast<double>(s.elements.value);
   el.mass = s.mass_per_length.value * el.length;
   el.axial_stiffness = s.axial_stiffness.value;
+  el.axial_damping = s.axial_damping.given ? s.axial_damping.value : 0.0;
   const double h_max = rk4_axial_step_limit(el);
+  const std::string damping =
+      el.axial_damping > 0 ? ", axial damping " + fmt_num(el.axial_damping) + " N s" : std::string();
   if (sim.time_step.value > h_max)
     d.error(s.axial_stiffness.where.loc, s.axial_stiffness.where.path,
             "with integrator: rk4, the axial wave (speed " + sig(axial_wave_speed(el), 4, false) + " m/s over " +
-                fmt_num(el.length) + " m elements) needs simulation.time_step <= " + sig(h_max, 3, true) +
+                fmt_num(el.length) + " m elements" + damping + ") needs simulation.time_step <= " + sig(h_max, 3, true) +
                 " s (it is " + fmt_num(sim.time_step.value) + " s); use integrator: rosenbrock (implicit in the axial mode) or a smaller step");
 }
 

@@ -24,6 +24,22 @@ using towsim::testing::kSim;
 
 }  // namespace
 
+// Axial damping that overdamps the highest axial mode shrinks the RK4 bound:
+// 20 m elements, m' = 1.5 kg/m, EA = 1.27e7 N: c = 2909.75 m/s, omega =
+// 2 sqrt(3) c / L = 503.98 rad/s; c_a = 1e5 N s: zeta = c_a/EA omega/2 = 1.984,
+// fast root omega (zeta + sqrt(zeta^2 - 1)) = 1864 /s, h <= 2.7/1864 = 1.448 ms
+// (the undamped 5.50 ms would let a 3 ms step through, with wrong forces).
+TEST_F(ElasticKeys, OverdampedAxialModeShrinksTheRk4Bound) {
+  const auto bad = load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 1.0e5\n" + kSim + "  time_step: 0.003\n");
+  EXPECT_EQ(bad.diags.str(), at("6:20: cable.axial_stiffness: with integrator: rk4, the axial wave (speed 2910 "
+                                "m/s over 20 m elements, axial damping 100000 N s) needs simulation.time_step <= "
+                                "0.00144 s (it is 0.003 s); use integrator: rosenbrock (implicit in the axial "
+                                "mode) or a smaller step"));
+  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 1.0e5\n" + kSim + "  time_step: 0.0014\n").ok());
+  // Light damping (zeta < 1) keeps the undamped bound.
+  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 2000\n" + kSim + "  time_step: 0.005\n").ok());
+}
+
 TEST_F(ElasticKeys, CableLevelAndSectionValuesReachTheElements) {
   const auto s = load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 2000\n" + kSim +
                       "  integrator: dopri5\n");

@@ -53,7 +53,8 @@ double axial_wave_speed(const Element& el);
 /// The largest fixed RK4 step that is stable for the axial mode of a chain
 /// of these elements: 0.8 L / c (consistent-mass rod: highest axial
 /// frequency 2 sqrt(3) c / L; RK4 is stable up to 2 sqrt(2) / omega on the
-/// imaginary axis) [s]. Infinity for an inextensible element.
+/// imaginary axis); with axial damping overdamping that mode, 2.7 / |fast
+/// real root| when smaller [s]. Infinity for an inextensible element.
 double rk4_axial_step_limit(const Element& el);
 
 /// Articulated quantities of one elastic element (docs/theory.md §5.4):
