@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <ostream>
 #include <sstream>
 
@@ -154,6 +155,25 @@ std::vector<std::array<std::string, 3>> summary_rows(const json& sm) {
   return rows;
 }
 
+/// Frames of two points, the tow point and the cable's end, read from
+/// timeseries.csv rows `rows[pick[i]]` (tension: the tow tension at both).
+bool chord_frames(const CsvTable& ts, const std::vector<std::size_t>& pick, const std::vector<double>& times,
+                  const std::vector<std::size_t>& rows, std::vector<NodeFrame>& frames, std::string& error) {
+  const int tx = ts.col("tow_x"), ty = ts.col("tow_y"), tz = ts.col("tow_z"), ex = ts.col("end_x"),
+            ey = ts.col("end_y"), ez = ts.col("end_z"), tT = ts.col("tow_tension");
+  if (tx < 0 || ty < 0 || tz < 0 || ex < 0 || ey < 0 || ez < 0) {
+    error = "timeseries.csv: no nodes.csv and no tow_x..z, end_x..z columns to draw the cable";
+    return false;
+  }
+  for (std::size_t i : pick) {
+    const std::size_t r = rows[i];
+    const double T = tT >= 0 ? ts.at(r, tT) : std::numeric_limits<double>::quiet_NaN();
+    frames.push_back({times[i], {ts.at(r, tx), ts.at(r, ex)}, {ts.at(r, ty), ts.at(r, ey)},
+                      {ts.at(r, tz), ts.at(r, ez)}, {T, T}});
+  }
+  return true;
+}
+
 /// The animation data: frames of node positions and tensions, body pose.
 bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, const ReportOptions& opt,
                     json& data, std::string& error) {
@@ -166,7 +186,14 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
   std::vector<double> wanted;
   for (std::size_t i : pick) wanted.push_back(times[i]);
   std::vector<NodeFrame> frames;
-  if (!read_node_frames((root / "nodes.csv").string(), wanted, frames, error)) return false;
+  std::error_code ec;
+  if (!fs::is_regular_file(root / "nodes.csv", ec)) {
+    // No nodes.csv (write_nodes: false): each frame is the chord from the tow
+    // point to the cable's end, from timeseries.csv.
+    if (!chord_frames(ts, pick, times, rows, frames, error)) return false;
+  } else if (!read_node_frames((root / "nodes.csv").string(), wanted, frames, error)) {
+    return false;
+  }
   if (frames.empty()) {
     error = (root / "nodes.csv").string() + ": no rows at the times of timeseries.csv";
     return false;
@@ -262,11 +289,11 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
     log << "towsim report: " << dir << ": no such directory (" << kUsage << ")\n";
     return kInvalid;
   }
-  for (const char* f : {"timeseries.csv", "nodes.csv"})
-    if (!fs::is_regular_file(root / f, ec)) {
-      log << "towsim report: " << dir << " has no " << f << " (" << kUsage << ")\n";
-      return kInvalid;
-    }
+  if (!fs::is_regular_file(root / "timeseries.csv", ec)) {
+    log << "towsim report: " << dir << " has no timeseries.csv (" << kUsage << ")\n";
+    return kInvalid;
+  }
+  const bool has_nodes = fs::is_regular_file(root / "nodes.csv", ec);
   json sm = json::object();
   if (fs::is_regular_file(root / "summary.json", ec)) {
     try {
@@ -323,6 +350,9 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
     h << "<div id=\"view3d\"></div>\n<div id=\"controls\"><button id=\"play\" type=\"button\">Play</button>"
       << "<input id=\"frame\" type=\"range\" min=\"0\" max=\"0\" value=\"0\" aria-label=\"time\">"
       << "<span id=\"frame-label\"></span></div>\n<p class=\"small\" id=\"scale-note\"></p>\n";
+    if (!has_nodes)
+      h << "<p class=\"note\" id=\"no-nodes\">This run wrote no nodes.csv (simulation.write_nodes: false): "
+        << "the view shows the straight chord from the tow point to the cable's end, not the cable's shape.</p>\n";
   } else {
     h << "<p class=\"note\" id=\"no3d\">No 3-D view in this report: "
       << html(opt.viewer_note.empty() ? std::string("the viewer was not built") : std::string(opt.viewer_note))

@@ -89,6 +89,24 @@ TEST(Report, WithoutTheViewerThePageSaysWhyAndKeepsTheRest) {
   fs::remove_all(dir);
 }
 
+TEST(Report, OfARunWithoutNodesDrawsTheChordAndSaysSo) {
+  // write_nodes: false leaves no nodes.csv: the page still has its 3-D view
+  // (tow point to cable end, from timeseries.csv), a note, the summary.
+  const fs::path dir = fresh_dir("report");
+  const auto [st, so] = towsim_cli("run --example paper-3d-turn --set simulation.duration=5 "
+                                   "--set simulation.write_nodes=false --out '" + dir.string() + "'");
+  ASSERT_EQ(st, 0) << so;
+  ASSERT_FALSE(fs::exists(dir / "nodes.csv"));
+  const auto [status, out] = towsim_cli("report '" + dir.string() + "'");
+  ASSERT_EQ(status, 0) << out;
+  const std::string page = slurp(dir / "report.html");
+  EXPECT_NE(page.find("id=\"no-nodes\""), std::string::npos);
+  EXPECT_NE(page.find("not the cable's shape"), std::string::npos);
+  EXPECT_NE(page.find("towsim-data"), std::string::npos);
+  EXPECT_NE(page.find("final layback [m]"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(Report, RefusesADirectoryWithoutOutputs) {
   const fs::path dir = fresh_dir("report");
   const auto [status, out] = towsim_cli("report '" + dir.string() + "'");
@@ -111,15 +129,18 @@ TEST(Report, OfAStaticsConfiguration) {
 // The page loaded offline in headless Chromium: the 3-D view draws its first
 // frame (the page marks <html data-ready="1"> and counts the canvas pixels
 // that differ from the background) and no script error occurred.
-TEST(ReportInBrowser, TheThreeDViewRendersOfflineInHeadlessChromium) {
+namespace {
+void expect_renders_in_chromium(const std::string& name, const std::string& run_settings) {
   if (towsim::io::embedded_viewer_js().empty())
     GTEST_SKIP() << "this towsim was built without the 3-D view: " << towsim::io::embedded_viewer_note();
   const std::string browser = chromium();
   if (browser.empty()) GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs it)";
-  const fs::path dir = fs::path(TOWSIM_TEST_OUTPUT_DIR) / "report_browser";
+  const fs::path dir = fs::path(TOWSIM_TEST_OUTPUT_DIR) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
-  short_run(dir);
+  const auto [rs, ro] = towsim_cli("run --example paper-3d-turn --set simulation.duration=20 " + run_settings +
+                                   " --out '" + dir.string() + "'");
+  ASSERT_EQ(rs, 0) << ro;
   const auto [status, out] = towsim_cli("report '" + dir.string() + "'");
   ASSERT_EQ(status, 0) << out;
   // Offline: every host name fails to resolve. WebGL through SwiftShader
@@ -146,4 +167,14 @@ TEST(ReportInBrowser, TheThreeDViewRendersOfflineInHeadlessChromium) {
   EXPECT_EQ(sr, 0) << so;
   EXPECT_TRUE(fs::is_regular_file(png));
   std::cout << "[ screenshot ] " << png.string() << "\n";
+}
+}  // namespace
+
+TEST(ReportInBrowser, TheThreeDViewRendersOfflineInHeadlessChromium) {
+  expect_renders_in_chromium("report_browser", "");
+}
+
+// Without nodes.csv the view draws the tow-point-to-end chord, and renders.
+TEST(ReportInBrowser, TheChordViewOfARunWithoutNodesRenders) {
+  expect_renders_in_chromium("report_browser_chord", "--set simulation.write_nodes=false");
 }
