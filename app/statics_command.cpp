@@ -73,7 +73,11 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
       err << "towsim: statics: --target-depth must be > 0 (got " << fmt_num(D) << ")\n";
       return kExitInvalid;
     }
-    target = length_for_depth(model, final_tow_velocity(model.tow), D);
+    target = length_for_depth(model, final_tow_velocity(model.tow), D, stop_flag);
+    if (target->statics.interrupted) {
+      err << "towsim: statics: --target-depth " << fmt_num(D) << ": interrupted\n";
+      return kExitInterrupted;
+    }
     if (!target->found) {
       err << "towsim: statics: --target-depth " << fmt_num(D) << ": " << target->message << "\n";
       return kExitFailed;

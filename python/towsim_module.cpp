@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <future>
 #include <limits>
 #include <string>
 #include <vector>
@@ -177,15 +178,22 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   Sample s;
   TargetDepthResult target;
   const bool with_target = !std::isnan(target_depth);
+  volatile int stop = 0;
+  SignalPoll poll(stop);
   {
+    // The solve in a worker thread; this (main) thread polls Ctrl-C meanwhile.
     py::gil_scoped_release release;
-    if (with_target) {
-      target = length_for_depth(model, final_tow_velocity(model.tow), target_depth);
-      r = target.statics;
-      if (!target.found) r.converged = false, r.message = target.message;
-    } else {
-      r = solve_statics(model, final_tow_velocity(model.tow));
-    }
+    auto solve = std::async(std::launch::async, [&] {
+      if (with_target) {
+        target = length_for_depth(model, final_tow_velocity(model.tow), target_depth, &stop);
+        r = target.statics;
+        if (!target.found) r.converged = false, r.message = target.message;
+      } else {
+        r = solve_statics(model, final_tow_velocity(model.tow), &stop);
+      }
+    });
+    while (solve.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready) poll();
+    solve.get();
     s = r.sample;
   }
   if (with_target) out["deployed_length"] = target.length;
@@ -204,6 +212,7 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   out["residual"] = r.residual;
   out["message"] = r.message;
   out["tow_velocity"] = std::vector<double>{r.tow_velocity.x(), r.tow_velocity.y(), r.tow_velocity.z()};
+  out["keyboard_interrupt"] = poll.interrupted;
   return out;
 }
 

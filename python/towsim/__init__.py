@@ -216,7 +216,8 @@ def statics(scenario, overrides=None, target_depth=None):
     (or the cable end) at that depth (`--target-depth`), in .deployed_length;
     the equilibrium is then the one at that length.
     Returns a StaticsResult; raises ScenarioError for invalid input and
-    SimulationError (with .result) when the solver does not converge."""
+    SimulationError (with .result) when the solver does not converge, and
+    Interrupted (with .result, the last iterate) on Ctrl-C."""
     if target_depth is not None and not target_depth > 0:
         raise ScenarioError(f"--target-depth must be > 0 (got {target_depth})")
     args = (*_source(scenario), _sets(overrides))
@@ -224,6 +225,8 @@ def statics(scenario, overrides=None, target_depth=None):
     if "errors" in raw:
         raise ScenarioError(raw["errors"])
     result = StaticsResult(raw)
+    if raw.get("keyboard_interrupt"):
+        raise Interrupted("interrupted", result)
     if not result.converged:
         raise SimulationError(result.message, result)
     return result

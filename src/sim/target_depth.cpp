@@ -36,11 +36,11 @@ Model with_deployed_length(const Model& model, double L) {
   return m;
 }
 
-TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double depth) {
+TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double depth, const volatile int* stop_flag) {
   TargetDepthResult r;
   const double below = below_top(model), L0 = model.cable.total_length();
   auto solve = [&](double L, StaticsResult& st) {
-    st = solve_statics(with_deployed_length(model, L), V);
+    st = solve_statics(with_deployed_length(model, L), V, stop_flag);
     return st.converged ? reference_depth(model, st.sample) - depth : std::nan("");
   };
   // Bracket: shorten towards the length below the top section, or lengthen by doubling.
@@ -59,7 +59,8 @@ TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double dep
     }
   }
   if (!std::isfinite(fa) || !std::isfinite(fb)) {
-    r.message = "the steady solve did not converge while searching (" + st.message + ")";
+    r.statics = st;
+    r.message = st.interrupted ? "interrupted" : "the steady solve did not converge while searching (" + st.message + ")";
     return r;
   }
   if (fa * fb > 0) {
@@ -74,7 +75,9 @@ TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double dep
     c = (a * fb - b * fa) / (fb - fa);
     fc = solve(c, st);
     if (!std::isfinite(fc)) {
-      r.message = "the steady solve did not converge at " + std::to_string(c) + " m (" + st.message + ")";
+      r.statics = st;
+      r.message = st.interrupted ? "interrupted"
+                                 : "the steady solve did not converge at " + std::to_string(c) + " m (" + st.message + ")";
       return r;
     }
     if (std::abs(fc) < 1e-6) break;

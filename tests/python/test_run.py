@@ -173,6 +173,26 @@ def test_ctrl_c_stops_the_run_and_keeps_the_result():
     assert time.monotonic() - t0 < 30  # it stopped, it did not run to the end
 
 
+def test_ctrl_c_stops_the_statics_and_keeps_the_last_iterate():
+    # The steady solve runs in a worker thread while the main thread polls
+    # Ctrl-C: a --target-depth search over 100000 elements (~2 s of CPU, many
+    # solves) interrupted after 0.3 s raises towsim.Interrupted with the last
+    # iterate, not converged.
+    path = SCENARIOS / "paper-3d-turn.yaml"
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    try:
+        timer.start()
+        with pytest.raises(KeyboardInterrupt) as e:
+            towsim.statics(path, {"cable.elements": 100000}, target_depth=2000)
+    finally:
+        timer.cancel()
+        timer.join()
+        signal.signal(signal.SIGINT, previous)
+    assert isinstance(e.value, towsim.Interrupted)
+    assert e.value.result is not None and not e.value.result.converged
+
+
 def test_statics_equals_the_cli_files(tmp_path):
     path = SCENARIOS / "paper-3d-turn.yaml"
     status, out, err = towsim_cli("statics", path, "--out", tmp_path)

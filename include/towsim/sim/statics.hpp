@@ -57,8 +57,10 @@ struct TargetDepthResult {
 
 /// The deployed length that puts the end body (or the cable end) at `depth`
 /// when the tow point moves steadily at V: bracketing then bisection-secant
-/// (Illinois) on the steady depth, to 1e-6 m of depth.
-TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double depth);
+/// (Illinois) on the steady depth, to 1e-6 m of depth. `stop_flag`, when
+/// non-null and set, ends the search (statics.interrupted, not found).
+TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double depth,
+                                   const volatile int* stop_flag = nullptr);
 
 /// Equilibrium at the tow's velocity at t = 0 (what `initial: steady` starts
 /// from); throws std::runtime_error with the message when it does not converge.
