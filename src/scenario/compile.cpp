@@ -1,6 +1,7 @@
 #include "towsim/scenario/compile.hpp"
 
 #include <cstdio>
+#include <limits>
 
 #include "checks.hpp"
 #include "reader.hpp"
@@ -105,7 +106,7 @@ Initial build_initial(const InitialSpec& s) {
   return init;
 }
 
-Simulation build_simulation(const SimulationSpec& s) {
+Simulation build_simulation(const SimulationSpec& s, bool winch) {
   Simulation sim;
   sim.duration = s.duration.value;
   sim.time_step = s.time_step.value;
@@ -115,7 +116,10 @@ Simulation build_simulation(const SimulationSpec& s) {
                    : s.integrator.value == "rosenbrock"  ? Integrator::Rosenbrock
                                                          : Integrator::RK4;
   sim.tolerance = s.tolerance.value;
-  sim.max_step = s.max_step.value;
+  // rosenbrock (L-stable, steps set by accuracy) is not bounded by the
+  // default max_step; with a winch (events detected after each step) it is.
+  const bool unbounded = sim.integrator == Integrator::Rosenbrock && !s.max_step.given && !winch;
+  sim.max_step = unbounded ? std::numeric_limits<double>::infinity() : s.max_step.value;
   sim.formulation = s.formulation.value == "paper" ? Formulation::Paper : Formulation::Default;
   sim.write_nodes = s.write_nodes.value;
   return sim;
@@ -146,7 +150,7 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
     if (!check_winch_model(spec.winch, m, diags)) return std::nullopt;
   }
   m.initial = build_initial(spec.initial);
-  m.sim = build_simulation(spec.simulation);
+  m.sim = build_simulation(spec.simulation, spec.winch.present);
   build_seabed(spec.environment.seabed, m);
   attach_waves(spec, m);
   check_seabed_start(spec, m, diags);

@@ -257,16 +257,20 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
   return {};
 }
 
-/// Advance y to `target` by adaptive steps that land on it. `try_step(y, t,
-/// dt)` attempts a step (true: accepted, t and y advanced; dt the proposal
-/// for the next step either way); `accepted(y, t)` runs after each accepted
-/// step (projection). Returns an error text or empty.
+/// Advance y by adaptive steps until t reaches `stop`, never stepping past
+/// `land` (>= stop: a breakpoint or the run's end, landed exactly). With
+/// land == stop every step lands on stop; with land > stop (dense output)
+/// the last step may pass stop. `try_step(y, t, dt)` attempts a step (true:
+/// accepted, t and y advanced; dt the proposal for the next step either
+/// way); `accepted(y, t)` runs after each accepted step (projection).
+/// Returns an error text or empty.
 template <class TryStep, class Accepted>
 std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step, Accepted&& accepted,
-                             StateVector& y, double& t, double target, double& h, RunStats& stats, bool& event) {
+                             StateVector& y, double& t, double land, double stop, double& h, RunStats& stats,
+                             bool& event) {
   const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
-  while (t < target - 1e-12 * std::max(1.0, target)) {
-    const double h_try = std::min({h, model.sim.max_step, target - t});
+  while (t < stop - 1e-12 * std::max(1.0, stop)) {
+    const double h_try = std::min({h, model.sim.max_step, land - t});
     double dt = h_try;
     if (!try_step(y, t, dt)) {
       ++stats.rejected_steps;
@@ -281,7 +285,9 @@ std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step
     }
     // Keep the controller's proposal unless this step was shortened to land.
     if (h_try >= h || dt > h) h = dt;
-    if (std::abs(target - t) < 1e-12 * std::max(1.0, target)) t = target;
+    // A step ending on `land` or `stop` to round-off ends there.
+    if (std::abs(land - t) < 1e-12 * std::max(1.0, land)) t = land;
+    if (std::abs(stop - t) < 1e-12 * std::max(1.0, stop)) t = stop;
     accepted(y, t);
     ++stats.steps;
     if (auto err = check_state(model, sys, y); !err.empty()) return err;
@@ -305,15 +311,16 @@ std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, St
     sys.project(yy, tt);
     if constexpr (requires { ctrl.reset(); }) ctrl.reset();  // projection changed y: no stale FSAL derivative
   };
-  return advance_adaptive(model, sys, try_step, accepted, y, t, target, h, stats, event);
+  return advance_adaptive(model, sys, try_step, accepted, y, t, target, target, h, stats, event);
 }
 
-/// The same with Rosenbrock-W steps (error control on state and forces).
+/// The same with Rosenbrock-W steps (error control on state and forces),
+/// which do not land on `stop` (an output time): it is sampled by dense output.
 std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros, StateVector& y, double& t,
-                               double target, double& h, RunStats& stats, bool& event) {
+                               double land, double stop, double& h, RunStats& stats, bool& event) {
   auto try_step = [&](StateVector& yy, double& tt, double& dt) { return ros.try_step(yy, tt, dt); };
   auto accepted = [](StateVector&, double) {};
-  return advance_adaptive(model, sys, try_step, accepted, y, t, target, h, stats, event);
+  return advance_adaptive(model, sys, try_step, accepted, y, t, land, stop, h, stats, event);
 }
 
 /// The largest error estimates so far, kept across winch events (which
@@ -407,9 +414,9 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   chain.sys->project(y, 0.0);
   double t = 0;
   std::string check;  // a refusal from the rk4 stability check
-  // One sample of the current chain, its nodes with their identities.
-  auto sample = [&]() {
-    Sample out = sample_of(*chain.model, *chain.sys, y, t, stats, &check);
+  // One sample of the current chain at (state yy, time tt), its nodes with their identities.
+  auto sample = [&](const StateVector& yy, double tt) {
+    Sample out = sample_of(*chain.model, *chain.sys, yy, tt, stats, &check);
     if (chain.node_id.empty()) {
       chain.node_id = out.node_id;
       chain.next_id = static_cast<long>(out.node_id.size());
@@ -417,7 +424,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     out.node_id = chain.node_id;
     return out;
   };
-  sink.write(sample());
+  sink.write(sample(y, t));
   track_elastic(model, *chain.sys, y, t, stats);
 
   odeint::runge_kutta4<StateVector> rk4;
@@ -441,6 +448,12 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   for (double b : winch_breakpoints(model.winch)) breaks.push_back(b);
   std::sort(breaks.begin(), breaks.end());
   auto next_break = breaks.begin();
+  // Rosenbrock steps pass output times (dense output) and land only on
+  // breakpoints and the run's end; a winch event after a step that passed
+  // output times waits until they are written from the old chain.
+  const bool dense = model.sim.integrator == Integrator::Rosenbrock;
+  bool pending_event = false;
+  StateVector y_out;  // dense output state
   for (long k = 1; k <= n_out && check.empty(); ++k) {
     if (stop_flag && *stop_flag) {
       stats.status = "interrupted";
@@ -453,6 +466,17 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     // the tow velocity jumps, give the chain its impulsive response.
     while (err.empty()) {
       const double eps = 1e-12 * std::max(1.0, t);
+      if (pending_event) {
+        if (t > out_time + 1e-12 * std::max(1.0, out_time)) break;  // write this output first
+        pending_event = false;
+        winch_event_at(chain, y, t, stats);
+        rk4 = odeint::runge_kutta4<StateVector>();
+        dopri = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
+                                        odeint::runge_kutta_dopri5<StateVector>());
+        cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
+                                           odeint::runge_kutta_cash_karp54<StateVector>());
+        make_ros();
+      }
       while (next_break != breaks.end() && *next_break < t - eps) ++next_break;
       const bool at_break = next_break != breaks.end() && std::abs(*next_break - t) <= eps;
       if (at_break) {
@@ -462,6 +486,8 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       }
       if (t >= out_time - 1e-12 * std::max(1.0, out_time)) break;
       const double target = (next_break != breaks.end() && *next_break < out_time) ? *next_break : out_time;
+      // Dense output: land on the next breakpoint or the run's end only.
+      const double land = dense ? (next_break != breaks.end() ? std::min(*next_break, T) : T) : target;
       const Model& m = *chain.model;
       System& sys = *chain.sys;
       bool event = false;
@@ -469,17 +495,11 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
         case Integrator::RK4: err = advance_fixed(m, sys, rk4, y, t, target, stats, event); break;
         case Integrator::DOPRI5: err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event); break;
         case Integrator::CashKarp54: err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event); break;
-        case Integrator::Rosenbrock: err = advance_rosenbrock(m, sys, *ros, y, t, target, h, stats, event); break;
+        case Integrator::Rosenbrock: err = advance_rosenbrock(m, sys, *ros, y, t, land, target, h, stats, event); break;
       }
-      if (!event || !err.empty()) continue;
-      // The state changes size: new chain, fresh steppers (sized on first use).
-      winch_event_at(chain, y, t, stats);
-      rk4 = odeint::runge_kutta4<StateVector>();
-      dopri = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
-                                      odeint::runge_kutta_dopri5<StateVector>());
-      cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
-                                         odeint::runge_kutta_cash_karp54<StateVector>());
-      make_ros();
+      // The state changes size: new chain, fresh steppers (sized on first
+      // use), at the top of this loop once the outputs passed are written.
+      if (event && err.empty()) pending_event = true;
     }
     if (!err.empty()) {
       std::ostringstream os;
@@ -488,8 +508,16 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       stats.message = os.str();
       break;
     }
-    sink.write(sample());
-    if (progress) progress(t / T);
+    if (std::abs(t - out_time) <= 1e-12 * std::max(1.0, out_time)) {
+      sink.write(sample(y, out_time));  // a step ended here (to round-off)
+    } else if (ros && ros->dense_output(out_time, y_out)) {
+      sink.write(sample(y_out, out_time));  // the step passed out_time
+    } else {
+      stats.status = "failed";
+      stats.message = "internal: no state at output time " + std::to_string(out_time) + " s";
+      break;
+    }
+    if (progress) progress(out_time / T);
   }
   if (!check.empty() && stats.status == "ok") {
     stats.status = "failed";

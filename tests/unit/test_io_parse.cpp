@@ -1,5 +1,7 @@
 // Scenario parsing and validation: exact error texts (FILE:LINE:COL: PATH: problem).
 #include <gtest/gtest.h>
+
+#include <cmath>
 #include <unistd.h>
 
 #include <filesystem>
@@ -308,6 +310,17 @@ TEST_F(ScenarioFile, DefaultsAndChoices) {
   EXPECT_NEAR(m.initial.direction.norm(), 1.0, 1e-15);
   EXPECT_DOUBLE_EQ(m.sim.tolerance, 1e-6);
   EXPECT_DOUBLE_EQ(m.sim.max_step, 1.0);
+}
+
+// rosenbrock's steps are bounded by accuracy only: no default max_step
+// (docs/scenario.md); a given one still applies.
+TEST_F(ScenarioFile, RosenbrockHasNoDefaultMaxStep) {
+  const auto a = load(kCable + kSim + "  integrator: rosenbrock\n");
+  ASSERT_TRUE(a.ok()) << a.diags.str();
+  EXPECT_TRUE(std::isinf(a.model->sim.max_step));
+  const auto b = load(kCable + kSim + "  integrator: rosenbrock\n  max_step: 2\n");
+  ASSERT_TRUE(b.ok()) << b.diags.str();
+  EXPECT_DOUBLE_EQ(b.model->sim.max_step, 2.0);
 }
 
 TEST_F(ScenarioFile, EchoIsJsonAfterSet) {

@@ -88,6 +88,63 @@ INSTANTIATE_TEST_SUITE_P(TowedCable, RosenbrockOrder, ::testing::Values(0.04, 0.
                          [](const auto& info) { return "h" + std::to_string(static_cast<int>(info.param * 1000)) + "ms"; });
 
 // ---------------------------------------------------------------------------
+// 1b. Dense output: outputs between step ends come from the method's
+// continuous extension (no step lands on them). At fixed steps h with
+// outputs every 10 ms, the outputs at multiples of h are step ends (the
+// step-landing values), the others dense. The continuous extension's
+// local error is O(h^3) for a W-method (O(h^4) with the exact Jacobian),
+// the same order as the global error at the step ends: the dense outputs
+// must be as accurate as the step ends and converge at order 3 (ratio -> 8
+// when h halves). Measured at h = 80, 40, 20 ms: tow force error at dense
+// outputs / at step ends 0.81, 0.87, 0.89; positions 1.001, 1.001, 0.999.
+// Bound 1.25: dense outputs no worse than the step-landing values (whose
+// error is the method's global error) beyond a quarter.
+// ---------------------------------------------------------------------------
+struct DenseErrors {
+  double end = 0, dense = 0;  // max tow force error [N]: at step ends, at dense outputs
+  double end_pos = 0, dense_pos = 0;  // max node position error [m]
+};
+
+DenseErrors dense_errors(const Model& m, const std::vector<Sample>& ref, double h) {
+  RunStats st;
+  const auto b = testing::run(fixed_rosenbrock(m, h), &st);
+  EXPECT_EQ(b.size(), ref.size());
+  DenseErrors e;
+  for (std::size_t i = 0; i < std::min(b.size(), ref.size()); ++i) {
+    const double k = b[i].t / h;
+    const bool at_end = std::abs(k - std::round(k)) < 1e-6;
+    const double ef = (b[i].tow_force - ref[i].tow_force).norm(), ep = max_distance(b[i].node_pos, ref[i].node_pos);
+    (at_end ? e.end : e.dense) = std::max(at_end ? e.end : e.dense, ef);
+    (at_end ? e.end_pos : e.dense_pos) = std::max(at_end ? e.end_pos : e.dense_pos, ep);
+  }
+  std::cout << "[measured] dense output, h = " << h << " s (" << st.steps << " steps): tow force err at step ends "
+            << e.end << " N, at dense outputs " << e.dense << " N; positions " << e.end_pos << " m, " << e.dense_pos
+            << " m\n";
+  return e;
+}
+
+TEST(RosenbrockDenseOutput, AsAccurateAsTheStepEndsAndOrderThree) {
+  Model m = smooth_tow_model();
+  m.sim.output_interval = 0.01;
+  Model ref = m;
+  ref.sim.integrator = Integrator::RK4;
+  ref.sim.time_step = 1e-3;  // RK4 error ~1e-11 m: far below the errors measured
+  const auto r = testing::run(ref);
+  const DenseErrors a = dense_errors(m, r, 0.08), b = dense_errors(m, r, 0.04), c = dense_errors(m, r, 0.02);
+  for (const DenseErrors* e : {&a, &b, &c}) {
+    EXPECT_LT(e->dense, 1.25 * e->end);
+    EXPECT_LT(e->dense_pos, 1.25 * e->end_pos);
+  }
+  std::cout << "[measured] dense output tow force error ratios " << a.dense / b.dense << ", " << b.dense / c.dense
+            << "\n";
+  // Order 3: ratio 8; accepted 6..10.5 as in RosenbrockOrder (O(h^4) terms).
+  EXPECT_GT(a.dense / b.dense, 6.0);
+  EXPECT_LT(a.dense / b.dense, 10.5);
+  EXPECT_GT(b.dense / c.dense, 6.0);
+  EXPECT_LT(b.dense / c.dense, 10.5);
+}
+
+// ---------------------------------------------------------------------------
 // 2. Energy in vacuum: a pinned chain released from horizontal. The method
 // is not symplectic: the drift is its global error, O(h^3).
 // ---------------------------------------------------------------------------

@@ -25,6 +25,11 @@ class RosenbrockW {
   /// the cached derivative at the step's start is stale.
   void invalidate() { have_f0_ = false; }
 
+  /// Dense output: the state at t inside the last accepted step [t0, t1]
+  /// (the method's continuous extension, docs/theory.md §6.3), projected.
+  /// False when no accepted step is held (none yet, or a step was tried since).
+  bool dense_output(double t, StateVector& out);
+
   double max_error = 0;        // largest accepted local error estimate, relative [-] (state and forces)
   double max_force_error = 0;  // its part from the tow and link forces, relative [-]
 
@@ -34,10 +39,14 @@ class RosenbrockW {
   double tol_, force_scale_;
   std::array<std::array<double, kStages>, kStages> a_{}, c_{};  // transformed coefficients
   std::array<double, kStages> m_{}, mhat_{}, alpha_{};          // weights, stage times
+  std::array<std::array<double, kStages>, kStages> gi_{};       // Gamma^-1
   double gamma_ = 0;
   bool have_f0_ = false;
   bool last_rejected_ = false;
   StateVector f0_, fi_, yi_, rhs_, y1_, yhat_, scratch_;
+  StateVector y0d_;             // start of the last accepted step (dense output)
+  double t0d_ = 0, hd_ = 0;     // its start and size [s]
+  bool dense_ = false;          // y0d_, t0d_, hd_ and u_ describe the last accepted step
   std::array<StateVector, kStages> u_;
 };
 
