@@ -126,11 +126,12 @@ void body_inertia(const Fluid& fluid, const Body& b, BodyWork& ws, double t) {
   h.head<3>() += wb.cross(PR.head<3>()) + wb.cross(PA.head<3>());
   h.tail<3>() += wb.cross(PR.tail<3>()) + vb.cross(PR.head<3>()) + wb.cross(PA.tail<3>()) +
                  vr.cross(PA.head<3>());
-  // To R_g.
-  Mat6 B = Mat6::Zero();
-  B.topLeftCorner<3, 3>() = R;
-  B.bottomRightCorner<3, 3>() = R;
-  ws.Mw = B * (b.rigid_mass + b.fluid_mass) * B.transpose();
+  // To R_g: B M B^T with B = diag(R, R), block by block (R M_ij R^T).
+  const Mat6 M = b.rigid_mass + b.fluid_mass;
+  ws.Mw.topLeftCorner<3, 3>().noalias() = R * M.topLeftCorner<3, 3>() * R.transpose();
+  ws.Mw.topRightCorner<3, 3>().noalias() = R * M.topRightCorner<3, 3>() * R.transpose();
+  ws.Mw.bottomLeftCorner<3, 3>().noalias() = R * M.bottomLeftCorner<3, 3>() * R.transpose();
+  ws.Mw.bottomRightCorner<3, 3>().noalias() = R * M.bottomRightCorner<3, 3>() * R.transpose();
   ws.hw = rotate6(R, h);
 }
 

@@ -57,31 +57,40 @@ void body_articulated(const Body& body, BodyWork& bw, const Mat3* K2, const Vec3
 /// (T^T Mt T = (m + ma) I, Mt e = m e).
 void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat3& Kk, const Vec3& bk,
                       std::size_t k, Workspace& ws) {
-  const double L = ws.L[k], m = el.mass, mn = el.mass + el.added_mass;
+  const double L = ws.L[k], m = el.mass, ma = el.added_mass, mn = m + ma;
   // Tangent basis normal to e.
   Eigen::Index i;
   e.cwiseAbs().minCoeff(&i);
   const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
-  auto& T = ws.T[k];
-  T << t1, e.cross(t1);
-  ws.c[k] = -w.squaredNorm() * e;  // Mt c = m c
-  const Vec3& c = ws.c[k];
+  const Vec3 t2 = e.cross(t1);
+  ws.T[k] << t1, t2;
+  const Vec3 c = -w.squaredNorm() * e;  // Mt c = m c
+  ws.c[k] = c;
+  // K T (K symmetric), G T = L (mn/2 T + K T), and the 2x2 rotational block
+  // D = T^T (L^2/4 Mt + L^2 K) T + Ir (symmetric), inverted in closed form.
+  const Vec3 u1 = Kk * t1, u2 = Kk * t2;
+  const Vec3 g1 = L * (0.5 * mn * t1 + u1), g2 = L * (0.5 * mn * t2 + u2);
+  ws.GT[k] << g1, g2;
+  const double L2 = L * L, dd = 0.25 * L2 * mn + element_rot_inertia(el);
+  const double d11 = L2 * t1.dot(u1) + dd, d22 = L2 * t2.dot(u2) + dd, d12 = L2 * t1.dot(u2);
+  const double idet = 1.0 / (d11 * d22 - d12 * d12);
+  const double p11 = d22 * idet, p22 = d11 * idet, p12 = -d12 * idet;
+  ws.Phi[k] << p11, p12, p12, p22;
+  // H = G T Phi; the force through the top joint is affine in its
+  // acceleration: K_{k-1} = K - H (G T)^T + mn I - ma e e^T (symmetric:
+  // the upper triangle, mirrored).
+  const Vec3 h1 = p11 * g1 + p12 * g2, h2 = p12 * g1 + p22 * g2;
+  Mat3& K = ws.K[k];
+  for (int r = 0; r < 3; ++r)
+    for (int q = r; q < 3; ++q)
+      K(r, q) = K(q, r) = 0.5 * (Kk(r, q) + Kk(q, r)) - (h1[r] * g1[q] + h2[r] * g2[q]) - ma * e[r] * e[q] +
+                          (r == q ? mn : 0.0);
   // [T^T (L^2/4 Mt + L^2 K) T + Ir] z = T^T r0 - (G T)^T a_top, beta = T z.
-  const Eigen::Matrix<double, 3, 2> KT = Kk * T;
-  ws.GT[k] = 0.5 * L * mn * T + L * KT;
-  Eigen::Matrix2d D = L * L * (T.transpose() * KT);
-  D.diagonal().array() += 0.25 * L * L * mn + element_rot_inertia(el);
-  ws.Phi[k] = D.inverse();
   const Vec3 Kc = Kk * c;
   const Vec3 r0 = 0.5 * L * (ws.F[k] - 0.5 * L * m * c) - L * (L * Kc + bk) - e.cross(ws.Mom[k]);
-  ws.Tr0[k] = T.transpose() * r0;
-  // Force through the top joint, affine in its acceleration.
-  const Eigen::Matrix<double, 3, 2> H = ws.GT[k] * ws.Phi[k];
-  ws.K[k] = Kk - H * ws.GT[k].transpose();
-  ws.K[k] = 0.5 * (ws.K[k] + ws.K[k].transpose()).eval();  // symmetric in exact arithmetic
-  ws.K[k].diagonal().array() += mn;
-  ws.K[k] -= el.added_mass * e * e.transpose();
-  ws.b[k] = H * ws.Tr0[k] + 0.5 * L * m * c + L * Kc + bk - ws.F[k];
+  const double z1 = t1.dot(r0), z2 = t2.dot(r0);
+  ws.Tr0[k] << z1, z2;
+  ws.b[k] = z1 * h1 + z2 * h2 + 0.5 * L * m * c + L * Kc + bk - ws.F[k];
 }
 
 /// Backward pass, from the bottom of the chain up: at each joint, the part

@@ -3,9 +3,11 @@
 #include "towsim/waves/vessel.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cstdio>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -117,12 +119,95 @@ double tidy_time(double t) {
   return r == 0 ? 0.0 : r;
 }
 
+namespace {
+
+/// 10^p, exact in double for p = 0..22.
+constexpr double kPow10[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                               1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+/// v as std::to_chars(general, 12) writes it ("%.12g": 12 significant
+/// digits, trailing zeros dropped, scientific below 1e-4 and from 1e12),
+/// the same bytes, about 5x faster: the 12 digits are the integer nearest
+/// to |v| 10^p with p = 11 - floor(log10 |v|), one correctly rounded
+/// product (exact powers of ten, p <= 22), whose error (< 6.2e-5 of a unit
+/// below 2^40) can only matter within 1e-3 of a half unit: there, and
+/// outside 1e-11 <= |v| < 1e12, std::to_chars decides.
+char* put_g12(char* b, double v) {
+  const double a = std::abs(v);
+  if (!(a >= 1e-11 && a < 1e12)) return std::to_chars(b, b + 40, v, std::chars_format::general, 12).ptr;
+  // Decimal exponent X: an estimate from the binary one, then corrected.
+  const int E = static_cast<int>((std::bit_cast<std::uint64_t>(a) >> 52) & 0x7ff) - 1023;  // 2^E <= a < 2^(E+1)
+  int X = std::max(-11, (E * 78913) >> 18);  // floor(E log10 2): floor(log10 a), or one below
+  double m_real = a * kPow10[11 - X];        // 11 - X in 0..22 here
+  if (m_real >= 1e12 && X < 11) {            // the estimate was one below
+    ++X;
+    m_real = a * kPow10[11 - X];
+  }
+  if (!(m_real >= 1e11 - 0.5 && m_real < 1e12 - 0.5)) return std::to_chars(b, b + 40, v, std::chars_format::general, 12).ptr;
+  auto m = static_cast<std::uint64_t>(m_real);  // floor
+  const double frac = m_real - static_cast<double>(m);  // exact
+  if (std::abs(frac - 0.5) < 1e-3) return std::to_chars(b, b + 40, v, std::chars_format::general, 12).ptr;
+  if (frac > 0.5) ++m;
+  if (m == 1000000000000ULL) m = 100000000000ULL, ++X;  // 9.99..95 rounds up to 10
+  // The 12 digits (two halves of 6, two digits at a time), then the trailing zeros dropped.
+  char d[12];
+  auto six = [](char* out, std::uint32_t x) {
+    static constexpr char kPairs[] =
+        "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+        "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+        "8081828384858687888990919293949596979899";
+    for (int i = 4; i >= 0; i -= 2) {
+      const std::uint32_t r = x % 100;
+      x /= 100;
+      out[i] = kPairs[2 * r];
+      out[i + 1] = kPairs[2 * r + 1];
+    }
+  };
+  six(d, static_cast<std::uint32_t>(m / 1000000));
+  six(d + 6, static_cast<std::uint32_t>(m % 1000000));
+  int nd = 12;
+  while (nd > 1 && d[nd - 1] == '0') --nd;
+  char* p = b;
+  if (v < 0) *p++ = '-';
+  if (X >= -4 && X < 12) {
+    // Fixed: X + 1 digits before the point (or "0.000" before them).
+    if (X >= 0) {
+      for (int i = 0; i <= X; ++i) *p++ = i < nd ? d[i] : '0';
+      if (nd > X + 1) {
+        *p++ = '.';
+        for (int i = X + 1; i < nd; ++i) *p++ = d[i];
+      }
+    } else {
+      *p++ = '0';
+      *p++ = '.';
+      for (int i = 0; i < -X - 1; ++i) *p++ = '0';
+      for (int i = 0; i < nd; ++i) *p++ = d[i];
+    }
+    return p;
+  }
+  // Scientific: d.ddde-XX (at least two exponent digits).
+  *p++ = d[0];
+  if (nd > 1) {
+    *p++ = '.';
+    for (int i = 1; i < nd; ++i) *p++ = d[i];
+  }
+  *p++ = 'e';
+  *p++ = X < 0 ? '-' : '+';
+  const int ax = X < 0 ? -X : X;
+  if (ax >= 100) *p++ = static_cast<char>('0' + ax / 100);
+  *p++ = static_cast<char>('0' + ax / 10 % 10);
+  *p++ = static_cast<char>('0' + ax % 10);
+  return p;
+}
+
+}  // namespace
+
 void put_number(std::string& out, double v) {
   char b[40];
-  // 12 significant digits (the shortest form of tidy(v)); std::to_chars is
-  // several times faster than snprintf.
-  const auto r = std::to_chars(b, b + sizeof b, std::abs(v) < kZeroBelow ? 0.0 : v, std::chars_format::general, 12);
-  out.append(b, r.ptr);
+  // 12 significant digits (the shortest form of tidy(v)), the bytes of
+  // std::to_chars(general, 12), formatted directly (put_g12).
+  const char* end = put_g12(b, std::abs(v) < kZeroBelow ? 0.0 : v);
+  out.append(b, static_cast<std::size_t>(end - b));
 }
 
 void put_time(std::string& out, double t) {

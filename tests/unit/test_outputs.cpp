@@ -4,6 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <random>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -126,6 +131,43 @@ TEST(NumberFormat, RoundOffIsZeroAndTimesAreRoundedToTheNanosecond) {
   s.clear();
   towsim::io::put_number(s, 1.57601e-145);
   EXPECT_EQ(s, "0");
+}
+
+// put_number formats directly (a scaled integer); the reference is the
+// standard library's "%.12g", std::to_chars(general, 12): the same bytes,
+// over every decade the outputs see and beyond (the fallback), for random
+// values, short decimals, and values whose 13th digit is a 5 (ties and
+// near-ties, where the scaled product's round-off could matter).
+TEST(NumberFormat, TwelveDigitsAreTheBytesOfToChars) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  auto reference = [](double v) {
+    char b[64];
+    const auto r = std::to_chars(b, b + sizeof b, std::abs(v) < towsim::io::kZeroBelow ? 0.0 : v,
+                                 std::chars_format::general, 12);
+    return std::string(b, r.ptr);
+  };
+  int mismatches = 0;
+  auto check = [&](double v) {
+    std::string s;
+    towsim::io::put_number(s, v);
+    if (s != reference(v) && ++mismatches <= 5) ADD_FAILURE() << "value " << v << ": " << s << " vs " << reference(v);
+  };
+  for (int i = 0; i < 200000; ++i) check((rng() & 1 ? -1 : 1) * std::pow(10.0, -14 + 30 * u(rng)));
+  char buf[64];
+  for (int i = 0; i < 100000; ++i) {
+    const int digits = 1 + static_cast<int>(rng() % 13), exponent = -15 + static_cast<int>(rng() % 30);
+    const long long m = static_cast<long long>(rng() % static_cast<unsigned long long>(std::pow(10, digits)));
+    for (const char* tail : {"", "5", "4999999", "5000001"}) {
+      std::snprintf(buf, sizeof buf, "%lld%se%d", m, tail, exponent);
+      check(std::strtod(buf, nullptr));
+    }
+  }
+  for (double v : {0.0, 1.0, 10.0, 1e11, 1e12, 999999999999.5, 999999999999.4, 99999999999.95, 99999999999.949997,
+                   1e-4, 9.99999999999e-5, 9.999999999995e-5, 1e-9, 1.0 / 3, -2.0 / 3, 123456789012.0, 1e300,
+                   -1e-300, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()})
+    check(v);
+  EXPECT_EQ(mismatches, 0);
 }
 
 TEST(RunOutputs, AReusedDirectoryKeepsNoStaleFileButKeepsOtherFiles) {
