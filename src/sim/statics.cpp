@@ -9,6 +9,8 @@
 
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/hydro/loads.hpp"
+#include "towsim/integrators/rosenbrock.hpp"
+#include "towsim/integrators/system.hpp"
 
 namespace towsim {
 
@@ -17,6 +19,8 @@ namespace {
 constexpr double kTolerance = 1e-12;  // converged when every |alpha| < this [rad/s^2]
 constexpr double kFloor = 1e-9;       // ... or below this when round-off stops further progress
 constexpr int kMaxIterations = 60;
+constexpr int kMaxDenseOnlyIterations = 1000;  // ... when the dense solve works alone (a moving tow on the bottom:
+                                              // the contact springs make it ill-conditioned; 100 to 400 on 30 to 60 elements)
 constexpr double kRelativeFloor = 1e-12;  // ... or every element's moment left below this of its scale (round-off: ~1e-15)
 constexpr int kMaxSweeps = 200;        // sweeps of the O(n) solver before it gives up
 constexpr int kDenseLimit = 1200;      // largest dense (Levenberg-Marquardt) problem [unknowns]: J is N^2 doubles,
@@ -63,6 +67,7 @@ struct SteadyProblem {
   std::vector<Vec3> t1, t2;   // tangent bases of the iterate's elements
   int n;
   int nb;
+  bool sweeps = true;  // solve by O(n) sweeps first (false: straight to the dense solve)
   int size() const { return 2 * n + 3 * nb; }
 
   SteadyProblem(const Model& m, const Vec3& v)
@@ -192,6 +197,66 @@ void lay_on_seabed(SteadyProblem& p) {
   }
 }
 
+/// With a seabed and a moving tow (no body, no attachment), the start of a
+/// cable dragged along the bottom: its last m elements lie straight behind
+/// the tow (against V), their weight on the bottom and their friction
+/// mu s w L each (s = U / sqrt(U^2 + v_s^2), the law's smoothing) with their
+/// drag pulled by the suspended part, which hangs above as the fixed-point
+/// sweep of sweep_from_bottom aligns it. m is the fewest lying elements whose
+/// suspended part reaches down to the bottom (bisection: more lying cable
+/// pulls harder, flattening the suspended part). False when not applicable.
+bool lay_dragged(SteadyProblem& p) {
+  const Model& m = p.model;
+  const double U = p.V.norm();
+  if (!m.seabed || !(U > 0) || !m.bodies.empty() || !m.cable.attachments.empty() ||
+      std::hypot(p.V.x(), p.V.y()) < 1e-9 * U)
+    return false;
+  const Seabed& sb = *m.seabed;
+  const Vec3 h = -Vec3(p.V.x(), p.V.y(), 0).normalized();  // the lying part's heading [-]
+  const double slip = U / std::hypot(U, sb.slip_speed);   // the friction's smoothing at V [-]
+  PhysicalState& s = p.base;
+  // Gap of the touchdown joint above the bottom with `lying` elements on it
+  // (s.e set accordingly) [m].
+  auto shoot = [&](int lying) {
+    Vec3 f = Vec3::Zero();  // force of the part above on the lying part [N]
+    double N = 0;
+    for (int k = p.n - 1; k >= p.n - lying; --k) {
+      const auto uk = static_cast<std::size_t>(k);
+      const Element& el = m.cable.elements[uk];
+      Vec3 F, M;
+      element_loads(m, el, h, Vec3::Zero(), p.V, m.tow.start + Vec3(0, 0, -sb.depth_at(m.tow.start.x())), 0.0, F,
+                    M);
+      N = std::max(0.0, -F.z());
+      f -= F + Vec3(0, 0, N) - sb.friction * slip * N * p.V / U;
+      s.e[uk] = h;
+    }
+    for (int k = p.n - lying - 1; k >= 0; --k) {
+      const auto uk = static_cast<std::size_t>(k);
+      const Element& el = m.cable.elements[uk];
+      Vec3 e = s.e[uk], F, M;
+      for (int it = 0; it < 30; ++it) {
+        element_loads(m, el, e, Vec3::Zero(), p.V, p.ws.G[uk], 0.0, F, M);
+        const Vec3 d = 0.5 * F - f;
+        if (d.norm() < 1e-300) break;
+        e = d.normalized();
+      }
+      s.e[uk] = e;
+      f -= F;
+    }
+    compute_kinematics(m, s, p.ws);
+    return sb.gap(p.ws.P[static_cast<std::size_t>(p.n - lying)]);
+  };
+  int lo = 0, hi = p.n;  // gap(lo) < 0 <= gap(hi) once bracketed
+  if (shoot(lo) >= 0) return false;  // the hanging cable clears the bottom: nothing lies on it
+  if (shoot(hi) < 0) return false;
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    (shoot(mid) < 0 ? lo : hi) = mid;
+  }
+  shoot(hi);
+  return true;
+}
+
 /// Starting point: from the bottom up, each element aligned with the force it
 /// carries (moment balance about its top joint, its own load at mid-length);
 /// a body passes on the force balancing its own loads, an attachment its load.
@@ -232,7 +297,7 @@ void sweep_from_bottom(SteadyProblem& p) {
     s.e[static_cast<std::size_t>(k)] = e;
     f -= F + p.ws.Fa[static_cast<std::size_t>(k)];
   }
-  lay_on_seabed(p);
+  if (!lay_dragged(p)) lay_on_seabed(p);
   p.accept(Eigen::VectorXd::Zero(p.size()));
 }
 
@@ -450,9 +515,9 @@ namespace {
 /// sets out.iterations, residual, converged, interrupted, message.
 void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult& out) {
   const PhysicalState start = p.base;
-  // The O(n) sweeps first.
+  // The O(n) sweeps first (not with a moving tow on the bottom: see relax).
   std::string why;
-  out.iterations = solve_by_sweeps(p, stop_flag, why);
+  out.iterations = p.sweeps ? solve_by_sweeps(p, stop_flag, why) : 0;
   out.interrupted = why == "interrupted";
   const int N = p.size();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
@@ -482,8 +547,10 @@ void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult&
   }
   Eigen::MatrixXd J(dense ? N : 0, dense ? N : 0);
   double mu = -1;  // Levenberg-Marquardt damping, set from J on first use
-  for (int it = 0; dense && it < kMaxIterations; ++it, ++out.iterations) {
+  const int max_iterations = p.sweeps ? kMaxIterations : kMaxDenseOnlyIterations;
+  for (int it = 0; dense && it < max_iterations; ++it, ++out.iterations) {
     if (p.max_alpha(r) < kTolerance) break;
+    if (!p.sweeps && good(r)) break;  // at the seabed's round-off floor: no further progress to make
     // Jacobian by central differences (each column one O(n) evaluation pair).
     constexpr double h = 1e-7;
     for (int j = 0; j < N && !out.interrupted; ++j) {
@@ -538,6 +605,74 @@ void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult&
   }
 }
 
+/// Dynamic relaxation towards the steady tow (docs/theory.md §7 "Seabed"):
+/// the dynamics themselves from the iterate, the tow point moving at V,
+/// integrated by Rosenbrock-W (the contact springs do not bound its step),
+/// with kinetic damping: whenever the chain's rotational kinetic energy
+/// (relative to the steady motion) passes a peak, every element and body
+/// rotation rate is set to zero, which leaves every point moving at V again.
+/// The water's drag and the bottom's friction damp as well. Stops when the
+/// angular accelerations of the state at rest fall below `target`, after
+/// kMaxRelaxSteps steps, or on the stop flag. p.base: the result (tow
+/// point back at its start: a flat bottom is the same everywhere).
+void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
+  constexpr int kMaxRelaxSteps = 20000;  // accepted steps [-]
+  constexpr int kCheckEvery = 20;        // steps between residual checks [-]
+  constexpr double kRelaxTolerance = 1e-5;  // local error target of the steps [-]
+  Model rm = p.model;
+  const double U = p.V.norm();
+  rm.tow.pieces.clear();
+  if (U > 0) rm.tow.pieces.emplace_back(Ramp{p.V / U, U, 0.0});
+  const std::unique_ptr<System> sys = make_system(rm);
+  if (!sys->has_stage_solve()) return;
+  double weight = 1.0;  // force scale of the error norm: the chain's apparent weight [N]
+  for (const Element& el : rm.cable.elements) weight += std::abs(el.weight);
+  PhysicalState s = p.base;
+  s.r0 = rm.tow.start;
+  s.v0 = p.V;
+  for (auto& w : s.w) w.setZero();
+  for (auto& b : s.bodies) b.w.setZero();
+  StateVector y = sys->initial(s, 0.0);
+  RosenbrockW ros(*sys, kRelaxTolerance, weight);
+  double t = 0, h = 1e-3, previous = 0;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(p.size());
+  for (int step = 0; step < kMaxRelaxSteps && !stopped(stop_flag);) {
+    if (!ros.try_step(y, t, h)) {
+      if (!(h > 1e-12)) break;
+      continue;
+    }
+    ++step;
+    s = sys->physical(y);
+    double ke = 0;  // rotational kinetic energy about each part's joint [J]
+    for (int k = 0; k < p.n; ++k) ke += p.scale[static_cast<std::size_t>(k)] * s.w[k].squaredNorm();
+    for (int b = 0; b < p.nb; ++b)
+      ke += p.scale[static_cast<std::size_t>(p.n + b)] * s.bodies[static_cast<std::size_t>(b)].w.squaredNorm();
+    const bool peak = ke < previous;
+    previous = peak ? 0.0 : ke;
+    if (peak || step % kCheckEvery == 0) {
+      for (auto& w : s.w) w.setZero();
+      for (auto& b : s.bodies) b.w.setZero();
+    }
+    if (peak) {
+      y = sys->initial(s, t);
+      ros.invalidate();
+    }
+    if (step % kCheckEvery == 0) {
+      s.r0 = rm.tow.start;
+      s.v0 = p.V;
+      p.accept_state(s);
+      const double res = p.max_alpha(p.residual(zero));
+      if (res < target) return;
+    }
+  }
+  s = sys->physical(y);
+  for (auto& w : s.w) w.setZero();
+  for (auto& b : s.bodies) b.w.setZero();
+  s.r0 = rm.tow.start;
+  s.v0 = p.V;
+  p.accept_state(s);
+}
+
 /// Elastic elements (docs/theory.md §5.4, §7): the equilibrium of a chain of
 /// inextensible elements of the current lengths l_k, then each elastic
 /// element's tension T_k = e_k . (F_k/2 - f_k) (the axial part of its
@@ -586,6 +721,10 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
   for (Element& el : p.model.cable.elements) el.axial_stiffness = 0;  // the Newton problem: rigid elements
   sweep_from_bottom(p);
   StaticsResult out;
+  if (model.seabed && V.norm() > 0) {
+    p.sweeps = false;
+    relax(p, 1e-3, stop_flag);
+  }
   solve_rigid(p, stop_flag, out);
   if (stretches && out.converged) stretch(elastic, p, stop_flag, out);
   // Forces at the equilibrium (the elastic model's own evaluation).
@@ -613,8 +752,9 @@ StaticsResult steady_state(const Model& model, const volatile int* stop_flag) {
   const TowKinematics k = tow_kinematics(model.tow, 0.0);
   StaticsResult res = solve_statics(model, tow_law_kinematics(model.tow, 0.0).vel, stop_flag);  // mean tow velocity
   if (!res.converged && !res.interrupted && model.seabed && res.tow_velocity.norm() > 0)
-    res.message += " (a tow moving with cable on the seabed is not solved in this version: start at rest, or from a "
-                   "direction above the bottom)";
+    res.message += " (a tow moving with cable on the seabed is solved by relaxation and the dense solve, up to " +
+                   std::to_string(kDenseLimit / 2) + " elements: fewer elements, or start at rest or from a direction "
+                   "above the bottom)";
   res.state.r0 = k.pos;
   res.state.v0 = k.vel;
   return res;

@@ -214,6 +214,99 @@ INSTANTIATE_TEST_SUITE_P(Seabed, SeabedLying,
                          [](const auto& info) { return "n" + std::to_string(info.param.n); });
 
 // ---------------------------------------------------------------------------
+// A cable dragged along a flat bottom at a steady speed U (issue 13): the
+// statics converge (dynamic relaxation, then the dense solve), the result
+// is a steady state of the dynamics, and it has the closed forms of a
+// dragged cable without tangential drag: along the lying part the
+// horizontal tension grows by mu s w per metre (s = U / sqrt(U^2 + v_s^2),
+// the law's smoothing), and the suspended part adds w per metre of rise, so
+// the top tension is w (depth - delta) + mu s w (lying length).
+// ---------------------------------------------------------------------------
+Model dragged_model(testing::CableSpec& cs, double U) {
+  cs.n = 30;
+  cs.length = 300;
+  cs.tangential = 0;  // no tangential drag: the closed forms hold exactly
+  Model m = testing::cable_model(cs);
+  m.seabed = Seabed::flat(110, 1e5, 1e3, 0.5);
+  m.tow.mode = Tow::Mode::Motion;
+  m.tow.pieces = {testing::ramp_piece(Vec3::UnitX(), U, 0.0)};
+  return m;
+}
+
+TEST(SeabedDragged, SteadyTowHasTheClosedForms) {
+  for (double U : {0.1, 0.5, 1.0}) {
+    testing::CableSpec cs;
+    const Model m = dragged_model(cs, U);
+    const double w = apparent_weight(cs), L = cs.length / cs.n, mu = 0.5, delta = w / 1e5;
+    const double s = U / std::hypot(U, kSeabedSlipSpeed);
+    const StaticsResult r = solve_statics(m, Vec3(U, 0, 0));
+    ASSERT_TRUE(r.converged) << "U = " << U << ": " << r.message;
+    // The lying joints (behind the touchdown, before the end): each carries
+    // exactly the weight of the length it stands for, so the horizontal
+    // force steps by mu s w L from joint to joint (1e-6: above the
+    // touchdown's decaying disturbance, 6e-9 two joints down, and the
+    // residual left, ~1e-10 rad/s^2 times the inertias).
+    int lying = 0;
+    double worst = 0;
+    for (int j = 2; j + 1 < cs.n; ++j) {
+      const auto u = static_cast<std::size_t>(j);
+      // Two joints above on the bottom: the touchdown's disturbance of the
+      // shares decays by ~1e4 per joint (measured: 4e-5 at the first lying
+      // joint, 6e-9 at the second).
+      if (r.sample.node_pos[u - 2].z() > -110 + 1e-3) continue;
+      ++lying;
+      const double step = r.joint_force[u].x() - r.joint_force[u + 1].x();
+      worst = std::max(worst, std::abs(step - mu * s * w * L) / (mu * s * w * L));
+    }
+    const double T = r.tow_force.norm(), Tc = w * (110 - delta) + mu * s * w * r.sample.contact_length;
+    std::printf("dragged U = %.1f: %d iterations, %d lying steps within %.1e of mu s w L; T = %.3f N, closed form "
+                "%.3f N (%+.2e w L)\n",
+                U, r.iterations, lying, worst, T, Tc, (T - Tc) / (w * L));
+    EXPECT_GE(lying, 5) << U;
+    EXPECT_LT(worst, 1e-6) << U;
+    // Top tension: the contact length counts the touchdown joint's whole
+    // share, which carries only part of its weight on the bottom, and the
+    // rigid elements' kinks shift the tension by O(w L): bound w L.
+    EXPECT_NEAR(T, Tc, w * L) << U;
+  }
+}
+
+TEST(SeabedDragged, SteadyStateStaysSteadyInTheDynamics) {
+  // 10 s of the dynamics (rosenbrock, fixed error target) from the steady
+  // start: every joint keeps its place relative to the tow point within
+  // 1 mm and moves at U within 1 mm/s, and the tow force stays within 1e-3
+  // of the statics' (the integration error of a 1e-8 tolerance on a state
+  // at rest, with contact springs of 1e5 N/m per m, is far below these).
+  testing::CableSpec cs;
+  const double U = 0.5;
+  Model m = dragged_model(cs, U);
+  const StaticsResult r = solve_statics(m, Vec3(U, 0, 0));
+  ASSERT_TRUE(r.converged) << r.message;
+  m.initial.kind = Initial::Kind::Steady;
+  m.sim.integrator = Integrator::Rosenbrock;
+  m.sim.tolerance = 1e-8;
+  m.sim.duration = 10;
+  m.sim.time_step = 0.01;
+  m.sim.output_interval = 1;
+  const auto samples = testing::run(m);
+  ASSERT_FALSE(samples.empty());
+  double dx = 0, dv = 0, dT = 0;
+  for (const Sample& smp : samples) {
+    for (std::size_t j = 0; j < smp.node_pos.size(); ++j) {
+      dx = std::max(dx, ((smp.node_pos[j] - smp.tow_pos) - (r.sample.node_pos[j] - r.sample.tow_pos)).norm());
+      dv = std::max(dv, (smp.node_vel[j] - Vec3(U, 0, 0)).norm());
+    }
+    dT = std::max(dT, (smp.tow_force - r.tow_force).norm() / r.tow_force.norm());
+  }
+  std::printf("dragged, 10 s of dynamics from the statics: max joint drift %.2e m, max |v - U| %.2e m/s, max tow "
+              "force change %.2e\n",
+              dx, dv, dT);
+  EXPECT_LT(dx, 1e-3);
+  EXPECT_LT(dv, 1e-3);
+  EXPECT_LT(dT, 1e-3);
+}
+
+// ---------------------------------------------------------------------------
 // A sled (a body resting on two runner ends) dragged along the bottom at a
 // steady slow speed: along the tow, the cable's pull balances the friction
 // mu N (N = apparent weight - the pull's vertical part) and the sled's
