@@ -61,8 +61,10 @@ void body_bias(const Body& body, const BodyWork& bw, const Vec3& Fb, const Vec3&
 template <int N>
 Eigen::Matrix<double, N, N> psd_part(const Eigen::Matrix<double, N, N>& A) {
   const Eigen::Matrix<double, N, N> S = 0.5 * (A + A.transpose());
-  // Positive definite (a Cholesky factor exists): nothing to drop, no eigensolve.
-  if (Eigen::LLT<Eigen::Matrix<double, N, N>>(S).info() == Eigen::Success) return S;
+  // Positive semi-definite (a pivoted LDL^T with no negative pivot): nothing
+  // to drop, no eigensolve (the common case: drag damping, hanging bodies).
+  const Eigen::LDLT<Eigen::Matrix<double, N, N>> ldlt(S);
+  if (ldlt.info() == Eigen::Success && ldlt.isPositive()) return S;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> es(S);
   const Eigen::Matrix<double, N, 1> l = es.eigenvalues().cwiseMax(0.0);
   return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
