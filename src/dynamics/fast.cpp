@@ -63,33 +63,42 @@ void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat
   e.cwiseAbs().minCoeff(&i);
   const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
   const Vec3 t2 = e.cross(t1);
-  ws.T[k] << t1, t2;
+  ws.T[k].col(0) = t1;
+  ws.T[k].col(1) = t2;
   const Vec3 c = -w.squaredNorm() * e;  // Mt c = m c
   ws.c[k] = c;
   // K T (K symmetric), G T = L (mn/2 T + K T), and the 2x2 rotational block
   // D = T^T (L^2/4 Mt + L^2 K) T + Ir (symmetric), inverted in closed form.
   const Vec3 u1 = Kk * t1, u2 = Kk * t2;
   const Vec3 g1 = L * (0.5 * mn * t1 + u1), g2 = L * (0.5 * mn * t2 + u2);
-  ws.GT[k] << g1, g2;
+  ws.GT[k].col(0) = g1;
+  ws.GT[k].col(1) = g2;
   const double L2 = L * L, dd = 0.25 * L2 * mn + element_rot_inertia(el);
   const double d11 = L2 * t1.dot(u1) + dd, d22 = L2 * t2.dot(u2) + dd, d12 = L2 * t1.dot(u2);
-  const double idet = 1.0 / (d11 * d22 - d12 * d12);
+  // H = G T Phi, Phi = adj(D) / det D; the force through the top joint is
+  // affine in its acceleration: K_{k-1} = K - H (G T)^T + mn I - ma e e^T
+  // (symmetric: the upper triangle, mirrored). The products with adj(D) run
+  // while the division does (the recursion's critical path is K_k -> K_{k-1}).
+  const double det = d11 * d22 - d12 * d12;
+  const Vec3 a1 = d22 * g1 - d12 * g2, a2 = d11 * g2 - d12 * g1;  // G T adj(D)
+  Mat3 S;                                                        // G T adj(D) (G T)^T
+  for (int r = 0; r < 3; ++r)
+    for (int q = r; q < 3; ++q) S(r, q) = a1[r] * g1[q] + a2[r] * g2[q];
+  const double idet = 1.0 / det;
   const double p11 = d22 * idet, p22 = d11 * idet, p12 = -d12 * idet;
-  ws.Phi[k] << p11, p12, p12, p22;
-  // H = G T Phi; the force through the top joint is affine in its
-  // acceleration: K_{k-1} = K - H (G T)^T + mn I - ma e e^T (symmetric:
-  // the upper triangle, mirrored).
-  const Vec3 h1 = p11 * g1 + p12 * g2, h2 = p12 * g1 + p22 * g2;
+  ws.Phi[k](0, 0) = p11;
+  ws.Phi[k](0, 1) = ws.Phi[k](1, 0) = p12;
+  ws.Phi[k](1, 1) = p22;
+  const Vec3 h1 = idet * a1, h2 = idet * a2;
   Mat3& K = ws.K[k];
   for (int r = 0; r < 3; ++r)
     for (int q = r; q < 3; ++q)
-      K(r, q) = K(q, r) = 0.5 * (Kk(r, q) + Kk(q, r)) - (h1[r] * g1[q] + h2[r] * g2[q]) - ma * e[r] * e[q] +
-                          (r == q ? mn : 0.0);
+      K(r, q) = K(q, r) = (0.5 * (Kk(r, q) + Kk(q, r)) - ma * e[r] * e[q] + (r == q ? mn : 0.0)) - idet * S(r, q);
   // [T^T (L^2/4 Mt + L^2 K) T + Ir] z = T^T r0 - (G T)^T a_top, beta = T z.
   const Vec3 Kc = Kk * c;
   const Vec3 r0 = 0.5 * L * (ws.F[k] - 0.5 * L * m * c) - L * (L * Kc + bk) - e.cross(ws.Mom[k]);
   const double z1 = t1.dot(r0), z2 = t2.dot(r0);
-  ws.Tr0[k] << z1, z2;
+  ws.Tr0[k] = Eigen::Vector2d(z1, z2);
   ws.b[k] = z1 * h1 + z2 * h2 + 0.5 * L * m * c + L * Kc + bk - ws.F[k];
 }
 

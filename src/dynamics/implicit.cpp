@@ -22,7 +22,8 @@ Eigen::Matrix<double, 3, 2> tangent_basis(const Vec3& e) {
   e.cwiseAbs().minCoeff(&i);
   const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
   Eigen::Matrix<double, 3, 2> T;
-  T << t1, e.cross(t1);
+  T.col(0) = t1;
+  T.col(1) = e.cross(t1);
   return T;
 }
 
@@ -60,6 +61,10 @@ void body_bias(const Body& body, const BodyWork& bw, const Vec3& Fb, const Vec3&
 template <int N>
 Eigen::Matrix<double, N, N> psd_part(const Eigen::Matrix<double, N, N>& A) {
   const Eigen::Matrix<double, N, N> S = 0.5 * (A + A.transpose());
+  // Positive semi-definite (a pivoted LDL^T with no negative pivot): nothing
+  // to drop, no eigensolve (the common case: drag damping, hanging bodies).
+  const Eigen::LDLT<Eigen::Matrix<double, N, N>> ldlt(S);
+  if (ldlt.info() == Eigen::Success && ldlt.isPositive()) return S;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> es(S);
   const Eigen::Matrix<double, N, 1> l = es.eigenvalues().cwiseMax(0.0);
   return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
@@ -218,6 +223,8 @@ ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
   GT.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
   Phi.assign(n, Eigen::Matrix2d::Zero());
   H.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
+  TH.assign(n, Mat3::Zero());
+  q.assign(n, Vec3::Zero());
   Tr0.assign(n, Eigen::Vector2d::Zero());
   bPhi.assign(nb, Mat3::Zero());
   bC.assign(nb, Mat3::Zero());
@@ -242,7 +249,11 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
   const std::size_t n = els.size();
   const LocalJacobian& jac = iw.jac;
   // Backward pass of fast.cpp (c = 0, w = 0), inertias only.
-  auto joint_terms = [&](std::size_t k) { return Mat3(hg * jac.joint_damping[k] + hg * hg * jac.joint_stiffness[k]); };
+  // Joint terms exist only with attachments or a seabed (else zero: skipped).
+  const bool joints = !model.cable.attachments.empty() || model.seabed.has_value();
+  auto joint_terms = [&](std::size_t k) {
+    return joints ? Mat3(hg * jac.joint_damping[k] + hg * hg * jac.joint_stiffness[k]) : Mat3::Zero().eval();
+  };
   iw.K[n] = ws.Ma[n] + joint_terms(n);
   for (std::size_t k = n; k-- > 0;) {
     const int bi = ws.body_at[k + 1];
@@ -278,22 +289,43 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
       continue;
     }
     const auto& T = iw.T[k] = tangent_basis(s.e[k]);
-    const Eigen::Matrix<double, 3, 2> KT = *Kk * T;
-    iw.GT[k] = 0.5 * L * Mt * T + L * KT;
-    Eigen::Matrix2d D = T.transpose() * (0.25 * L * L * Mt * T + L * L * KT);
-    D.diagonal().array() += element_rot_inertia(el) + hg * hg * jac.element_stiffness[k];
-    iw.Phi[k] = D.inverse();
-    iw.H[k] = iw.GT[k] * iw.Phi[k];
-    const Mat3 Kn = Mt + *Kk - iw.H[k] * iw.GT[k].transpose();
-    iw.K[k] = 0.5 * (Kn + Kn.transpose());
-    iw.K[k] += ws.Ma[k] + joint_terms(k);
+    const Vec3 t1 = T.col(0), t2 = T.col(1);
+    // G T = L (Mt/2 + K) T and D = T^T (L^2/4 Mt + L^2 K) T + Ir + hg^2 K_rock
+    // (Mt and K symmetric: D symmetric, inverted in closed form).
+    const Mat3 A = 0.5 * Mt + *Kk, B = 0.25 * Mt + *Kk;
+    const Vec3 g1 = L * (A * t1), g2 = L * (A * t2), v2 = B * t2;
+    iw.GT[k].col(0) = g1;
+    iw.GT[k].col(1) = g2;
+    const double L2 = L * L, dd = element_rot_inertia(el) + hg * hg * jac.element_stiffness[k];
+    const double d11 = L2 * t1.dot(B * t1) + dd, d22 = L2 * t2.dot(v2) + dd, d12 = L2 * t1.dot(v2);
+    const double idet = 1.0 / (d11 * d22 - d12 * d12);
+    const double p11 = d22 * idet, p22 = d11 * idet, p12 = -d12 * idet;
+    iw.Phi[k](0, 0) = p11;
+    iw.Phi[k](0, 1) = iw.Phi[k](1, 0) = p12;
+    iw.Phi[k](1, 1) = p22;
+    const Vec3 h1 = p11 * g1 + p12 * g2, h2 = p12 * g1 + p22 * g2;  // H = G T Phi
+    iw.H[k].col(0) = h1;
+    iw.H[k].col(1) = h2;
+    iw.TH[k].noalias() = t1 * h1.transpose() + t2 * h2.transpose();
+    // K = Mt + K_below - H (G T)^T, symmetric: the upper triangle, mirrored.
+    Mat3& Kn = iw.K[k];
+    for (int r = 0; r < 3; ++r)
+      for (int q = r; q < 3; ++q)
+        Kn(r, q) = Kn(q, r) = 0.5 * (Mt(r, q) + Mt(q, r) + (*Kk)(r, q) + (*Kk)(q, r)) - (h1[r] * g1[q] + h2[r] * g2[q]);
+    Kn += ws.Ma[k];
+    if (joints) Kn += joint_terms(k);
   }
   iw.hg = hg;
 }
 
-void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
-                          const StageRhs& r, ImplicitWorkspace& iw) {
-  if (iw.hg != hg) implicit_factor(model, s, ws, hg, iw);
+namespace {
+
+// The three sweeps of a stage solve, as separate functions: each small enough
+// for the compiler to inline its 3x3 algebra (one large function was not).
+
+/// The right-hand side as loads on the parts, down the chain.
+void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws, double hg, const StageRhs& r,
+                 ImplicitWorkspace& iw) {
   const auto& els = model.cable.elements;
   const std::size_t n = els.size();
   const LocalJacobian& jac = iw.jac;
@@ -352,9 +384,19 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
     iw.dvP[k + 1] = dv;
     iw.dxP[k + 1] = dx;
   }
-  for (std::size_t k = 0; k <= n; ++k)
-    iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]) - hg * (jac.joint_stiffness[k] * (hg * iw.dvP[k] + iw.dxP[k]));
+  // Joint terms exist only with attachments or a seabed (else zero: skipped).
+  if (!model.cable.attachments.empty() || model.seabed.has_value())
+    for (std::size_t k = 0; k <= n; ++k)
+      iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]) - hg * (jac.joint_stiffness[k] * (hg * iw.dvP[k] + iw.dxP[k]));
+  else
+    for (Vec3& f : iw.Fa) f.setZero();
 
+}
+
+/// Bias sweep up the chain.
+void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws, ImplicitWorkspace& iw) {
+  const auto& els = model.cable.elements;
+  const std::size_t n = els.size();
   // Bias sweep up the chain (the inertias are factorised).
   iw.b[n] = -iw.Fa[n];
   for (std::size_t k = n; k-- > 0;) {
@@ -371,12 +413,26 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
       iw.b[k] = iw.EG[k] * (iw.EAinv[k] * iw.Er[k]) + *bk - iw.F[k] - iw.Fa[k];
       continue;
     }
+    // b = H T^T r0 + b_below - F - Fa, r0 = r0' - L b_below: the part
+    // through b_below as one 3x3 product (H T^T = TH^T), off the rest.
     const double L = current_element(model, ws, k).length;
-    const Vec3 r0 = 0.5 * L * iw.F[k] - L * *bk - s.e[k].cross(iw.Mom[k]);
-    iw.Tr0[k] = iw.T[k].transpose() * r0;
-    iw.b[k] = iw.H[k] * iw.Tr0[k] + *bk - iw.F[k] - iw.Fa[k];
+    const Vec3 r0p = 0.5 * L * iw.F[k] - s.e[k].cross(iw.Mom[k]);  // r0 without the bias below
+    const Vec3 t1 = iw.T[k].col(0), t2 = iw.T[k].col(1);
+    const Vec3& h1 = iw.H[k].col(0);
+    const Vec3& h2 = iw.H[k].col(1);
+    iw.b[k] = (t1.dot(r0p) * h1 + t2.dot(r0p) * h2 - iw.F[k] - iw.Fa[k]) + (*bk - L * (iw.TH[k].transpose() * *bk));
+    const Vec3 r0 = r0p - L * *bk;
+    iw.Tr0[k] = Eigen::Vector2d(t1.dot(r0), t2.dot(r0));
+    iw.q[k] = iw.T[k] * (iw.Phi[k] * iw.Tr0[k]);
   }
 
+}
+
+/// Accelerations (the increments z) down the chain.
+void stage_accelerations(const Model& model, const PhysicalState& s, const Workspace& ws, ImplicitWorkspace& iw) {
+  const auto& els = model.cable.elements;
+  const std::size_t n = els.size();
+  const bool free_top = model.tow.mode != Tow::Mode::Motion;
   // Forward pass: the tow point is held (Motion) or free with no force.
   Vec3 a = free_top ? Vec3(iw.K[0].ldlt().solve(-iw.b[0])) : Vec3::Zero();
   iw.a0 = a;
@@ -390,7 +446,7 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
       a += zd;
     } else {
       iw.zl[k] = 0;
-      const Vec3 beta = iw.T[k] * (iw.Phi[k] * (iw.Tr0[k] - iw.GT[k].transpose() * a));
+      const Vec3 beta = iw.q[k] - iw.TH[k] * a;  // T Phi (T^T r0 - (G T)^T a)
       iw.alpha[k] = s.e[k].cross(beta);
       a += current_element(model, ws, k).length * beta;
     }
@@ -402,6 +458,16 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
     iw.alpha_b[b] = al;
     if (model.bodies[b].inline_body) a = a + bw.rQ.cross(al) + al.cross(bw.rQ2);
   }
+}
+
+}  // namespace
+
+void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
+                          const StageRhs& r, ImplicitWorkspace& iw) {
+  if (iw.hg != hg) implicit_factor(model, s, ws, hg, iw);
+  stage_loads(model, s, ws, hg, r, iw);
+  stage_bias(model, s, ws, iw);
+  stage_accelerations(model, s, ws, iw);
 }
 
 }  // namespace towsim

@@ -103,52 +103,46 @@ nlohmann::ordered_json elastic_json(const SlackRecord& r) {
 
 }  // namespace
 
-double tidy(double v) {
-  if (!std::isfinite(v)) return v;
-  if (std::abs(v) < kZeroBelow) return 0.0;  // also turns -0 into 0
-  char b[40];
-  const auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::general, 12);
-  double out = v;
-  std::from_chars(b, r.ptr, out);
-  return out;
-}
-
-double tidy_time(double t) {
-  if (!std::isfinite(t)) return t;
-  const double r = std::round(t * 1e9) / 1e9;  // nanoseconds
-  return r == 0 ? 0.0 : r;
-}
-
 namespace {
 
 /// 10^p, exact in double for p = 0..22.
 constexpr double kPow10[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
                                1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
-/// v as std::to_chars(general, 12) writes it ("%.12g": 12 significant
-/// digits, trailing zeros dropped, scientific below 1e-4 and from 1e12),
-/// the same bytes, about 5x faster: the 12 digits are the integer nearest
-/// to |v| 10^p with p = 11 - floor(log10 |v|), one correctly rounded
-/// product (exact powers of ten, p <= 22), whose error (< 6.2e-5 of a unit
-/// below 2^40) can only matter within 1e-3 of a half unit: there, and
-/// outside 1e-11 <= |v| < 1e12, std::to_chars decides.
-char* put_g12(char* b, double v) {
+/// |v| rounded to 12 significant digits as m 10^(X - 11), 10^11 <= m < 10^12
+/// (X: the decimal exponent after rounding), exactly as "%.12g" rounds: m is
+/// the integer nearest to |v| 10^p with p = 11 - floor(log10 |v|), one
+/// correctly rounded product (exact powers of ten, p <= 22) whose error
+/// (< 6.2e-5 of a unit below 2^40) can only matter within 1e-3 of a half
+/// unit. False there, and outside 1e-11 <= |v| < 1e12 (or not finite):
+/// the caller then asks the standard library.
+bool round12(double v, std::uint64_t& m, int& X) {
   const double a = std::abs(v);
-  if (!(a >= 1e-11 && a < 1e12)) return std::to_chars(b, b + 40, v, std::chars_format::general, 12).ptr;
+  if (!(a >= 1e-11 && a < 1e12)) return false;
   // Decimal exponent X: an estimate from the binary one, then corrected.
   const int E = static_cast<int>((std::bit_cast<std::uint64_t>(a) >> 52) & 0x7ff) - 1023;  // 2^E <= a < 2^(E+1)
-  int X = std::max(-11, (E * 78913) >> 18);  // floor(E log10 2): floor(log10 a), or one below
-  double m_real = a * kPow10[11 - X];        // 11 - X in 0..22 here
-  if (m_real >= 1e12 && X < 11) {            // the estimate was one below
+  X = std::max(-11, (E * 78913) >> 18);  // floor(E log10 2): floor(log10 a), or one below
+  double m_real = a * kPow10[11 - X];    // 11 - X in 0..22 here
+  if (m_real >= 1e12 && X < 11) {        // the estimate was one below
     ++X;
     m_real = a * kPow10[11 - X];
   }
-  if (!(m_real >= 1e11 - 0.5 && m_real < 1e12 - 0.5)) return std::to_chars(b, b + 40, v, std::chars_format::general, 12).ptr;
-  auto m = static_cast<std::uint64_t>(m_real);  // floor
+  if (!(m_real >= 1e11 - 0.5 && m_real < 1e12 - 0.5)) return false;
+  m = static_cast<std::uint64_t>(m_real);                // floor
   const double frac = m_real - static_cast<double>(m);  // exact
-  if (std::abs(frac - 0.5) < 1e-3) return std::to_chars(b, b + 40, v, std::chars_format::general, 12).ptr;
+  if (std::abs(frac - 0.5) < 1e-3) return false;
   if (frac > 0.5) ++m;
   if (m == 1000000000000ULL) m = 100000000000ULL, ++X;  // 9.99..95 rounds up to 10
+  return true;
+}
+
+/// v as std::to_chars(general, 12) writes it ("%.12g": 12 significant
+/// digits, trailing zeros dropped, scientific below 1e-4 and from 1e12),
+/// the same bytes, several times faster (round12, then the digits).
+char* put_g12(char* b, double v) {
+  std::uint64_t m = 0;
+  int X = 0;
+  if (!round12(v, m, X)) return std::to_chars(b, b + 40, v, std::chars_format::general, 12).ptr;
   // The 12 digits (two halves of 6, two digits at a time), then the trailing zeros dropped.
   char d[12];
   auto six = [](char* out, std::uint32_t x) {
@@ -201,6 +195,32 @@ char* put_g12(char* b, double v) {
 }
 
 }  // namespace
+
+double tidy(double v) {
+  if (!std::isfinite(v)) return v;
+  if (std::abs(v) < kZeroBelow) return 0.0;  // also turns -0 into 0
+  // m 10^(X - 11) with m < 2^53 and an exact power of ten: one correctly
+  // rounded product or quotient, the double nearest to the 12 digits, as
+  // from_chars gives it (Clinger's fast path).
+  std::uint64_t m = 0;
+  int X = 0;
+  if (round12(v, m, X)) {
+    const double a = X >= 11 ? static_cast<double>(m) * kPow10[X - 11] : static_cast<double>(m) / kPow10[11 - X];
+    return v < 0 ? -a : a;
+  }
+  char b[40];
+  const auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::general, 12);
+  double out = v;
+  std::from_chars(b, r.ptr, out);
+  return out;
+}
+
+double tidy_time(double t) {
+  if (!std::isfinite(t)) return t;
+  const double r = std::round(t * 1e9) / 1e9;  // nanoseconds
+  return r == 0 ? 0.0 : r;
+}
+
 
 void put_number(std::string& out, double v) {
   char b[40];

@@ -133,7 +133,7 @@ TEST(NumberFormat, RoundOffIsZeroAndTimesAreRoundedToTheNanosecond) {
   EXPECT_EQ(s, "0");
 }
 
-// put_number formats directly (a scaled integer); the reference is the
+// put_number and tidy round directly (a scaled integer); the reference is the
 // standard library's "%.12g", std::to_chars(general, 12): the same bytes,
 // over every decade the outputs see and beyond (the fallback), for random
 // values, short decimals, and values whose 13th digit is a 5 (ties and
@@ -152,6 +152,13 @@ TEST(NumberFormat, TwelveDigitsAreTheBytesOfToChars) {
     std::string s;
     towsim::io::put_number(s, v);
     if (s != reference(v) && ++mismatches <= 5) ADD_FAILURE() << "value " << v << ": " << s << " vs " << reference(v);
+    // tidy: the double nearest to those digits, as std::from_chars reads them back.
+    const std::string r = reference(v);
+    double back = 0;
+    std::from_chars(r.data(), r.data() + r.size(), back);
+    const double t = towsim::io::tidy(v);
+    if (std::isfinite(v) && !(t == back && std::signbit(t) == std::signbit(back)) && ++mismatches <= 5)
+      ADD_FAILURE() << "tidy " << v << ": " << t << " vs " << back;
   };
   for (int i = 0; i < 200000; ++i) check((rng() & 1 ? -1 : 1) * std::pow(10.0, -14 + 30 * u(rng)));
   char buf[64];

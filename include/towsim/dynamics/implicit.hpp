@@ -72,6 +72,8 @@ struct ImplicitWorkspace {
   std::vector<Eigen::Matrix<double, 3, 2>> T, GT;  // tangent basis [-], G T [kg m]
   std::vector<Eigen::Matrix2d> Phi;                // inverse rotational block [1/(kg m^2)]
   std::vector<Eigen::Matrix<double, 3, 2>> H;      // G T Phi [1/m]
+  std::vector<Mat3> TH;                            // T H^T = T Phi (G T)^T: beta's slope on the top
+                                                   // joint's acceleration, beta = q - TH a [1/m]
   std::vector<Mat3> bPhi, bC, bKQ;                 // per body: as BodyWork, modified inertia
   std::vector<Mat3> EAinv, EG;                     // per elastic element: as ElasticWork, modified
                                                    // (A^-1 [1/kg], G [kg])
@@ -79,6 +81,7 @@ struct ImplicitWorkspace {
   double hg = -1;                                  // h gamma of the factorisation [s]; < 0: none
   // Right-hand-side sweeps (implicit_stage_solve):
   std::vector<Eigen::Vector2d> Tr0;                // T^T r_0 [N m]
+  std::vector<Vec3> q;                             // T Phi T^T r_0, beta at zero joint acceleration [rad/s]
   std::vector<Vec3> brhs, bbQ;                     // per body [N m], [N]
   std::vector<Vec3> dvP;                           // velocity increments of the joints [m/s]
   std::vector<Vec3> dxP;                           // position increments of the joints [m]
