@@ -198,37 +198,41 @@ void lay_on_seabed(SteadyProblem& p) {
 }
 
 /// With a seabed and a moving tow (no body, no attachment), the start of a
-/// cable dragged along the bottom: its last m elements lie straight behind
-/// the tow (against V), their weight on the bottom and their friction
-/// mu s w L each (s = U / sqrt(U^2 + v_s^2), the law's smoothing) with their
-/// drag pulled by the suspended part, which hangs above as the fixed-point
-/// sweep of sweep_from_bottom aligns it. m is the fewest lying elements whose
+/// cable dragged along the bottom: its last m elements lie along the bottom
+/// behind the tow (against V), each carried by the bottom's normal force,
+/// with the friction mu s N against V (s = U / sqrt(U^2 + v_s^2), the law's
+/// smoothing); the suspended part hangs above as the fixed-point sweep of
+/// sweep_from_bottom aligns it. m is the fewest lying elements whose
 /// suspended part reaches down to the bottom (bisection: more lying cable
-/// pulls harder, flattening the suspended part). False when not applicable.
-bool lay_dragged(SteadyProblem& p) {
+/// pulls harder, flattening the suspended part). The bottom's normal is taken
+/// at the previous trial's joints. False when not applicable (lay_on_seabed
+/// lays the cable then).
+bool lay_along_bottom(SteadyProblem& p) {
   const Model& m = p.model;
   const double U = p.V.norm();
-  if (!m.seabed || !(U > 0) || !m.bodies.empty() || !m.cable.attachments.empty() ||
-      std::hypot(p.V.x(), p.V.y()) < 1e-9 * U)
-    return false;
+  if (!m.seabed || !m.bodies.empty() || !m.cable.attachments.empty()) return false;
   const Seabed& sb = *m.seabed;
+  // At rest (a sloped bottom) the relaxation that follows only creeps (the
+  // friction's viscous slope mu N / v_s): not used there in this version.
+  if (!(U > 0) || std::hypot(p.V.x(), p.V.y()) < 1e-9 * U) return false;
   const Vec3 h = -Vec3(p.V.x(), p.V.y(), 0).normalized();  // the lying part's heading [-]
-  const double slip = U / std::hypot(U, sb.slip_speed);   // the friction's smoothing at V [-]
+  const double slip = U / std::hypot(U, sb.slip_speed);  // the friction's smoothing at V [-]
+  const Vec3 Vhat = p.V / U;
   PhysicalState& s = p.base;
+  compute_kinematics(m, s, p.ws);
   // Gap of the touchdown joint above the bottom with `lying` elements on it
   // (s.e set accordingly) [m].
   auto shoot = [&](int lying) {
     Vec3 f = Vec3::Zero();  // force of the part above on the lying part [N]
-    double N = 0;
     for (int k = p.n - 1; k >= p.n - lying; --k) {
       const auto uk = static_cast<std::size_t>(k);
-      const Element& el = m.cable.elements[uk];
+      const Vec3 n = sb.normal(p.ws.G[uk].x());
+      const Vec3 e = (h - h.dot(n) * n).normalized();
       Vec3 F, M;
-      element_loads(m, el, h, Vec3::Zero(), p.V, m.tow.start + Vec3(0, 0, -sb.depth_at(m.tow.start.x())), 0.0, F,
-                    M);
-      N = std::max(0.0, -F.z());
-      f -= F + Vec3(0, 0, N) - sb.friction * slip * N * p.V / U;
-      s.e[uk] = h;
+      element_loads(m, m.cable.elements[uk], e, Vec3::Zero(), p.V, p.ws.G[uk], 0.0, F, M);
+      const double N = std::max(0.0, -F.dot(n));
+      f -= F + N * n - sb.friction * slip * N * Vhat;
+      s.e[uk] = e;
     }
     for (int k = p.n - lying - 1; k >= 0; --k) {
       const auto uk = static_cast<std::size_t>(k);
@@ -254,6 +258,7 @@ bool lay_dragged(SteadyProblem& p) {
     (shoot(mid) < 0 ? lo : hi) = mid;
   }
   shoot(hi);
+  shoot(hi);  // the normals at this trial's own joints
   return true;
 }
 
@@ -297,7 +302,10 @@ void sweep_from_bottom(SteadyProblem& p) {
     s.e[static_cast<std::size_t>(k)] = e;
     f -= F + p.ws.Fa[static_cast<std::size_t>(k)];
   }
-  if (!lay_dragged(p)) lay_on_seabed(p);
+  // Laid along the bottom: the sweeps (which leave the contact out) would
+  // lift it off; relaxation and the dense solve take over (solve_statics).
+  if (lay_along_bottom(p)) p.sweeps = false;
+  else lay_on_seabed(p);
   p.accept(Eigen::VectorXd::Zero(p.size()));
 }
 
@@ -721,11 +729,18 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
   for (Element& el : p.model.cable.elements) el.axial_stiffness = 0;  // the Newton problem: rigid elements
   sweep_from_bottom(p);
   StaticsResult out;
-  if (model.seabed && V.norm() > 0) {
+  if (!p.sweeps) relax(p, 1e-3, stop_flag);  // cable laid along the bottom: relax first
+  solve_rigid(p, stop_flag, out);
+  if (!out.converged && !out.interrupted && model.seabed && p.sweeps && V.norm() > 0) {
+    // The sweeps and the dense polish failed with a moving tow on the bottom
+    // (a body or attachments: not laid by lay_along_bottom): relax from the
+    // better iterate, then the dense solve alone.
+    const int before = out.iterations;
     p.sweeps = false;
     relax(p, 1e-3, stop_flag);
+    solve_rigid(p, stop_flag, out);
+    out.iterations += before;
   }
-  solve_rigid(p, stop_flag, out);
   if (stretches && out.converged) stretch(elastic, p, stop_flag, out);
   // Forces at the equilibrium (the elastic model's own evaluation).
   out.state = p.base;
