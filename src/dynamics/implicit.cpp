@@ -270,20 +270,25 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
     const double L = el.length;
     const Mat3 Mt = ws.Mt[k] + hg * jac.element_damping[k];
     if (is_elastic(els[k])) {
-      // Elastic element (elastic.cpp's step on d_k = l e): A = Mt/3 + Kk + S,
+      // Elastic element (elastic.cpp's step on d_k = l e): A = Mdd + Kk + S,
       // S = (hg c_a + hg^2 EA/L) e e^T + hg^2 K_rock / l^2 (I - e e^T) (the
-      // spring's axial and geometric stiffness in d). K = Mt/3 + S - N A^-1 N,
-      // N = Mt/6 - S (= Mt + Kk - G A^-1 G, G = Mt/2 + Kk, without the
-      // difference of large terms when Kk >> Mt).
+      // spring's axial and geometric stiffness in d). The drag acts at G,
+      // whose velocity is v + d'/2: its damping on (v, d') is C [1, 1/2;
+      // 1/2, 1/4], not the rod mass's [1, 1/2; 1/2, 1/3], so the d-d block is
+      // Mdd = M_t/3 + hg C/4, the same C as the right-hand side's load
+      // -hg C (dv + ddv/2) (else the solve is not (I - hg W)^-1 for one W).
+      // K = Mdd + S - N A^-1 N, N = Mt/2 - Mdd - S (= Mt + Kk - G A^-1 G,
+      // G = Mt/2 + Kk, without the difference of large terms when Kk >> Mt).
       const Vec3& e = s.e[k];
       const double l = s.length_of(model, k);
       const Mat3 ee = e * e.transpose();
       const Mat3 S = (hg * element_axial_damping_rate(els[k], l) + hg * hg * element_axial_stiffness(els[k], l)) * ee +
                      hg * hg * jac.element_stiffness[k] / (l * l) * (Mat3::Identity() - ee);
-      iw.EAinv[k] = (Mt / 3 + *Kk + S).inverse();
+      const Mat3 Mdd = ws.Mt[k] / 3 + 0.25 * hg * jac.element_damping[k];
+      iw.EAinv[k] = (Mdd + *Kk + S).inverse();
       iw.EG[k] = 0.5 * Mt + *Kk;
-      const Mat3 N = Mt / 6 - S;
-      const Mat3 Kn = Mt / 3 + S - N * iw.EAinv[k] * N;
+      const Mat3 N = 0.5 * Mt - Mdd - S;
+      const Mat3 Kn = Mdd + S - N * iw.EAinv[k] * N;
       iw.K[k] = 0.5 * (Kn + Kn.transpose());
       iw.K[k] += ws.Ma[k] + joint_terms(k);
       continue;
