@@ -173,23 +173,44 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   Vec3 a_extra = Vec3::Zero();  // a_top - a_0 without the l'' term [m/s^2]
   acc.top_length_acc = 0;
   const bool winch = ws.winch && !imposed_a0;  // an impulse (imposed_a0) has no pay-out acceleration
-  if (winch) a_extra = 2 * element_length_rate(s, 0) * ws.edot[0];
+  const bool elastic_top = winch && is_elastic(els[0]);
   const Vec3 e1 = s.e.empty() ? Vec3::UnitZ().eval() : s.e[0];  // [-, R_g]
+  // Elastic top element: the material at the sheave accelerates at
+  // a_0 + lam L_1'' e_1 + 2 lam L_1' (omega_1 x e_1) + 2 (L_1'/L_1)(l_1' - lam L_1') e_1,
+  // lam = l_1/L_1 (its velocity v_0 + lam L_1' e_1 seen in the material).
+  double lam = 1;                             // stretch l_1/L_1 multiplying L_1'' [-]
+  double pay_rate = 0;                        // the winch's rate: l_1' (rigid) or L_1' (elastic) [m/s]
+  if (elastic_top) {
+    const double l = s.length_of(model, 0), Lu = s.top_unstretched;
+    pay_rate = s.top_unstretched_rate;
+    lam = l / Lu;
+    a_extra = 2 * lam * pay_rate * ws.edot[0] + 2 * pay_rate / Lu * (s.length_rate_of(0) - lam * pay_rate) * e1;
+  } else if (winch) {
+    pay_rate = element_length_rate(s, 0);
+    a_extra = 2 * pay_rate * ws.edot[0];
+  }
+  const Mat3 K_pay = elastic_top ? Mat3(lam * ws.K[0]) : ws.K[0];  // d(f_0)/d(L_1'') along e_1 [kg]
   if (winch && model.winch.mode == Winch::Mode::Imposed) acc.top_length_acc = winch_kinematics(model.winch, t).acc;
   if (imposed_a0 || model.tow.mode == Tow::Mode::Motion) {
     acc.a0 = imposed_a0 ? *imposed_a0 : tow_kinematics(model.tow, t).acc;
     if (winch && model.winch.mode == Winch::Mode::Tension)
-      acc.top_length_acc = drum_acceleration(model.winch, e1, element_length_rate(s, 0), ws.K[0],
-                                         ws.K[0] * (acc.a0 + a_extra) + ws.b[0]);
-    acc.tow_force = ws.K[0] * (acc.a0 + a_extra + acc.top_length_acc * e1) + ws.b[0];
+      acc.top_length_acc = drum_acceleration(model.winch, e1, pay_rate, K_pay, ws.K[0] * (acc.a0 + a_extra) + ws.b[0]);
+  }
+  const Vec3 a_pay = elastic_top ? Vec3(lam * acc.top_length_acc * e1) : Vec3(acc.top_length_acc * e1);
+  if (imposed_a0 || model.tow.mode == Tow::Mode::Motion) {
+    acc.tow_force = ws.K[0] * (acc.a0 + a_extra + a_pay) + ws.b[0];
   } else {
     acc.tow_force = tow_force(model.tow, t);
-    acc.a0 = ws.K[0].ldlt().solve(acc.tow_force - ws.b[0]) - a_extra - acc.top_length_acc * e1;
+    acc.a0 = ws.K[0].ldlt().solve(acc.tow_force - ws.b[0]) - a_extra - a_pay;
   }
   acc.joint_force[0] = acc.tow_force;
-  Vec3 a = acc.a0 + a_extra + acc.top_length_acc * e1;
+  Vec3 a = acc.a0 + a_extra + a_pay;
   for (std::size_t k = 0; k < els.size(); ++k) {
-    if (is_elastic(els[k])) {
+    if (k == 0 && elastic_top) {
+      // The winch's elastic element: its top is the material at the sheave.
+      a += elastic_forward(ws.elastic[0], s.e[0], s.w[0], s.length_of(model, 0), s.length_rate_of(0), a,
+                           Vec3(a - acc.a0), acc.alpha[0], acc.length_acc[0]);
+    } else if (is_elastic(els[k])) {
       // Elastic element: d'' from the top joint's acceleration (§5.4).
       a += elastic_forward(ws.elastic[k], s.e[k], s.w[k], s.length_of(model, k), s.length_rate_of(k), a,
                            acc.alpha[k], acc.length_acc[k]);
@@ -231,6 +252,9 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
     ws.Mt[k] = element_mass(el, s.e[k]);
     ws.elastic[k].T = element_tension(els[k], s.length_of(model, k), s.length_rate_of(k));
   }
+  // The winch's elastic top element: strain of l_1 over the paid-out L_1.
+  if (ws.winch && is_elastic(els[0]))
+    ws.elastic[0].T = paid_out_tension(ws.top, s.length_of(model, 0), s.length_rate_of(0), s.top_unstretched_rate);
   attachment_loads(model, t, ws);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     body_inertia(model.fluid, model.bodies[b], ws.body[b], t);

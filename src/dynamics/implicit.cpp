@@ -282,7 +282,7 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
       const Vec3& e = s.e[k];
       const double l = s.length_of(model, k);
       const Mat3 ee = e * e.transpose();
-      const Mat3 S = (hg * element_axial_damping_rate(els[k], l) + hg * hg * element_axial_stiffness(els[k], l)) * ee +
+      const Mat3 S = (hg * element_axial_damping_rate(el, l) + hg * hg * element_axial_stiffness(el, l)) * ee +
                      hg * hg * jac.element_stiffness[k] / (l * l) * (Mat3::Identity() - ee);
       const Mat3 Mdd = ws.Mt[k] / 3 + 0.25 * hg * jac.element_damping[k];
       iw.EAinv[k] = (Mdd + *Kk + S).inverse();
@@ -353,7 +353,8 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
       const double l = s.length_of(model, k);
       const double dl = k < r.dl.size() ? r.dl[k] : 0.0, dlr = k < r.dlr.size() ? r.dlr[k] : 0.0;
       const Vec3 ddv = dlr * e + l * de, ddx = dl * e + l * rot.cross(e);
-      const double ka = element_axial_stiffness(els[k], l), ca = element_axial_damping_rate(els[k], l);
+      const Element& el = current_element(model, ws, k);  // the winch's: unstretched L_1
+      const double ka = element_axial_stiffness(el, l), ca = element_axial_damping_rate(el, l);
       const double kr = jac.element_stiffness[k] / (l * l);
       iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * ddv));
       iw.Mom[k].setZero();

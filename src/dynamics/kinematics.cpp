@@ -25,6 +25,7 @@ PhysicalState PhysicalState::hanging(const Model& model) {
   }
   for (const Element& el : model.cable.elements) s.length.push_back(el.length);
   s.length_rate.assign(model.cable.elements.size(), 0.0);
+  if (elastic_winch(model)) s.top_unstretched = model.cable.elements.front().length;
   return s;
 }
 
@@ -103,7 +104,13 @@ void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& w
   // Winch: the top element's material is fixed to its bottom joint and
   // leaves the sheave at v_0 + l' e_1; its properties scale with l_1.
   ws.winch = model.winch.active() && !els.empty();
-  if (ws.winch) {
+  const bool elastic_top = ws.winch && is_elastic(els[0]);
+  if (elastic_top) {
+    // Elastic: material of unstretched length L_1, stretched uniformly to
+    // l_1; the sheave pays out L_1' of it, l_1/L_1 L_1' of stretched length.
+    ws.top = scaled_element(els[0], s.top_unstretched);
+    ws.v_top = s.v0 + element_length(model, s, 0) / s.top_unstretched * s.top_unstretched_rate * s.e[0];
+  } else if (ws.winch) {
     ws.top = scaled_element(els[0], element_length(model, s, 0));
     ws.v_top = s.v0 + element_length_rate(s, 0) * s.e[0];
   }
@@ -112,7 +119,11 @@ void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& w
     ws.edot[i] = s.w[i].cross(s.e[i]);
     const Vec3 dd = L * ws.edot[i] + Ld * s.e[i];  // d_k'
     ws.G[i] = ws.P[i] + 0.5 * L * s.e[i];
-    if (i == 0 && ws.winch) {
+    if (i == 0 && elastic_top) {
+      // Winch, elastic: material velocity linear from the sheave's to P_1's.
+      ws.vP[i + 1] = ws.vP[i] + dd;
+      ws.vG[i] = 0.5 * (ws.v_top + ws.vP[i + 1]);
+    } else if (i == 0 && ws.winch) {
       // Winch: material moves rigidly with the bottom joint (not stretched).
       ws.vG[i] = ws.v_top + 0.5 * L * ws.edot[i];
       ws.vP[i + 1] = ws.v_top + L * ws.edot[i];

@@ -50,11 +50,20 @@ PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, 
 /// unless length control).
 double winch_jump(const Model& m, const PhysicalState& s, double t) {
   if (m.winch.mode != Winch::Mode::Imposed) return 0;
-  return winch_kinematics(m.winch, t).rate - element_length_rate(s, 0);
+  const double rate = elastic_winch(m) ? s.top_unstretched_rate : element_length_rate(s, 0);
+  return winch_kinematics(m.winch, t).rate - rate;
+}
+
+/// Velocity jump of the material at the sheave for a pay-out speed jump dL:
+/// dL e_1, or (l_1/L_1) dL e_1 over an elastic top element [m/s, R_g].
+Vec3 sheave_jump(const Model& m, const PhysicalState& s, double dL) {
+  if (!elastic_winch(m)) return dL * s.e[0];
+  return s.length_of(m, 0) / s.top_unstretched * dL * s.e[0];
 }
 
 /// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body],
-/// then with a winch [l_1, l_1'], then, when the cable has elastic elements, [l_1..l_n, l'_1..l'_n],
+/// then with a winch [l_1, l_1'] (over an elastic top element: [L_1, L_1'], the paid-out
+/// unstretched length), then, when the cable has elastic elements, [l_1..l_n, l'_1..l'_n],
 /// then per depth controller (bodies in order, surfaces in order) its integral and deflection.
 class DefaultSystem final : public System {
  public:
@@ -62,6 +71,7 @@ class DefaultSystem final : public System {
       : model_(m), ws_(m), s_(PhysicalState::hanging(m)), jws_(m), js_(s_), iw_(m) {
     n_ = m.cable.n();
     winch_ = m.winch.active() && n_ > 0;
+    elastic_top_ = elastic_winch(m);
     lengths_ = lengths_in_state(m);
     for (const Body& b : m.bodies) controls_ += static_cast<std::size_t>(control_count(b));
     size_ = control_offset(controls_);
@@ -90,7 +100,8 @@ class DefaultSystem final : public System {
       y[o] = q.w(), y[o + 1] = q.x(), y[o + 2] = q.y(), y[o + 3] = q.z();
       set3(y, o + 4, s.bodies[b].w);
     }
-    if (winch_) y[winch_offset()] = element_length(model_, s, 0), y[winch_offset() + 1] = element_length_rate(s, 0);
+    if (elastic_top_) y[winch_offset()] = s.top_unstretched, y[winch_offset() + 1] = s.top_unstretched_rate;
+    else if (winch_) y[winch_offset()] = element_length(model_, s, 0), y[winch_offset() + 1] = element_length_rate(s, 0);
     if (lengths_) {
       const std::size_t o = length_offset();
       for (int k = 0; k < n_; ++k) {
@@ -116,7 +127,8 @@ class DefaultSystem final : public System {
     impose_winch(tl, s_);
     forward_dynamics(model_, s_, tl, ws_);
     dy.resize(size_);
-    if (winch_) dy[winch_offset()] = s_.length_rate[0], dy[winch_offset() + 1] = ws_.acc.top_length_acc;
+    if (elastic_top_) dy[winch_offset()] = s_.top_unstretched_rate, dy[winch_offset() + 1] = ws_.acc.top_length_acc;
+    else if (winch_) dy[winch_offset()] = s_.length_rate[0], dy[winch_offset() + 1] = ws_.acc.top_length_acc;
     // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
     set3(dy, 0, s_.v0);
     set3(dy, 3, ws_.acc.a0);
@@ -177,11 +189,18 @@ class DefaultSystem final : public System {
     if (!at_max && !at_min) return;
     l = (at_max ? model_.winch.max_length : model_.winch.min_length) - fixed_length_;
     PhysicalState s = physical(y);
-    const Vec3 dv = -rate * s.e[0];
+    const Vec3 dv = -sheave_jump(model_, s, rate);
     tow_velocity_jump(model_, s, dv, ws_);
     for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws_.acc.alpha[k];
     for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws_.acc.alpha_b[b];
-    s.length_rate[0] = 0;
+    if (elastic_top_) {
+      // The elements' stretch rates jump too; l_1' by the sheave's jump besides.
+      for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws_.acc.length_acc[k];
+      s.length_rate[0] += dv.dot(s.e[0]);
+      s.top_unstretched_rate = 0;
+    } else {
+      s.length_rate[0] = 0;
+    }
     y = initial(s, t);
   }
 
@@ -198,10 +217,17 @@ class DefaultSystem final : public System {
     // speed is a jump dl' e_1 of the top material's velocity.
     PhysicalState s = physical(y);
     const double dl = winch_ ? winch_jump(model_, s, t) : 0.0;
-    const Vec3 dv = tow_jump(model_, t) + (winch_ ? Vec3(dl * s.e[0]) : Vec3::Zero());
+    const Vec3 dv = tow_jump(model_, t) + (winch_ ? Vec3(sheave_jump(model_, s, dl)) : Vec3::Zero());
     if (dv.norm() == 0) return 0;
+    const Vec3 dsheave = winch_ ? Vec3(sheave_jump(model_, s, dl)) : Vec3::Zero();
     s = jumped(model_, s, dv, t, ws_);
-    if (winch_ && model_.winch.mode == Winch::Mode::Imposed) s.length_rate[0] = winch_kinematics(model_.winch, t).rate;
+    if (elastic_top_ && model_.winch.mode == Winch::Mode::Imposed) {
+      // l_1' = (d_1' relative to the sheave's material) + the sheave's pay-out.
+      s.length_rate[0] += dsheave.dot(s.e[0]);
+      s.top_unstretched_rate = winch_kinematics(model_.winch, t).rate;
+    } else if (winch_ && model_.winch.mode == Winch::Mode::Imposed) {
+      s.length_rate[0] = winch_kinematics(model_.winch, t).rate;
+    }
     y = initial(s, t);
     return dv.norm();
   }
@@ -231,11 +257,11 @@ class DefaultSystem final : public System {
       // dq = 1/2 (0, rot) q  =>  rot = 2 vec(dq q^-1).
       rhs_.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * js_.bodies[b].q.conjugate()).vec();
     }
-    // Lengths' rows (elastic elements; a winch's top length keeps W = I).
+    // Lengths' rows (elastic elements; the winch's L_1, L_1' keep W = I).
     if (lengths_) {
       const std::size_t o = length_offset();
       for (int i = 0; i < n_; ++i) {
-        const bool el = is_elastic(model_.cable.elements[static_cast<std::size_t>(i)]) && !(winch_ && i == 0);
+        const bool el = is_elastic(model_.cable.elements[static_cast<std::size_t>(i)]);
         rhs_.dl[i] = el ? r[o + i] : 0.0;
         rhs_.dlr[i] = el ? r[o + n_ + i] : 0.0;
       }
@@ -256,7 +282,7 @@ class DefaultSystem final : public System {
       // k_l' = r_l' + z_l, k_l = r_l + hg k_l' (elastic elements; z_l = 0 else).
       const std::size_t o = length_offset();
       for (int i = 0; i < n_; ++i) {
-        if (!is_elastic(model_.cable.elements[static_cast<std::size_t>(i)]) || (winch_ && i == 0)) continue;
+        if (!is_elastic(model_.cable.elements[static_cast<std::size_t>(i)])) continue;
         const double klr = r[o + n_ + i] + iw_.zl[i];
         k[o + n_ + i] = klr;
         k[o + i] = r[o + i] + hg * klr;
@@ -297,7 +323,8 @@ class DefaultSystem final : public System {
       s.bodies[b].q = Quat(y[o], y[o + 1], y[o + 2], y[o + 3]).normalized();
       s.bodies[b].w = CMap3(&y[o + 4]);
     }
-    if (winch_) s.length[0] = y[winch_offset()], s.length_rate[0] = y[winch_offset() + 1];
+    if (elastic_top_) s.top_unstretched = y[winch_offset()], s.top_unstretched_rate = y[winch_offset() + 1];
+    else if (winch_) s.length[0] = y[winch_offset()], s.length_rate[0] = y[winch_offset() + 1];
     if (lengths_) {
       const std::size_t o = length_offset();
       for (int k = 0; k < n_; ++k) {
@@ -311,6 +338,11 @@ class DefaultSystem final : public System {
   void impose_winch(double t, PhysicalState& s) const {
     if (!winch_ || model_.winch.mode != Winch::Mode::Imposed) return;
     const WinchKinematics k = winch_kinematics(model_.winch, t);
+    if (elastic_top_) {
+      s.top_unstretched = k.length - fixed_length_;
+      s.top_unstretched_rate = k.rate;
+      return;
+    }
     s.length[0] = k.length - fixed_length_;
     s.length_rate[0] = k.rate;
   }
@@ -363,6 +395,7 @@ class DefaultSystem final : public System {
   bool lengths_ = false;  // the state carries element lengths and rates
   std::size_t size_ = 0;
   bool winch_ = false;       // the state carries the winch's l_1, l_1'
+  bool elastic_top_ = false; // ... as L_1, L_1' of an elastic top element (l_1, l_1' among the lengths)
   double fixed_length_ = 0;  // deployed length but l_1 [m]
 };
 

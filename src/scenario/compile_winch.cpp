@@ -74,14 +74,16 @@ void check_winch(const ScenarioSpec& s, Diagnostics& d) {
   if (s.simulation.formulation.value == "paper")
     report_at(s.simulation.formulation.where, d,
               "the paper formulation has a fixed cable length: winch: needs formulation: default");
-  // An elastic cable: EA given for the whole cable or for any section.
-  if (s.cable.axial_stiffness.given)
-    report_at(w.where, d, "not supported with an elastic cable (axial_stiffness at " +
-                              s.cable.axial_stiffness.where.path + ")");
-  for (const SectionSpec& sec : s.cable.sections)
-    if (sec.axial_stiffness.given)
-      report_at(w.where, d, "not supported with an elastic cable (axial_stiffness at " +
-                                sec.axial_stiffness.where.path + ")");
+  // An elastic cable: the winch pays out into an elastic top element (its
+  // unstretched length L_1 is the winch's coordinate). A rigid top section
+  // over elastic ones is not supported (its l_1 would be both).
+  const bool top_elastic =
+      s.cable.axial_stiffness.given || (!s.cable.sections.empty() && s.cable.sections.front().axial_stiffness.given);
+  if (!top_elastic)
+    for (const SectionSpec& sec : s.cable.sections)
+      if (sec.axial_stiffness.given)
+        report_at(w.where, d, "the top section must be elastic when another section is (axial_stiffness at " +
+                                  sec.axial_stiffness.where.path + ")");
   if (w.tension.given && s.tow.mode.value == "force")
     report_at(w.tension.where, d, "a tension-controlled winch needs tow.mode: motion (tow.mode is force)");
   if (s.initial.kind.value == "steady" && w.rate_given && !w.rate.empty() && w.rate.front().values[1] != 0 &&

@@ -31,7 +31,14 @@ constexpr double kMinLength = 0.05;
 /// After an accepted step at t: slack episodes and peak tensions of an elastic cable.
 void track_elastic(const Model& model, const System& sys, const StateVector& y, double t, RunStats& stats) {
   if (!lengths_in_state(model)) return;
-  const PhysicalState s = sys.physical(y);
+  PhysicalState s = sys.physical(y);
+  if (elastic_winch(model)) {
+    // The winch's top element at the strain l_1/L_1 of the model's L:
+    // equivalent length and rate (its pay-out's damping term left out).
+    const double scale = model.cable.elements[0].length / s.top_unstretched;
+    s.length[0] *= scale;
+    s.length_rate[0] *= scale;
+  }
   stats.slack.update(model, s.length, s.length_rate, t);
 }
 
@@ -121,7 +128,7 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
   out.tow_force = ws.acc.tow_force;
   out.deployed_length = 0;
   for (double L : ws.L) out.deployed_length += L;
-  out.payout_speed = ws.winch ? element_length_rate(s, 0) : 0.0;
+  out.payout_speed = !ws.winch ? 0.0 : elastic_winch(model) ? s.top_unstretched_rate : element_length_rate(s, 0);
   // A node: position, velocity, force through it onto the part below, that
   // force along the adjacent element el's axis e (tension pulls the part
   // below back along -e), el's strain and, with breaking loads, the node's
@@ -135,7 +142,7 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
     out.tension.push_back(f.norm());
     out.axial.push_back(-f.dot(s.e[el]));
     out.strain.push_back(is_elastic(model.cable.elements[el])
-                             ? element_strain(model.cable.elements[el], s.length_of(model, el))
+                             ? element_strain(current_element(model, ws, el), s.length_of(model, el))
                              : 0.0);
     if (strength) {
       const auto sec = static_cast<std::size_t>(els[el].section);
@@ -225,11 +232,14 @@ std::string check_state(const Model& model, const System& sys, const StateVector
     if (s.w[k].norm() > kMaxRate)
       return "element " + std::to_string(k + 1) + ": angular velocity diverged (" + std::to_string(s.w[k].norm()) +
              " rad/s); reduce simulation.time_step or use an adaptive integrator";
-  for (std::size_t k = 0; k < s.length.size(); ++k)
-    if (is_elastic(model.cable.elements[k]) && !(s.length[k] > kMinLength * model.cable.elements[k].length))
+  for (std::size_t k = 0; k < s.length.size(); ++k) {
+    // Unstretched length: the model's, or the winch's paid-out L_1.
+    const double L = k == 0 && elastic_winch(model) ? s.top_unstretched : model.cable.elements[k].length;
+    if (is_elastic(model.cable.elements[k]) && !(s.length[k] > kMinLength * L))
       return "element " + std::to_string(k + 1) + ": a slack element shortened to " +
-             std::to_string(s.length[k] / model.cable.elements[k].length * 100) +
+             std::to_string(s.length[k] / L * 100) +
              " % of its length (the cable folded on itself); reduce simulation.time_step or refine the cable";
+  }
   for (std::size_t b = 0; b < s.bodies.size(); ++b)
     if (s.bodies[b].w.norm() > kMaxRate)
       return "body " + model.bodies[b].name +
@@ -371,7 +381,9 @@ void winch_event_at(Chain& c, StateVector& y, double t, RunStats& stats) {
       break;
     case WinchEvent::Remove: {
       const Winch& w = c.model->winch;
-      const double rate = w.mode == Winch::Mode::Imposed ? winch_kinematics(w, t).rate : element_length_rate(s, 0);
+      const double rate = w.mode == Winch::Mode::Imposed ? winch_kinematics(w, t).rate
+                          : elastic_winch(*c.model)  ? s.top_unstretched_rate
+                                                     : element_length_rate(s, 0);
       Removal r = remove_top(*c.model, s, t, rate);
       m = std::make_unique<Model>(std::move(r.model));
       s2 = std::move(r.state);

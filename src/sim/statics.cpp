@@ -721,7 +721,9 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
   if (model.winch.active()) {
     Model held = model;
     held.winch = Winch{};
-    return solve_statics(held, V, stop_flag);
+    StaticsResult r = solve_statics(held, V, stop_flag);
+    if (elastic_winch(model)) r.state.top_unstretched = model.cable.elements.front().length;  // L_1
+    return r;
   }
   SteadyProblem p(model, V);
   const Model elastic = p.model;  // with the steady tow, before its elements are made rigid

@@ -25,12 +25,51 @@ double energy(const Model& m, const PhysicalState& s, Workspace& ws) {
   return kinetic_energy(m, s, ws);
 }
 
+/// Model without element 2 (the top section's first below the winch's).
+Model without_second(const Model& model) {
+  Model m = model;
+  m.cable.elements.erase(m.cable.elements.begin() + 1);
+  if (!m.cable.sections.empty()) {
+    m.cable.sections[0].elements -= 1;
+    m.cable.sections[0].length -= model.winch.nominal_length;
+  }
+  shift_joints(m, -1);
+  return m;
+}
+
 }  // namespace
+
+PhysicalState split_elastic_state(const Model& model, const PhysicalState& s) {
+  PhysicalState out = s;
+  const double Le = model.winch.nominal_length;
+  const double Lu = s.top_unstretched, Lr = s.top_unstretched_rate;  // L_1 [m], L_1' [m/s]
+  const double l = element_length(model, s, 0), lr = element_length_rate(s, 0);
+  out.length.assign(s.e.size(), 0.0);
+  out.length_rate.assign(s.e.size(), 0.0);
+  for (std::size_t k = 0; k < s.e.size(); ++k)
+    out.length[k] = element_length(model, s, k), out.length_rate[k] = element_length_rate(s, k);
+  // The new joint is the material point at fraction f = (L_1 - L_e)/L_1 of
+  // the top element: the upper part keeps L_1 - L_e of the material, the
+  // lower one L_e, both at the old strain; the new joint keeps its material
+  // velocity v_T + f (v_{P_1} - v_T), v_T = v_0 + (l/L_1) L_1' e_1.
+  const double f = (Lu - Le) / Lu;
+  const double l_up = f * l;
+  const double lr_up = l / Lu * Lr * (1 - f) + f * lr;
+  out.e.insert(out.e.begin() + 1, s.e[0]);
+  out.w.insert(out.w.begin() + 1, s.w[0]);
+  out.length[0] = l_up;
+  out.length_rate[0] = lr_up;
+  out.length.insert(out.length.begin() + 1, l - l_up);
+  out.length_rate.insert(out.length_rate.begin() + 1, lr - lr_up);
+  out.top_unstretched = Lu - Le;
+  return out;
+}
 
 WinchEvent winch_event(const Model& model, const PhysicalState& s) {
   const Winch& w = model.winch;
   if (!w.active() || model.cable.elements.empty()) return WinchEvent::None;
-  const double l = element_length(model, s, 0);
+  // The paid-out material decides: l_1, or L_1 over an elastic top element.
+  const double l = elastic_winch(model) ? s.top_unstretched : element_length(model, s, 0);
   if (l > w.split_at * w.nominal_length) return WinchEvent::Split;
   const bool more = !model.cable.sections.empty() ? model.cable.sections[0].elements > 1 : model.cable.n() > 1;
   if (l < w.remove_at * w.nominal_length && more) return WinchEvent::Remove;
@@ -52,6 +91,7 @@ Model split_model(const Model& model) {
 }
 
 PhysicalState split_state(const Model& model, const PhysicalState& s) {
+  if (elastic_winch(model)) return split_elastic_state(model, s);
   PhysicalState out = s;
   const double Le = model.winch.nominal_length;
   const double l = element_length(model, s, 0);
@@ -70,6 +110,7 @@ PhysicalState split_state(const Model& model, const PhysicalState& s) {
 
 Removal remove_top(const Model& model, const PhysicalState& s, double t, double rate) {
   (void)t;
+  if (elastic_winch(model)) return remove_elastic_top(model, s, rate);
   Removal r;
   Workspace ws_old(model);
   const double E_old = energy(model, s, ws_old);
@@ -119,6 +160,40 @@ Removal remove_top(const Model& model, const PhysicalState& s, double t, double 
   const Vec3 v_before = s.v0 + r_star * e, v_after = s.v0 + rate * e;
   r.impulse_work = r.impulse.dot(0.5 * (v_before + v_after));
   r.energy_lost = E_old - energy(r.model, n, ws);
+  return r;
+}
+
+Removal remove_elastic_top(const Model& model, const PhysicalState& s, double rate) {
+  Removal r;
+  Workspace ws_old(model);
+  const double E_old = energy(model, s, ws_old);
+  const Element& el = ws_old.top;
+  r.removed_energy = 0.5 * ws_old.vG[0].dot(ws_old.Mt[0] * ws_old.vG[0]) +
+                     0.5 * (el.inertia + el.added_inertia) * s.w[0].squaredNorm();
+  // The next element takes in the top one's material (L_1 + L_2) and spans
+  // the sheave P_0 to its own bottom joint P_2, which keeps its position and
+  // velocity; l and l' are free coordinates here: no impulse.
+  const Vec3 d = ws_old.P[2] - ws_old.P[0];
+  const double l = d.norm();  // [m]
+  const Vec3 e = d / l;
+  const Vec3 dv2 = ws_old.vP[2] - s.v0;  // P_2's velocity relative to the sheave [m/s]
+  const double lr = dv2.dot(e);
+  r.model = without_second(model);
+  PhysicalState& n = r.state;
+  n = s;
+  n.e.erase(n.e.begin());
+  n.w.erase(n.w.begin());
+  n.length.erase(n.length.begin());
+  n.length_rate.erase(n.length_rate.begin());
+  n.e[0] = e;
+  n.w[0] = e.cross(dv2 - lr * e) / l;
+  n.length[0] = l;
+  n.length_rate[0] = lr;
+  n.top_unstretched = s.top_unstretched + model.cable.elements[1].length;
+  n.top_unstretched_rate = rate;
+  Workspace ws(r.model);
+  r.energy_before_impulse = energy(r.model, n, ws);
+  r.energy_lost = E_old - r.energy_before_impulse;
   return r;
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "towsim/dynamics/state.hpp"
 #include "towsim/scenario/scenario.hpp"
 #include "../support/scenario_files.hpp"
 
@@ -45,11 +46,21 @@ TEST_F(WinchKeys, RefusedCombinations) {
                                 at("14:13: winch.split_at: split_at (1.05) must be above 1 + remove_at (0.1) so that a split element is not removed at once"));
 }
 
-// An elastic cable is refused whether EA is given for the whole cable or
-// for a section (the winch's top element is inextensible in this version).
-TEST_F(WinchKeys, ElasticCableRefused) {
+// An elastic cable compiles: the winch pays out into its elastic top
+// element. A rigid top section over an elastic one is refused (its l_1
+// would be both the winch's length and a stretch state).
+TEST_F(WinchKeys, ElasticCableCompiles) {
   const auto s = load(kCable + "  axial_stiffness: 1.0e7\n" + kSim + "  integrator: rosenbrock\nwinch:\n  rate: 1\n");
-  EXPECT_EQ(s.diags.str(), at("11:3: winch: not supported with an elastic cable (axial_stiffness at cable.axial_stiffness)"));
+  ASSERT_EQ(s.diags.str(), "");
+  ASSERT_TRUE(s.model.has_value());
+  EXPECT_TRUE(towsim::elastic_winch(*s.model));
+  const auto t = load(
+      "cable:\n  mass_per_length: 1.5\n  diameter: 0.019\n  sections:\n"
+      "    - {length: 50, elements: 5}\n"
+      "    - {length: 20, elements: 4, axial_stiffness: 2e6}\n" +
+      kSim + "  integrator: rosenbrock\nwinch:\n  rate: 1\n");
+  EXPECT_EQ(t.diags.str(), at("11:3: winch: the top section must be elastic when another section is "
+                              "(axial_stiffness at cable.sections.1.axial_stiffness)"));
 }
 
 TEST_F(WinchKeys, ValidRateCompiles) {

@@ -31,6 +31,16 @@ inline double element_tension(const Element& el, double l, double l_rate) {
   return T > 0 ? T : 0.0;
 }
 
+/// Tension of the winch's elastic top element (unstretched length
+/// el.length = L_1 growing at L_rate = L_1' [m/s]): as element_tension, the
+/// damping on the strain rate (l' - (l/L_1) L_1') / L_1 [N].
+inline double paid_out_tension(const Element& el, double l, double l_rate, double L_rate) {
+  const double strain = element_strain(el, l);
+  if (strain <= 0) return 0.0;
+  const double T = el.axial_stiffness * strain + el.axial_damping * (l_rate - l / el.length * L_rate) / el.length;
+  return T > 0 ? T : 0.0;
+}
+
 /// Local axial stiffness dT/dl of an element at length l [N/m]: EA / L
 /// while taut, 0 when slack or inextensible. The stiff part of the elastic
 /// element's force, for an implicit integrator's local linearisation
@@ -78,5 +88,11 @@ void elastic_backward(const Vec3& e, double l, const Mat3& Mt, const Vec3& F, co
 /// (e, w, l, l_rate: the element's state) and returns d'' [m/s^2].
 Vec3 elastic_forward(const ElasticWork& ew, const Vec3& e, const Vec3& w, double l, double l_rate, const Vec3& a,
                      Vec3& alpha, double& l_acc);
+
+/// The same for the winch's top element, whose top is the material at the
+/// sheave (acceleration a) rather than the joint P_0: `shift` = a - a_0
+/// enters the decomposition d_1'' = (a + d'') - a_0 into l'' and alpha.
+Vec3 elastic_forward(const ElasticWork& ew, const Vec3& e, const Vec3& w, double l, double l_rate, const Vec3& a,
+                     const Vec3& shift, Vec3& alpha, double& l_acc);
 
 }  // namespace towsim

@@ -29,6 +29,11 @@ struct PhysicalState {
   // changes them. Empty = the model's lengths, at rest.
   std::vector<double> length;       // l_k [m]
   std::vector<double> length_rate;  // l_k' [m/s] (0 for an inextensible element)
+  // Winch over an elastic top element (elastic_winch): the unstretched
+  // length of material paid out into element 1 and its rate, the winch's
+  // coordinate (length[0] is then the element's stretched length l_1).
+  double top_unstretched = 0;       // L_1 [m]
+  double top_unstretched_rate = 0;  // L_1', the pay-out speed of unstretched cable [m/s]
 
   /// Length of element i (0-based): length[i], or the element's own when the
   /// state carries no lengths [m].
@@ -100,8 +105,10 @@ struct Workspace {
   std::vector<double> L;        // current length of element k (index k-1) [m]
   // Winch: the top element at its current length (scaled_element), and the
   // velocity of its material at the sheave, v_0 + l' e_1.
+  // Over an elastic top element: scaled to the paid-out L_1, and the
+  // material leaves the sheave at v_0 + (l_1/L_1) L_1' e_1.
   bool winch = false;           // true when element 1 is the winch's [-]
-  Element top{};                // element 1 scaled to l_1 [SI]
+  Element top{};                // element 1 scaled to l_1 (elastic: to L_1) [SI]
   Vec3 v_top = Vec3::Zero();    // [m/s, R_g]
   // Loads on each element at G_k, added-mass acceleration terms excluded
   std::vector<Vec3> F, Mom;     // force [N] and moment about G_k [N m], R_g
@@ -133,6 +140,13 @@ struct Workspace {
   /// True when this workspace was sized for `model`'s chain.
   bool fits(const Model& model) const;
 };
+
+/// True when the winch pays out into an elastic top element: its
+/// unstretched length L_1 is the winch's coordinate, its stretched length
+/// l_1 the element's own (docs/theory.md "Winch", "Elastic elements").
+inline bool elastic_winch(const Model& model) {
+  return model.winch.active() && !model.cable.elements.empty() && is_elastic(model.cable.elements.front());
+}
 
 /// True when the model's state carries element lengths and their rates
 /// (an elastic element anywhere).

@@ -29,6 +29,12 @@ Model split_model(const Model& model);
 /// momentum are unchanged.
 PhysicalState split_state(const Model& model, const PhysicalState& s);
 
+/// split_state over an elastic top element (unstretched L_1, stretched
+/// l_1): the upper element keeps L_1 - L_e of the material, the new one L_e,
+/// both at the old strain (l_1 splits in proportion, unstretched length is
+/// conserved exactly); the new joint keeps its material velocity.
+PhysicalState split_elastic_state(const Model& model, const PhysicalState& s);
+
 /// Result of removing the top element.
 struct Removal {
   Model model;                // the model with one element less
@@ -47,5 +53,12 @@ struct Removal {
 /// pay-out speed is then brought back to `rate` (the schedule's, or the
 /// old one) by an impulse through the chain (tow_velocity_jump).
 Removal remove_top(const Model& model, const PhysicalState& s, double t, double rate);
+
+/// remove_top over an elastic top element: the next element takes in its
+/// material (L_1 + L_2, unstretched length conserved exactly) and spans P_0
+/// to P_2 (l_1 = |P_2 - P_0|: the strain becomes the two elements' average
+/// when collinear); every joint below keeps its position and velocity and
+/// the pay-out speed its value `rate`: no impulse (l_1' is free).
+Removal remove_elastic_top(const Model& model, const PhysicalState& s, double rate);
 
 }  // namespace towsim

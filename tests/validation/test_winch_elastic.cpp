@@ -1,0 +1,219 @@
+// A winch paying out an elastic cable (docs/theory.md "Winch", §5.4): the
+// winch sets the unstretched length L_1 of the top element, whose stretched
+// length l_1 is its own state. Checks: the split and the removal keep the
+// material (unstretched length, exactly), the strain and the velocities;
+// the snap of a winch stopped dead (the impedance step c_p sqrt(EA m') at
+// the wave speed sqrt(EA/m')) with RK4 and Rosenbrock-W; and a held winch's
+// hanging cable and body at the closed-form stretch int T/EA ds.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "towsim/dynamics/dynamics.hpp"
+#include "towsim/sim/simulate.hpp"
+#include "towsim/sim/winch_events.hpp"
+#include "../support/models.hpp"
+
+namespace towsim {
+namespace {
+
+/// A vertical cable of n elements of Le under a fixed tow point, every
+/// element elastic (EA [N], damping c_a [N s]), in a fluid of density rho,
+/// with an imposed-length winch (schedule set by the caller).
+Model elastic_winch_model(int n, double Le, double mpl, double EA, double ca, double rho, double cd = 0) {
+  testing::CableSpec c;
+  c.n = n;
+  c.length = n * Le;
+  c.mass_per_length = mpl;
+  c.diameter = 0.0173;
+  c.cd = cd;
+  Model m = testing::cable_model(c, rho);
+  for (Element& el : m.cable.elements) el.axial_stiffness = EA, el.axial_damping = ca;
+  m.cable.sections.push_back({"cable", 0, n, n * Le, 0});
+  m.winch.mode = Winch::Mode::Imposed;
+  m.winch.nominal_length = Le;
+  m.winch.min_length = Le;
+  return m;
+}
+
+/// Unstretched length of the chain of state s: the winch's L_1 and the
+/// model's lengths below it [m].
+double unstretched(const Model& m, const PhysicalState& s) {
+  double L = s.top_unstretched;
+  for (std::size_t k = 1; k < m.cable.elements.size(); ++k) L += m.cable.elements[k].length;
+  return L;
+}
+
+// --- 1. Events keep the material -----------------------------------------------
+//
+// Split: the new joint is the material point at fraction (L_1 - L_e)/L_1 of
+// the top element; both parts keep the old strain and strain rate, every
+// joint below keeps its position and velocity, and the material velocity
+// field is unchanged (the new joint moves as that material point did).
+// Removal: the next element takes in the top one's material (L_1 + L_2).
+TEST(ElasticWinch, SplitAndRemovalKeepMaterialStrainAndVelocities) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  Model m = elastic_winch_model(4, 10, 1.12, 1e6, 500, 1025, 1.2);
+  m.winch.mode = Winch::Mode::Tension;  // L_1, L_1' free state
+  m.winch.tension = 2000;
+  m.winch.drum_inertia = 50;
+  PhysicalState s = testing::random_state(m, rng);
+  s.top_unstretched = 16.0;  // past split_at L_e = 15 m
+  s.top_unstretched_rate = 0.8;
+  for (std::size_t k = 0; k < s.length.size(); ++k) {
+    const double L = k == 0 ? s.top_unstretched : m.cable.elements[k].length;
+    s.length[k] = L * (1 + 0.002 * (1.5 + U(rng)));
+    s.length_rate[k] = 0.05 * U(rng);
+  }
+  ASSERT_EQ(winch_event(m, s), WinchEvent::Split);
+  const Model m2 = split_model(m);
+  const PhysicalState s2 = split_state(m, s);
+  // Round-off: sums of a few lengths of 10 m.
+  constexpr double kTol = 1e-13;
+  EXPECT_NEAR(unstretched(m2, s2), unstretched(m, s), kTol * 50);
+  EXPECT_NEAR(s2.top_unstretched, 6.0, kTol * 50);
+  Workspace w1(m), w2(m2);
+  forward_dynamics(m, s, 0.0, w1);
+  forward_dynamics(m2, s2, 0.0, w2);
+  // Strain and tension of both parts: the old element's.
+  const double strain = s.length[0] / s.top_unstretched - 1;
+  EXPECT_NEAR(s2.length[0] / s2.top_unstretched - 1, strain, kTol);
+  EXPECT_NEAR(s2.length[1] / m2.cable.elements[1].length - 1, strain, kTol);
+  EXPECT_NEAR(w2.elastic[0].T, w1.elastic[0].T, kTol * w1.elastic[0].T);
+  EXPECT_NEAR(w2.elastic[1].T, w1.elastic[0].T, kTol * w1.elastic[0].T);
+  // Joints below: same positions and velocities.
+  for (std::size_t k = 1; k < w1.P.size(); ++k) {
+    EXPECT_LT((w2.P[k + 1] - w1.P[k]).norm(), kTol * 50) << k;
+    EXPECT_LT((w2.vP[k + 1] - w1.vP[k]).norm(), kTol * 10) << k;
+  }
+  // The new joint moves as the material point at f = 6/16 did: linear field
+  // from the sheave's material v_T = v_0 + (l_1/L_1) L_1' e_1 to P_1's.
+  const double f = 6.0 / 16.0;
+  const Vec3 v_mat = (1 - f) * w1.v_top + f * w1.vP[1];
+  EXPECT_LT((w2.vP[1] - v_mat).norm(), kTol * 10);
+  EXPECT_LT((w2.v_top - w1.v_top).norm(), kTol * 10);
+
+  // Removal: shrink the top element below remove_at L_e and remove it.
+  PhysicalState r = s2;
+  r.top_unstretched = 0.5;
+  r.length[0] = 0.5 * (1 + strain);
+  ASSERT_EQ(winch_event(m2, r), WinchEvent::Remove);
+  Workspace w3(m2);
+  forward_dynamics(m2, r, 0.0, w3);
+  const Removal rem = remove_top(m2, r, 0.0, r.top_unstretched_rate);
+  EXPECT_NEAR(unstretched(rem.model, rem.state), unstretched(m2, r), kTol * 50);
+  EXPECT_EQ(rem.state.top_unstretched, 0.5 + m2.cable.elements[1].length);
+  EXPECT_EQ(rem.impulse.norm(), 0.0);
+  Workspace w4(rem.model);
+  forward_dynamics(rem.model, rem.state, 0.0, w4);
+  for (std::size_t k = 1; k < w4.P.size(); ++k) {
+    EXPECT_LT((w4.P[k] - w3.P[k + 1]).norm(), kTol * 50) << k;
+    EXPECT_LT((w4.vP[k] - w3.vP[k + 1]).norm(), kTol * 10) << k;
+  }
+}
+
+// --- 2. Snap: the winch stopped dead ----------------------------------------------
+//
+// A cable of 200 m (20 elements of 10 m, EA 1.27e7 N, m' = 1.12 kg/m in
+// vacuum: no drag, no added mass; along the axis there is none in water
+// either) hangs from a fixed sheave at its static stretch. The winch ramps
+// up to c_p = 1 m/s (over four fundamental periods: no ringing left), pays
+// out at c_p (one split) and stops dead at t_s = 7 s. The material
+// at the top stops: a tension step dT = c_p sqrt(EA m') (m' the mass per
+// unstretched length) runs down at c = sqrt(EA/m') per unit unstretched
+// length (the 1-D wave equation). Measured: the plateau of the top tension
+// before the reflection returns (2 L/c) and the half-height crossing at a
+// node at 80 % of the length.
+void snap(Integrator integ) {
+  const double Le = 10, mpl = 1.12, EA = 1.27e7, cp = 1.0, ts = 7.0;
+  // The ramp: four periods 4 L/c of the fixed-free cable's fundamental (its
+  // overtones: odd fractions of it), so that the waves its start excites are
+  // cancelled by those its end excites (a ramp of any other length leaves
+  // the cable ringing at ~ (c_p/t_r) L/c, 6 % of c_p for 1 s).
+  const double tr = 16 * 200.25 / std::sqrt(EA / mpl);
+  Model m = elastic_winch_model(20, Le, mpl, EA, 0, 0.0);
+  const double L0 = 200, Ls = L0 + 0.5 * cp * tr + cp * (ts - tr);  // deployed at the stop [m]
+  m.winch.schedule = {{0, L0, 0, cp / tr}, {tr, L0 + 0.5 * cp * tr, cp, 0}, {ts, Ls, 0, 0}};
+  const double c = std::sqrt(EA / mpl), Z = std::sqrt(EA * mpl), dT = cp * Z;
+  m.sim.integrator = integ;
+  m.sim.duration = ts + 1.5 * Ls / c;
+  // RK4: below its axial bound 0.8 L/c for the shortest top element (5 m after the split).
+  m.sim.time_step = 5e-4;
+  m.sim.tolerance = 1e-7;
+  m.sim.output_interval = 5e-4;
+  MemorySink sink;
+  const RunStats st = simulate(m, sink);
+  ASSERT_EQ(st.status, "ok") << st.message;
+  EXPECT_EQ(st.winch_splits, 1);
+  // The last sample before the stop: the tensions the step adds to.
+  std::size_t i0 = 0;
+  while (i0 + 1 < sink.samples.size() && sink.samples[i0 + 1].t < ts - 1e-9) ++i0;
+  const Sample& pre = sink.samples[i0];
+  // The probe: the node nearest 80 % of the deployed length.
+  std::size_t probe = 0;
+  for (std::size_t k = 0; k < pre.node_pos.size(); ++k)
+    if (std::abs(-pre.node_pos[k].z() - 0.8 * Ls) < std::abs(-pre.node_pos[probe].z() - 0.8 * Ls)) probe = k;
+  const double x_probe = -pre.node_pos[probe].z();  // stretched; strain < 2e-4 [m]
+  double plateau = 0, t_cross = -1;
+  int plateau_n = 0;
+  for (std::size_t i = i0 + 1; i < sink.samples.size(); ++i) {
+    const Sample& s = sink.samples[i];
+    const double tau = s.t - ts;
+    if (tau > 0.2 * Ls / c && tau < 1.4 * Ls / c) plateau += s.tension[0] - pre.tension[0], ++plateau_n;
+    if (t_cross < 0 && s.tension[probe] - pre.tension[probe] > 0.5 * dT) t_cross = tau;
+  }
+  ASSERT_GT(plateau_n, 50);
+  plateau /= plateau_n;
+  std::printf("%s: top step %.1f N (impedance %.1f N); probe at %.1f m crossing %.5f s (x/c = %.5f s)\n",
+              integ == Integrator::RK4 ? "rk4" : "rosenbrock", plateau, dT, x_probe, t_cross, x_probe / c);
+  // The bound: 5 %. Mean over the plateau (the discrete chain's
+  // dispersion rings behind the front) and the front's half-height crossing.
+  EXPECT_NEAR(plateau, dT, 0.05 * dT);
+  EXPECT_NEAR(t_cross, x_probe / c, 0.05 * x_probe / c);
+}
+
+TEST(ElasticWinch, SnapWhenTheWinchStopsRk4) { snap(Integrator::RK4); }
+TEST(ElasticWinch, SnapWhenTheWinchStopsRosenbrock) { snap(Integrator::Rosenbrock); }
+
+// --- 3. Held winch: the static stretch ------------------------------------------
+//
+// 100 m of cable (EA 1e6 N, in water) with a 300 kg sphere, paid out to
+// 120 m (one split... two: 20 m of 10 m elements), then held; axial damping
+// settles the stretch. Closed form: T(s) = W_b + w (L - s),
+// stretch = int_0^L T/EA ds = (W_b L + w L^2/2) / EA (w, W_b apparent
+// weights), L the paid-out unstretched length = the schedule's.
+TEST(ElasticWinch, HeldWinchHangsAtTheClosedFormStretch) {
+  const double Le = 10, mpl = 1.12, EA = 1e6, ca = 2e5, rho = 1025;
+  Model m = elastic_winch_model(10, Le, mpl, EA, ca, rho, 1.2);
+  testing::add_sphere_body(m, 300.0, 0.3);
+  // Up to 1 m/s in 1 s, 19 s at it, down in 1 s: 120 m; held to 60 s.
+  m.winch.schedule = {{0, 100, 0, 1}, {1, 100.5, 1, 0}, {20, 119.5, 1, -1}, {21, 120, 0, 0}};
+  m.sim.integrator = Integrator::Rosenbrock;
+  m.sim.tolerance = 1e-8;
+  m.sim.duration = 60;
+  m.sim.output_interval = 1;
+  MemorySink sink;
+  const RunStats st = simulate(m, sink);
+  ASSERT_EQ(st.status, "ok") << st.message;
+  EXPECT_EQ(st.winch_splits, 2);
+  const double L = 120, A = std::numbers::pi * 0.0173 * 0.0173 / 4, g = m.fluid.g;
+  const double w = (mpl - rho * A) * g;
+  const Body& b = m.bodies[0];
+  const double Wb = (b.mass - rho * b.displaced_volume) * g;
+  const double expected = (Wb * L + 0.5 * w * L * L) / EA;
+  const Sample& end = sink.samples.back();
+  const double stretch = end.deployed_length - L;
+  std::printf("held winch: stretch %.9f m, closed form %.9f m\n", stretch, expected);
+  // T is linear along the cable: the element-centre tensions integrate it
+  // exactly (midpoint rule), so what is left is the settling (damped by
+  // e^-80 over the 39 s held) and the integrator's tolerance (1e-8 relative
+  // on lengths of 100 m: 1e-6 m, 4e-6 of the stretch; 1e-10 m seen).
+  EXPECT_NEAR(stretch, expected, 1e-5 * expected);
+  EXPECT_NEAR(end.tow_force.z(), Wb + w * L, 1e-6 * (Wb + w * L));
+}
+
+}  // namespace
+}  // namespace towsim
