@@ -110,10 +110,7 @@ Simulation build_simulation(const SimulationSpec& s) {
   sim.duration = s.duration.value;
   sim.time_step = s.time_step.value;
   sim.output_interval = s.output_interval.value;
-  sim.integrator = s.integrator.value == "dopri5"        ? Integrator::DOPRI5
-                   : s.integrator.value == "cash_karp54" ? Integrator::CashKarp54
-                   : s.integrator.value == "rosenbrock"  ? Integrator::Rosenbrock
-                                                         : Integrator::RK4;
+  sim.integrator = integrator_of(s.integrator.value);
   sim.tolerance = s.tolerance.value;
   sim.max_step = s.max_step.value;
   sim.formulation = s.formulation.value == "paper" ? Formulation::Paper : Formulation::Default;
