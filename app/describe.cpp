@@ -197,17 +197,16 @@ void describe_winch(const Winch& w, std::ostream& out) {
 }
 
 void describe_run(const Model& m, std::ostream& out) {
-  const char* integ[] = {"rk4", "dopri5", "cash_karp54", "rosenbrock"};
   const auto& s = m.sim;
   const char* init[] = {"hanging", "steady", "direction"};
   out << "initial: " << init[static_cast<int>(m.initial.kind)];
   if (m.initial.kind == Initial::Kind::Direction) out << " " << vec(m.initial.direction);
   out << "\nsimulation\n";
-  line(out, "integrator", std::string(integ[static_cast<int>(s.integrator)]) +
+  line(out, "integrator", std::string(integrator_key(s.integrator)) +
                               (s.integrator == Integrator::RK4 ? "" : ", tolerance " + fmt_num(s.tolerance) +
                                                                            ", max step " + fmt_num(s.max_step) + " s"));
   line(out, "formulation", s.formulation == Formulation::Paper ? "paper" : "default");
-  line(out, "time step", fmt_num(s.time_step) + " s");
+  line(out, s.integrator == Integrator::RK4 ? "time step" : "first step", fmt_num(s.time_step) + " s");
   line(out, "duration", fmt_num(s.duration) + " s");
   const long samples = static_cast<long>(std::floor(s.duration / s.output_interval + 1e-9)) + 1;
   line(out, "output interval", fmt_num(s.output_interval) + " s (" + std::to_string(samples) + " samples" +

@@ -111,10 +111,7 @@ Simulation build_simulation(const SimulationSpec& s, bool winch) {
   sim.duration = s.duration.value;
   sim.time_step = s.time_step.value;
   sim.output_interval = s.output_interval.value;
-  sim.integrator = s.integrator.value == "dopri5"        ? Integrator::DOPRI5
-                   : s.integrator.value == "cash_karp54" ? Integrator::CashKarp54
-                   : s.integrator.value == "rosenbrock"  ? Integrator::Rosenbrock
-                                                         : Integrator::RK4;
+  sim.integrator = integrator_of(s.integrator.value);
   sim.tolerance = s.tolerance.value;
   // rosenbrock (L-stable, steps set by accuracy) is not bounded by the
   // default max_step; with a winch (events detected after each step) it is.

@@ -42,17 +42,6 @@ void track_elastic(const Model& model, const System& sys, const StateVector& y, 
   stats.slack.update(model, s.length, s.length_rate, t);
 }
 
-/// Name of an integrator as in the scenario key.
-const char* integrator_key(Integrator i) {
-  switch (i) {
-    case Integrator::RK4: return "rk4";
-    case Integrator::DOPRI5: return "dopri5";
-    case Integrator::CashKarp54: return "cash_karp54";
-    case Integrator::Rosenbrock: return "rosenbrock";
-  }
-  return "?";
-}
-
 /// RK4 only: compare the step with the stability limit at this sample. Beyond
 /// 0.9 times it (the estimate is within 10 % of the measured limits): a
 /// warning (once); beyond 1.5 times it: an error text (the run stops).

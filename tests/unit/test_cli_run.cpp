@@ -71,10 +71,12 @@ TEST_F(Cli, RunWritesTheThreeFiles) {
 
 TEST_F(Cli, Rk4StepNearItsStabilityLimitIsWarnedAbout) {
   // cable-tow: estimated rk4 limit ~0.21-0.22 s (docs/theory.md 6.4); 0.2 s
-  // is above 0.9 times it (but stable: the warning is conservative).
+  // is above 0.9 times it (but stable: the warning is conservative). rk4
+  // named: the example runs the default rosenbrock.
   const fs::path out = dir_ / "run";
   const CliResult r = run_towsim("run --example cable-tow --set simulation.duration=20 --set simulation.time_step=0.2 "
-                                 "--set simulation.write_nodes=false --out " + quoted(out));
+                                 "--set simulation.integrator=rk4 --set simulation.write_nodes=false --out " +
+                                 quoted(out));
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("towsim: warning: rk4 time_step 0.2 s is above 0.9 times the estimated stability limit"),
             std::string::npos) << r.out;

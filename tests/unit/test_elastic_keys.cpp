@@ -30,14 +30,19 @@ using towsim::testing::kSim;
 // fast root omega (zeta + sqrt(zeta^2 - 1)) = 1864 /s, h <= 2.7/1864 = 1.448 ms
 // (the undamped 5.50 ms would let a 3 ms step through, with wrong forces).
 TEST_F(ElasticKeys, OverdampedAxialModeShrinksTheRk4Bound) {
-  const auto bad = load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 1.0e5\n" + kSim + "  time_step: 0.003\n");
+  const auto bad = load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 1.0e5\n" + kSim +
+                        "  time_step: 0.003\n  integrator: rk4\n");
   EXPECT_EQ(bad.diags.str(), at("6:20: cable.axial_stiffness: with integrator: rk4, the axial wave (speed 2910 "
                                 "m/s over 20 m elements, axial damping 100000 N s) needs simulation.time_step <= "
                                 "0.00144 s (it is 0.003 s); use integrator: rosenbrock (implicit in the axial "
                                 "mode) or a smaller step"));
-  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 1.0e5\n" + kSim + "  time_step: 0.0014\n").ok());
+  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 1.0e5\n" + kSim +
+                   "  time_step: 0.0014\n  integrator: rk4\n").ok());
   // Light damping (zeta < 1) keeps the undamped bound.
-  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 2000\n" + kSim + "  time_step: 0.005\n").ok());
+  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 2000\n" + kSim +
+                   "  time_step: 0.005\n  integrator: rk4\n").ok());
+  // The default integrator (rosenbrock) has no such bound.
+  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 1.0e5\n" + kSim + "  time_step: 0.003\n").ok());
 }
 
 TEST_F(ElasticKeys, CableLevelAndSectionValuesReachTheElements) {
@@ -75,11 +80,12 @@ TEST_F(ElasticKeys, RefusalsNameTheKeyAndTheFix) {
                                   "only: an elastic cable needs formulation: default"));
   // 20 m elements, c = sqrt(1.27e7 / 1.5) = 2909.75 m/s: h <= 0.8 L / c = 5.4987 ms,
   // written rounded down to 3 digits (a value that passes).
-  const auto rk4 = load(kCable + "  axial_stiffness: 1.27e7\n" + kSim);
+  const auto rk4 = load(kCable + "  axial_stiffness: 1.27e7\n" + kSim + "  integrator: rk4\n");
   EXPECT_EQ(rk4.diags.str(), at("6:20: cable.axial_stiffness: with integrator: rk4, the axial wave (speed 2910 "
                                 "m/s over 20 m elements) needs simulation.time_step <= 0.00549 s (it is 0.01 s); "
                                 "use integrator: rosenbrock (implicit in the axial mode) or a smaller step"));
-  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n" + kSim + "  time_step: 0.005\n").ok());
+  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n" + kSim + "  time_step: 0.005\n  integrator: rk4\n").ok());
+  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n" + kSim).ok());  // the default, rosenbrock: no bound
 }
 
 TEST_F(ElasticKeys, RunReportsSlackStrainAndSnap) {

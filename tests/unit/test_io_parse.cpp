@@ -214,6 +214,62 @@ TEST_F(ScenarioFile, RosenbrockNeedsTheDefaultFormulation) {
   EXPECT_EQ(ok.model->sim.integrator, towsim::Integrator::Rosenbrock);
 }
 
+// The default integrator depends on the formulation only (docs/scenario.md
+// "simulation"): rosenbrock with the default one, rk4 with the paper's
+// (rosenbrock refuses it); an explicit integrator is always kept.
+TEST_F(ScenarioFile, DefaultIntegratorFollowsTheFormulation) {
+  const auto def = load(kCable + kSim);
+  ASSERT_TRUE(def.ok()) << def.diags.str();
+  EXPECT_EQ(def.spec.simulation.integrator.value, "rosenbrock");
+  EXPECT_FALSE(def.spec.simulation.integrator.given);
+  EXPECT_EQ(def.model->sim.integrator, towsim::Integrator::Rosenbrock);
+  EXPECT_EQ(def.model->sim.formulation, towsim::Formulation::Default);
+  const auto named = load(kCable + kSim + "  formulation: default\n");
+  ASSERT_TRUE(named.ok()) << named.diags.str();
+  EXPECT_EQ(named.model->sim.integrator, towsim::Integrator::Rosenbrock);
+  const auto paper = load(kCable + kSim + "  formulation: paper\n");
+  ASSERT_TRUE(paper.ok()) << paper.diags.str();
+  EXPECT_EQ(paper.model->sim.integrator, towsim::Integrator::RK4);
+  EXPECT_EQ(paper.model->sim.formulation, towsim::Formulation::Paper);
+  // Given by --set: the formulation's default follows the override.
+  const auto set = load(kCable + kSim, {"simulation.formulation=paper"});
+  ASSERT_TRUE(set.ok()) << set.diags.str();
+  EXPECT_EQ(set.model->sim.integrator, towsim::Integrator::RK4);
+  for (const auto& [key, integrator] :
+       {std::pair{"rk4", towsim::Integrator::RK4}, std::pair{"dopri5", towsim::Integrator::DOPRI5},
+        std::pair{"cash_karp54", towsim::Integrator::CashKarp54}}) {
+    const auto explicit_ = load(kCable + kSim + "  integrator: " + key + "\n");
+    ASSERT_TRUE(explicit_.ok()) << explicit_.diags.str();
+    EXPECT_EQ(explicit_.model->sim.integrator, integrator) << key;
+  }
+  EXPECT_EQ(towsim::default_integrator(towsim::Formulation::Default), towsim::Integrator::Rosenbrock);
+  EXPECT_EQ(towsim::default_integrator(towsim::Formulation::Paper), towsim::Integrator::RK4);
+}
+
+// The default tolerance is the integrator's own: 1e-5 for rosenbrock (whose
+// error control includes the forces), 1e-6 for dopri5 and cash_karp54; a
+// given tolerance is kept whatever the integrator.
+TEST_F(ScenarioFile, DefaultToleranceIsPerIntegrator) {
+  const auto def = load(kCable + kSim);
+  ASSERT_TRUE(def.ok()) << def.diags.str();
+  EXPECT_EQ(def.model->sim.tolerance, 1e-5);
+  for (const auto& [key, tol] : {std::pair{"rosenbrock", 1e-5}, std::pair{"dopri5", 1e-6},
+                                 std::pair{"cash_karp54", 1e-6}, std::pair{"rk4", 1e-6}}) {
+    const auto s = load(kCable + kSim + "  integrator: " + key + "\n");
+    ASSERT_TRUE(s.ok()) << s.diags.str();
+    EXPECT_EQ(s.model->sim.tolerance, tol) << key;
+  }
+  const auto given = load(kCable + kSim + "  tolerance: 3.0e-4\n");
+  ASSERT_TRUE(given.ok()) << given.diags.str();
+  EXPECT_EQ(given.model->sim.integrator, towsim::Integrator::Rosenbrock);
+  EXPECT_EQ(given.model->sim.tolerance, 3e-4);
+  const auto given_dopri = load(kCable + kSim + "  integrator: dopri5\n  tolerance: 1.0e-5\n");
+  ASSERT_TRUE(given_dopri.ok()) << given_dopri.diags.str();
+  EXPECT_EQ(given_dopri.model->sim.tolerance, 1e-5);
+  EXPECT_EQ(towsim::default_tolerance(towsim::Integrator::Rosenbrock), 1e-5);
+  EXPECT_EQ(towsim::default_tolerance(towsim::Integrator::DOPRI5), 1e-6);
+}
+
 TEST_F(ScenarioFile, DuplicateKey) {
   const auto s = load(kCable + "  elements: 6\n" + kSim);
   EXPECT_EQ(s.diags.str(), at("6:3: cable.elements: duplicate key (first given at line 3)"));

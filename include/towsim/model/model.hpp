@@ -175,7 +175,33 @@ struct Initial {
 enum class Integrator { RK4, DOPRI5, CashKarp54, Rosenbrock };
 enum class Formulation { Default, Paper };
 
-/// Time integration settings (docs/theory.md §6).
+/// Name of an integrator as in the scenario key `simulation.integrator`.
+inline const char* integrator_key(Integrator i) {
+  switch (i) {
+    case Integrator::RK4: return "rk4";
+    case Integrator::DOPRI5: return "dopri5";
+    case Integrator::CashKarp54: return "cash_karp54";
+    case Integrator::Rosenbrock: return "rosenbrock";
+  }
+  return "?";
+}
+
+/// The integrator a scenario gets when it names none (docs/scenario.md
+/// "simulation"): rosenbrock with the default formulation; rk4 with the
+/// paper's, whose angles have no O(n) stage solve for rosenbrock.
+inline Integrator default_integrator(Formulation f) {
+  return f == Formulation::Paper ? Integrator::RK4 : Integrator::Rosenbrock;
+}
+
+/// The tolerance a scenario gets when it names none [-]: 1e-5 for
+/// rosenbrock (tow force within ~6e-5 to 9e-5 of converged on the benchmark
+/// cases, docs/performance.md), 1e-6 for dopri5 and cash_karp54 (whose error
+/// control sees only the state); rk4 does not use it.
+inline double default_tolerance(Integrator i) { return i == Integrator::Rosenbrock ? 1e-5 : 1e-6; }
+
+/// Time integration settings (docs/theory.md §6). A Model built in code
+/// keeps these member defaults (rk4); a scenario file's absent keys take
+/// default_integrator() and default_tolerance() (src/scenario/parse.cpp).
 struct Simulation {
   double duration = 100;        // [s]
   double time_step = 0.01;      // fixed step, or first step if adaptive [s]

@@ -240,13 +240,22 @@ struct InitialSpec {
   Field<Vec3> direction;
 };
 
+/// The integrator named by a `simulation.integrator` value (one of the
+/// parser's choices; anything else: rk4).
+inline Integrator integrator_of(const std::string& key) {
+  return key == "dopri5"        ? Integrator::DOPRI5
+         : key == "cash_karp54" ? Integrator::CashKarp54
+         : key == "rosenbrock"  ? Integrator::Rosenbrock
+                                : Integrator::RK4;
+}
+
 /// simulation: time integration and output settings.
 struct SimulationSpec {
   Where where;
   Field<double> duration;              // [s] (required)
   Field<double> time_step{0.01};       // [s]
-  Field<std::string> integrator{"rk4"};  // rk4 | dopri5 | cash_karp54 | rosenbrock
-  Field<double> tolerance{1e-6};       // [-]
+  Field<std::string> integrator;       // rk4 | dopri5 | cash_karp54 | rosenbrock; absent: default_integrator(formulation)
+  Field<double> tolerance;             // [-]; absent: default_tolerance(integrator)
   Field<double> max_step{1.0};         // [s]
   Field<std::string> formulation{"default"};  // default | paper
   Field<double> output_interval{0.1};  // [s]
