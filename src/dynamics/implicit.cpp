@@ -335,11 +335,17 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
   const std::size_t n = els.size();
   const LocalJacobian& jac = iw.jac;
   const bool free_top = model.tow.mode != Tow::Mode::Motion;
+  // Tension-controlled winch, tow point held: the pay-out is a prismatic
+  // joint at the top (its increments move the top material along e_1).
+  const bool drum = model.winch.mode == Winch::Mode::Tension && !free_top && n > 0 && !is_elastic(els.front());
   // Right-hand side as loads: -hg C dv at each damper (dv: the velocity
   // increments r_v carried down the chain), -hg K (hg dw + rot) on rotations,
   // -hg K (hg dv + dx) on joint springs (dx: the joints' displacements).
   Vec3 dv = free_top ? r.dv0 : Vec3::Zero();
   Vec3 dx = free_top ? r.dx0 : Vec3::Zero();
+  if (drum) dv += r.winch_dlr * s.e[0], dx += r.winch_dl * s.e[0];
+  iw.drum = drum;
+  iw.drum_rhs = drum ? -hg * model.winch.damping * r.winch_dlr : 0.0;
   iw.dvP[0] = dv;
   iw.dxP[0] = dx;
   for (std::size_t k = 0; k < n; ++k) {
@@ -442,6 +448,15 @@ void stage_accelerations(const Model& model, const PhysicalState& s, const Works
   // Forward pass: the tow point is held (Motion) or free with no force.
   Vec3 a = free_top ? Vec3(iw.K[0].ldlt().solve(-iw.b[0])) : Vec3::Zero();
   iw.a0 = a;
+  // The drum: (M_d + hg c) z_l = -hg c r_l' + dT, dT = -e_1.(K_0 z_l e_1 + b_0)
+  // (the tension's response to the top's acceleration z_l e_1, as in fast.cpp).
+  iw.z_winch = 0;
+  if (iw.drum) {
+    const Winch& w = model.winch;
+    const Vec3& e1 = s.e[0];
+    iw.z_winch = (iw.drum_rhs - e1.dot(iw.b[0])) / (w.drum_inertia + iw.hg * w.damping + e1.dot(iw.K[0] * e1));
+    a = iw.z_winch * e1;
+  }
   for (std::size_t k = 0; k < n; ++k) {
     if (is_elastic(els[k])) {
       // z_d = A^-1 (r - G a): its part along e is l', normal to it l (alpha x e).

@@ -257,7 +257,7 @@ class DefaultSystem final : public System {
       // dq = 1/2 (0, rot) q  =>  rot = 2 vec(dq q^-1).
       rhs_.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * js_.bodies[b].q.conjugate()).vec();
     }
-    // Lengths' rows (elastic elements; the winch's L_1, L_1' keep W = I).
+    // Lengths' rows (elastic elements; a winch's top length: below).
     if (lengths_) {
       const std::size_t o = length_offset();
       for (int i = 0; i < n_; ++i) {
@@ -266,6 +266,12 @@ class DefaultSystem final : public System {
         rhs_.dlr[i] = el ? r[o + n_ + i] : 0.0;
       }
     }
+    // A tension-controlled winch's rows (l_1, l_1'): the drum in the stage solve.
+    // (Over an elastic top element the winch sets its unstretched L_1, which
+    // moves no joint: W = I on those rows.)
+    const bool drum = winch_ && model_.winch.mode == Winch::Mode::Tension && !is_elastic(model_.cable.elements.front());
+    rhs_.winch_dl = drum ? r[winch_offset()] : 0.0;
+    rhs_.winch_dlr = drum ? r[winch_offset() + 1] : 0.0;
     implicit_stage_solve(model_, js_, jws_, hg, rhs_, iw_);
     // Rows without local terms keep k = r (W = I there: still a W-method).
     k = r;
@@ -287,6 +293,11 @@ class DefaultSystem final : public System {
         k[o + n_ + i] = klr;
         k[o + i] = r[o + i] + hg * klr;
       }
+    }
+    if (drum && model_.tow.mode == Tow::Mode::Motion) {
+      // k_l' = r_l' + z_l, k_l = r_l + hg k_l' (Force mode: W = I there).
+      k[winch_offset() + 1] = r[winch_offset() + 1] + iw_.z_winch;
+      k[winch_offset()] = r[winch_offset()] + hg * k[winch_offset() + 1];
     }
     for (std::size_t b = 0; b < js_.bodies.size(); ++b) {
       const std::size_t o = body_offset(b);

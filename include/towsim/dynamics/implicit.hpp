@@ -90,6 +90,9 @@ struct ImplicitWorkspace {
   std::vector<Vec3> alpha;    // per element, normal to e_k [rad/s]
   std::vector<Vec3> alpha_b;  // per body [rad/s]
   std::vector<double> zl;     // per elastic element: increment of l_k' [m/s] (0 for rigid ones)
+  double z_winch = 0;         // tension-controlled winch (tow point held): increment of l_1' [m/s]
+  bool drum = false;          // the stage solve has the drum's rows (set by the loads pass)
+  double drum_rhs = 0;        // the drum's own right-hand side -hg c r_l' [N s]
 };
 
 /// Velocity-side inputs of one stage solve (increments r_v of the velocities
@@ -102,6 +105,7 @@ struct StageRhs {
   std::vector<Vec3> dwb;          // per body: omega_B increment [rad/s]
   std::vector<Vec3> rotb;         // per body: rotation vector of the attitude increment [rad]
   std::vector<double> dl, dlr;    // per element: increments of l_k [m] and l_k' [m/s] (elastic; else 0)
+  double winch_dl = 0, winch_dlr = 0;  // tension-controlled winch: increments of l_1 [m] and l_1' [m/s]
 };
 
 /// Factorise M + hg C + hg^2 K in O(n): the backward pass of the recursion
@@ -116,7 +120,9 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
 /// with the factorisation of implicit_factor (same hg, same s and ws): the
 /// right-hand side as loads, the bias sweep up the chain, the accelerations
 /// down. Result z in iw.a0, iw.alpha, iw.alpha_b; the stage increment of the
-/// velocities is then r_v + z.
+/// velocities is then r_v + z. A tension-controlled winch with the tow point
+/// held adds its pay-out l_1' as a prismatic joint at the top with inertia
+/// M_d + hg c (drum, damping c): its increment in iw.z_winch.
 void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
                           const StageRhs& r, ImplicitWorkspace& iw);
 
