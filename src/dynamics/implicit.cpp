@@ -60,7 +60,7 @@ void body_bias(const Body& body, const BodyWork& bw, const Vec3& Fb, const Vec3&
 /// stiffness the W-method may use: never one that feeds energy in).
 template <int N>
 Eigen::Matrix<double, N, N> psd_part(const Eigen::Matrix<double, N, N>& A) {
-  const Eigen::Matrix<double, N, N> S = 0.5 * (A + A.transpose());
+  Eigen::Matrix<double, N, N> S = 0.5 * (A + A.transpose());
   // Positive semi-definite (a pivoted LDL^T with no negative pivot): nothing
   // to drop, no eigensolve (the common case: drag damping, hanging bodies).
   const Eigen::LDLT<Eigen::Matrix<double, N, N>> ldlt(S);
