@@ -211,7 +211,7 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
     const Element& el = current_element(model, ws, k);
     element_loads(model, el, s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
     ws.Mt[k] = element_mass(el, s.e[k]);
-    ws.elastic[k].T = element_tension(els[k], s.length_of(model, k), s.length_rate_of(k));
+    ws.elastic[k].T = element_axial_force(els[k], s.length_of(model, k), s.length_rate_of(k));  // + stop
   }
   attachment_loads(model, t, ws);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
