@@ -738,6 +738,7 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
     const int before = out.iterations;
     p.sweeps = false;
     relax(p, 1e-3, stop_flag);
+    out.message.clear();  // the failed attempt's
     solve_rigid(p, stop_flag, out);
     out.iterations += before;
   }
