@@ -403,6 +403,64 @@ TEST(SeabedDragged, SteadyStateStaysSteadyInTheDynamics) {
 }
 
 // ---------------------------------------------------------------------------
+// A cable at rest on a sloped bottom (a depth table, slope 0.1 deepening
+// along +x), stationary tow point: at rest there is no friction, so the
+// lying part hangs on its tension along the slope. Closed forms: between
+// lying joints the force steps by the weight's component along the slope,
+// (f_j - f_j+1) . d = w L sin(beta) exactly (the bottom pushes only along
+// its normal); the top tension of a continuous frictionless cable at rest
+// is w (z_0 - z_end). Then 10 s of dynamics from the result stay put.
+// ---------------------------------------------------------------------------
+TEST(SeabedSlope, RestingCableHangsOnItsTensionAlongTheSlope) {
+  testing::CableSpec cs;
+  cs.n = 30;
+  cs.length = 300;
+  Model m = testing::cable_model(cs);
+  m.seabed = Seabed::flat(100, 1e5, 1e3, 0.5);
+  m.seabed->x = {0, 1000};
+  m.seabed->depth = {100, 200};
+  m.tow.mode = Tow::Mode::Motion;
+  const double w = apparent_weight(cs), L = cs.length / cs.n, beta = std::atan(0.1);
+  const Vec3 d = Vec3(std::cos(beta), 0, -std::sin(beta));  // downslope [-]
+  const StaticsResult r = solve_statics(m, Vec3::Zero());
+  ASSERT_TRUE(r.converged) << r.message;
+  int lying = 0;
+  double worst = 0;
+  for (int j = 1; j + 1 < cs.n; ++j) {
+    const auto u = static_cast<std::size_t>(j);
+    if (m.seabed->gap(r.sample.node_pos[u - 1]) > 0 || m.seabed->gap(r.sample.node_pos[u]) > 0) continue;
+    ++lying;
+    const double step = (r.joint_force[u] - r.joint_force[u + 1]).dot(d);
+    worst = std::max(worst, std::abs(std::abs(step) - w * L * std::sin(beta)) / (w * L * std::sin(beta)));
+  }
+  const double T = r.tow_force.norm(), Tc = w * (r.sample.tow_pos.z() - r.sample.node_pos.back().z());
+  std::printf("slope at rest: %d iterations, %d lying steps within %.1e of w L sin(beta); T = %.3f N, w (z_0 - "
+              "z_end) = %.3f N (%+.2e w L)\n",
+              r.iterations, lying, worst, T, Tc, (T - Tc) / (w * L));
+  EXPECT_GE(lying, 5);
+  EXPECT_LT(worst, 1e-6);  // residual floor's force noise, far below
+  EXPECT_NEAR(T, Tc, w * L);  // the discrete chain's kinks at the touchdown: O(w L)
+  // The dynamics from it (rosenbrock, tolerance 1e-8, 10 s): every joint
+  // within 1 mm of its place, speeds below 1 mm/s.
+  m.initial.kind = Initial::Kind::Steady;
+  m.sim.integrator = Integrator::Rosenbrock;
+  m.sim.tolerance = 1e-8;
+  m.sim.duration = 10;
+  m.sim.time_step = 0.01;
+  m.sim.output_interval = 1;
+  const auto samples = testing::run(m);
+  double dx = 0, dv = 0;
+  for (const Sample& smp : samples)
+    for (std::size_t j = 0; j < smp.node_pos.size(); ++j) {
+      dx = std::max(dx, (smp.node_pos[j] - r.sample.node_pos[j]).norm());
+      dv = std::max(dv, smp.node_vel[j].norm());
+    }
+  std::printf("slope at rest, 10 s of dynamics: drift %.2e m, speed %.2e m/s\n", dx, dv);
+  EXPECT_LT(dx, 1e-3);
+  EXPECT_LT(dv, 1e-3);
+}
+
+// ---------------------------------------------------------------------------
 // A sled (a body resting on two runner ends) dragged along the bottom at a
 // steady slow speed: along the tow, the cable's pull balances the friction
 // mu N (N = apparent weight - the pull's vertical part) and the sled's
