@@ -250,7 +250,7 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
     const Element& el = current_element(model, ws, k);
     element_loads(model, el, s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
     ws.Mt[k] = element_mass(el, s.e[k]);
-    ws.elastic[k].T = element_tension(els[k], s.length_of(model, k), s.length_rate_of(k));
+    ws.elastic[k].T = element_axial_force(els[k], s.length_of(model, k), s.length_rate_of(k));  // + stop
   }
   // The winch's elastic top element: strain of l_1 over the paid-out L_1.
   if (ws.winch && is_elastic(els[0]))

@@ -212,12 +212,19 @@ bool lay_along_bottom(SteadyProblem& p) {
   const double U = p.V.norm();
   if (!m.seabed || !m.bodies.empty() || !m.cable.attachments.empty()) return false;
   const Seabed& sb = *m.seabed;
-  // At rest (a sloped bottom) the relaxation that follows only creeps (the
-  // friction's viscous slope mu N / v_s): not used there in this version.
-  if (!(U > 0) || std::hypot(p.V.x(), p.V.y()) < 1e-9 * U) return false;
-  const Vec3 h = -Vec3(p.V.x(), p.V.y(), 0).normalized();  // the lying part's heading [-]
-  const double slip = U / std::hypot(U, sb.slip_speed);  // the friction's smoothing at V [-]
-  const Vec3 Vhat = p.V / U;
+  Vec3 h = Vec3::UnitX();  // the lying part's heading [-]
+  if (U > 0) {
+    if (std::hypot(p.V.x(), p.V.y()) < 1e-9 * U) return false;
+    h = -Vec3(p.V.x(), p.V.y(), 0).normalized();
+  } else {
+    // At rest on a sloped bottom (a flat one: lay_on_seabed): downslope
+    // from the tow point, the only side the cable can lie on with tension.
+    if (sb.depth.size() < 2) return false;
+    const Vec3 n0 = sb.normal(m.tow.start.x());
+    if (std::abs(n0.x()) > 1e-12) h = Vec3(n0.x() > 0 ? 1.0 : -1.0, 0, 0);
+  }
+  const double slip = U > 0 ? U / std::hypot(U, sb.slip_speed) : 0.0;  // the friction's smoothing at V [-]
+  const Vec3 Vhat = U > 0 ? Vec3(p.V / U) : Vec3::Zero();
   PhysicalState& s = p.base;
   compute_kinematics(m, s, p.ws);
   // Gap of the touchdown joint above the bottom with `lying` elements on it
@@ -629,6 +636,9 @@ void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
   constexpr double kRelaxTolerance = 1e-5;  // local error target of the steps [-]
   Model rm = p.model;
   const double U = p.V.norm();
+  // At rest the friction vanishes at the equilibrium; left in, its viscous
+  // slope mu N / v_s makes the lying cable only creep: relax without it.
+  if (!(U > 0) && rm.seabed) rm.seabed->friction = 0;
   rm.tow.pieces.clear();
   if (U > 0) rm.tow.pieces.emplace_back(Ramp{p.V / U, U, 0.0});
   const std::unique_ptr<System> sys = make_system(rm);
@@ -731,7 +741,9 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
   for (Element& el : p.model.cable.elements) el.axial_stiffness = 0;  // the Newton problem: rigid elements
   sweep_from_bottom(p);
   StaticsResult out;
-  if (!p.sweeps) relax(p, 1e-3, stop_flag);  // cable laid along the bottom: relax first
+  // Cable laid along the bottom: relax first (at rest, frictionless there,
+  // relaxation is cheap and leaves the dense solve less to do).
+  if (!p.sweeps) relax(p, V.norm() > 0 ? 1e-3 : 1e-6, stop_flag);
   solve_rigid(p, stop_flag, out);
   if (!out.converged && !out.interrupted && model.seabed && p.sweeps && V.norm() > 0) {
     // The sweeps and the dense polish failed with a moving tow on the bottom
@@ -740,6 +752,7 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
     const int before = out.iterations;
     p.sweeps = false;
     relax(p, 1e-3, stop_flag);
+    out.message.clear();  // the failed attempt's
     solve_rigid(p, stop_flag, out);
     out.iterations += before;
   }

@@ -209,6 +209,102 @@ TEST_P(SeabedLying, BodyOnTheBottomAddsNothing) {
   EXPECT_NEAR((-h - zb) * 1e5 * (1 + 0.5 * L), Wb + 0.5 * w * L, 1e-6 * Wb);
 }
 
+// An in-line body (a clump in the chain, no load model: it touches at its
+// CG, as 1 m of cable; both links at the CG, so its rotations are neutral)
+// resting on a flat bottom between two lying sections, stationary tow point.
+// At rest the lying cable carries no tension and each lying element's
+// weight goes half to each end joint, so the point O (the hull's 1 m, the
+// half elements above and below, L/2 each) carries W_b + w L:
+// k (1 + L) delta_b = W_b + w L, and the hull's own contact force is its
+// apparent weight minus the cable's vertical pulls on it: k delta_b.
+TEST(SeabedInline, RestingBodySinksByItsLoadOverItsStiffness) {
+  testing::CableSpec cs;
+  cs.n = 8;
+  cs.length = 40;  // upper section: 20 m hanging, 20 m lying
+  Model m = testing::cable_model(cs);
+  const double depth = 20, k = 1e5, L = 5;
+  m.seabed = Seabed::flat(depth, k, 1e3, 0.5);
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
+  b.mass = 300;
+  b.volume = 0.05;
+  b.inertia_cg = 10 * Mat3::Identity();
+  b.inline_body = true;
+  b.joint = cs.n;
+  b.name = "clump";
+  finalize_body(b, m.fluid);
+  for (int i = 0; i < 4; ++i)  // lower section: 20 m lying
+    m.cable.elements.push_back(make_element(L, cs.mass_per_length, cs.diameter, cs.cd, cs.tangential,
+                                            m.cable.tangential_law, cs.ca, m.fluid));
+  const double w = apparent_weight(cs), Wb = (300 - kRho * 0.05) * kG;
+  const StaticsResult r = solve_statics(m, Vec3::Zero());
+  ASSERT_TRUE(r.converged) << r.message;
+  const double delta_b = -depth - r.sample.bodies[0].pos.z();
+  const double pull = k * L * delta_b - w * L;  // the cable's net upward pull at O: its springs there less its shares [N]
+  const double T = r.tow_force.norm(), T_discrete = w * (std::floor(depth / L) * L + 0.5 * L);
+  std::printf("in-line clump on the bottom: k (1 + L) delta_b = %.6f N, W_b + w L = %.6f N (relative %.2e); hull "
+              "contact k delta_b = %.3f N = W_b - %.3f N (the cable's net pull); T = %.4f N, discrete %.4f N\n",
+              k * (1 + L) * delta_b, Wb + w * L, (k * (1 + L) * delta_b - Wb - w * L) / Wb, k * delta_b, pull, T,
+              T_discrete);
+  // 1e-6 W_b: the residual's force noise (as the end clump above).
+  EXPECT_NEAR(k * (1 + L) * delta_b, Wb + w * L, 1e-6 * Wb);
+  EXPECT_NEAR(k * delta_b, Wb - pull, 1e-6 * Wb);
+  // The body adds nothing to the top tension: the discrete value of
+  // SeabedLying (floor(h/L) vertical elements + half the crossing one), 1e-6
+  // (the crossing joint sits on the bottom within its sink w/k).
+  EXPECT_NEAR(T, T_discrete, 1e-6 * T);
+}
+
+TEST(SeabedInline, DraggedBodyIsASteadyStateOfTheDynamics) {
+  // The same chain dragged at 0.5 m/s: the statics converge (the sweeps
+  // fail, relaxation and the dense solve finish), and 10 s of the dynamics
+  // from the result keep every joint and the body within 1 mm of their
+  // places relative to the tow point and the tow force within 1e-3 (as
+  // SeabedDragged).
+  testing::CableSpec cs;
+  cs.n = 8;
+  cs.length = 40;
+  Model m = testing::cable_model(cs);
+  m.seabed = Seabed::flat(20, 1e5, 1e3, 0.5);
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
+  b.mass = 300;
+  b.volume = 0.05;
+  b.inertia_cg = 10 * Mat3::Identity();
+  b.inline_body = true;
+  b.joint = cs.n;
+  b.name = "clump";
+  finalize_body(b, m.fluid);
+  for (int i = 0; i < 4; ++i)
+    m.cable.elements.push_back(make_element(5.0, cs.mass_per_length, cs.diameter, cs.cd, cs.tangential,
+                                            m.cable.tangential_law, cs.ca, m.fluid));
+  const double U = 0.5;
+  m.tow.pieces = {testing::ramp_piece(Vec3::UnitX(), U, 0.0)};
+  const StaticsResult r = solve_statics(m, Vec3(U, 0, 0));
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_TRUE(r.message.empty()) << r.message;
+  m.initial.kind = Initial::Kind::Steady;
+  m.sim.integrator = Integrator::Rosenbrock;
+  m.sim.tolerance = 1e-8;
+  m.sim.duration = 10;
+  m.sim.time_step = 0.01;
+  m.sim.output_interval = 1;
+  const auto samples = testing::run(m);
+  ASSERT_FALSE(samples.empty());
+  double dx = 0, dT = 0;
+  for (const Sample& smp : samples) {
+    for (std::size_t j = 0; j < smp.node_pos.size(); ++j)
+      dx = std::max(dx, ((smp.node_pos[j] - smp.tow_pos) - (r.sample.node_pos[j] - r.sample.tow_pos)).norm());
+    dx = std::max(dx, ((smp.bodies[0].pos - smp.tow_pos) - (r.sample.bodies[0].pos - r.sample.tow_pos)).norm());
+    dT = std::max(dT, (smp.tow_force - r.tow_force).norm() / r.tow_force.norm());
+  }
+  std::printf("dragged in-line clump: %d iterations, residual %.2e; 10 s of dynamics: drift %.2e m, tow force "
+              "change %.2e\n",
+              r.iterations, r.residual, dx, dT);
+  EXPECT_LT(dx, 1e-3);
+  EXPECT_LT(dT, 1e-3);
+}
+
 INSTANTIATE_TEST_SUITE_P(Seabed, SeabedLying,
                          ::testing::Values(LyingCase{75, 101.0}, LyingCase{100, 101.0}, LyingCase{150, 100.3}),
                          [](const auto& info) { return "n" + std::to_string(info.param.n); });
@@ -304,6 +400,64 @@ TEST(SeabedDragged, SteadyStateStaysSteadyInTheDynamics) {
   EXPECT_LT(dx, 1e-3);
   EXPECT_LT(dv, 1e-3);
   EXPECT_LT(dT, 1e-3);
+}
+
+// ---------------------------------------------------------------------------
+// A cable at rest on a sloped bottom (a depth table, slope 0.1 deepening
+// along +x), stationary tow point: at rest there is no friction, so the
+// lying part hangs on its tension along the slope. Closed forms: between
+// lying joints the force steps by the weight's component along the slope,
+// (f_j - f_j+1) . d = w L sin(beta) exactly (the bottom pushes only along
+// its normal); the top tension of a continuous frictionless cable at rest
+// is w (z_0 - z_end). Then 10 s of dynamics from the result stay put.
+// ---------------------------------------------------------------------------
+TEST(SeabedSlope, RestingCableHangsOnItsTensionAlongTheSlope) {
+  testing::CableSpec cs;
+  cs.n = 30;
+  cs.length = 300;
+  Model m = testing::cable_model(cs);
+  m.seabed = Seabed::flat(100, 1e5, 1e3, 0.5);
+  m.seabed->x = {0, 1000};
+  m.seabed->depth = {100, 200};
+  m.tow.mode = Tow::Mode::Motion;
+  const double w = apparent_weight(cs), L = cs.length / cs.n, beta = std::atan(0.1);
+  const Vec3 d = Vec3(std::cos(beta), 0, -std::sin(beta));  // downslope [-]
+  const StaticsResult r = solve_statics(m, Vec3::Zero());
+  ASSERT_TRUE(r.converged) << r.message;
+  int lying = 0;
+  double worst = 0;
+  for (int j = 1; j + 1 < cs.n; ++j) {
+    const auto u = static_cast<std::size_t>(j);
+    if (m.seabed->gap(r.sample.node_pos[u - 1]) > 0 || m.seabed->gap(r.sample.node_pos[u]) > 0) continue;
+    ++lying;
+    const double step = (r.joint_force[u] - r.joint_force[u + 1]).dot(d);
+    worst = std::max(worst, std::abs(std::abs(step) - w * L * std::sin(beta)) / (w * L * std::sin(beta)));
+  }
+  const double T = r.tow_force.norm(), Tc = w * (r.sample.tow_pos.z() - r.sample.node_pos.back().z());
+  std::printf("slope at rest: %d iterations, %d lying steps within %.1e of w L sin(beta); T = %.3f N, w (z_0 - "
+              "z_end) = %.3f N (%+.2e w L)\n",
+              r.iterations, lying, worst, T, Tc, (T - Tc) / (w * L));
+  EXPECT_GE(lying, 5);
+  EXPECT_LT(worst, 1e-6);  // residual floor's force noise, far below
+  EXPECT_NEAR(T, Tc, w * L);  // the discrete chain's kinks at the touchdown: O(w L)
+  // The dynamics from it (rosenbrock, tolerance 1e-8, 10 s): every joint
+  // within 1 mm of its place, speeds below 1 mm/s.
+  m.initial.kind = Initial::Kind::Steady;
+  m.sim.integrator = Integrator::Rosenbrock;
+  m.sim.tolerance = 1e-8;
+  m.sim.duration = 10;
+  m.sim.time_step = 0.01;
+  m.sim.output_interval = 1;
+  const auto samples = testing::run(m);
+  double dx = 0, dv = 0;
+  for (const Sample& smp : samples)
+    for (std::size_t j = 0; j < smp.node_pos.size(); ++j) {
+      dx = std::max(dx, (smp.node_pos[j] - r.sample.node_pos[j]).norm());
+      dv = std::max(dv, smp.node_vel[j].norm());
+    }
+  std::printf("slope at rest, 10 s of dynamics: drift %.2e m, speed %.2e m/s\n", dx, dv);
+  EXPECT_LT(dx, 1e-3);
+  EXPECT_LT(dv, 1e-3);
 }
 
 // ---------------------------------------------------------------------------

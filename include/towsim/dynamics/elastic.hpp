@@ -47,12 +47,46 @@ inline double paid_out_tension(const Element& el, double l, double l_rate, doubl
 /// (together with element_axial_damping_rate).
 inline double element_axial_stiffness(const Element& el, double l) {
   return is_elastic(el) && element_strain(el, l) > 0 ? el.axial_stiffness / el.length : 0.0;
+/// Stop length of a slack elastic element, as a fraction of L [-]: below
+/// it the compression stop acts (docs/theory.md §5.4 "Compression stop").
+inline constexpr double kStopFraction = 0.1;
+
+/// Compression stop of a slack elastic element shorter than l_s =
+/// kStopFraction L: the axial force -(EA (l_s - l)/L - c_a l'/L), never
+/// pulling, so that a slack cable piling up on itself (a straight rod cannot
+/// loop sideways as a real cable does) does not fold an element to l -> 0
+/// [N, axial force: < 0 pushes the joints apart]. Zero above l_s (every taut
+/// or mildly slack element) and for an inextensible element. Not a tension:
+/// element_tension stays >= 0.
+inline double element_stop_force(const Element& el, double l, double l_rate) {
+  const double ls = kStopFraction * el.length;
+  if (!is_elastic(el) || l >= ls) return 0.0;
+  const double C = (el.axial_stiffness * (ls - l) - el.axial_damping * l_rate) / el.length;
+  return C > 0 ? -C : 0.0;
 }
 
-/// Local axial damping dT/dl' of an element at length l [N s/m]: c_a / L
-/// while taut, else 0.
+/// Axial force the dynamics use: tension + compression stop [N].
+inline double element_axial_force(const Element& el, double l, double l_rate) {
+  return element_tension(el, l, l_rate) + element_stop_force(el, l, l_rate);
+}
+
+/// True while the element is taut or on its compression stop (l below l_s).
+inline bool element_axially_loaded(const Element& el, double l) {
+  return is_elastic(el) && (element_strain(el, l) > 0 || l < kStopFraction * el.length);
+}
+
+/// Local axial stiffness d(axial force)/dl of an element at length l [N/m]:
+/// EA / L while taut or on the compression stop, 0 when slack or
+/// inextensible. The stiff part of the elastic element's force, for an
+/// implicit integrator's local linearisation (with element_axial_damping_rate).
+inline double element_axial_stiffness(const Element& el, double l) {
+  return element_axially_loaded(el, l) ? el.axial_stiffness / el.length : 0.0;
+}
+
+/// Local axial damping d(axial force)/dl' of an element at length l [N s/m]:
+/// c_a / L while taut or on the stop, else 0.
 inline double element_axial_damping_rate(const Element& el, double l) {
-  return is_elastic(el) && element_strain(el, l) > 0 ? el.axial_damping / el.length : 0.0;
+  return element_axially_loaded(el, l) ? el.axial_damping / el.length : 0.0;
 }
 
 /// Speed of the axial (tension) wave along an elastic element,
