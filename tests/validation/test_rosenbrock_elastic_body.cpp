@@ -74,8 +74,8 @@ TEST(RosenbrockElasticBody, StageSolveIsOneWForEveryStep) {
     // hg of a 1 s step (the output interval) and of a 10 ms one.
     const Eigen::MatrixXd W1 = stage_W(*sys, N, 0.436), W2 = stage_W(*sys, N, 0.00436);
     const double d = (W1 - W2).cwiseAbs().maxCoeff() / W1.cwiseAbs().maxCoeff();
-    std::cout << "[measured] EA " << EA << " N, 10 elements + 1135 kg sphere: max |W(0.436) - W(0.00436)| / max |W| = "
-              << d << "\n";
+    std::cout << "[measured] EA " << EA
+              << " N, 10 elements + 1135 kg sphere: max |W(0.436) - W(0.00436)| / max |W| = " << d << "\n";
     // Measured 1.7e-12 (elastic) and 1.4e-14 (rigid): round-off of S^-1
     // divided by hg = 0.00436; the C/3 vs C/4 mismatch gave 0.48. Bound
     // 1e-6: far above round-off, far below any inconsistent term.
@@ -161,8 +161,8 @@ TEST(RosenbrockElasticBody, FixedLargeStepsAgreeWithRk4InATurn) {
       ep = std::max(ep, (r[i].bodies[0].pos - b[i].bodies[0].pos).norm());
     }
     std::cout << "[measured] elastic 1 km + sled, turn, 40 s: rosenbrock h = " << h << " s (" << st.steps
-              << " steps; rk4 " << sr.steps << " at " << ref.sim.time_step << " s): max tow force difference / max T = "
-              << e << ", body position difference " << ep << " m\n";
+              << " steps; rk4 " << sr.steps << " at " << ref.sim.time_step
+              << " s): max tow force difference / max T = " << e << ", body position difference " << ep << " m\n";
     EXPECT_LT(e, 5e-5);
     EXPECT_LT(ep, 5e-3);
     err[i++] = e;
