@@ -84,7 +84,9 @@ for sc in "${scenarios[@]}"; do
   if [[ -f "$out/summary.json" ]]; then
     s="$out/summary.json"
     sim="$(jq -r '.end_time' "$s")"
-    integ="$(jq -r '.scenario.simulation | "\(.integrator), \(.time_step) s\(if .tolerance then ", tol \(.tolerance)" else "" end)"' "$s")"
+    # the method used (summary.json), the step and tolerance as written (absent: the defaults)
+    integ="$(jq -r '.scenario.simulation as $c | "\(.integrator), \($c.time_step // 0.01) s" +
+      (if .integrator == "rk4" then "" else ", tol \($c.tolerance // "default")" end)' "$s")"
     steps="$(jq -r '.steps' "$s")"
     rhs="$(jq -r '.rhs_evaluations' "$s")"
     [[ "$status" == ok ]] && status="$(jq -r '.status' "$s")"

@@ -100,6 +100,25 @@ TEST_F(Cli, RosenbrockRunReportsItsErrorEstimate) {
   EXPECT_NE(summary.find("\"warnings\": []"), std::string::npos);
 }
 
+// Without simulation.integrator: rosenbrock (tolerance 1e-5) with the default
+// formulation, rk4 with the paper's; summary.json and towsim check say which.
+TEST_F(Cli, DefaultIntegratorIsReportedBySummaryAndCheck) {
+  const std::string base = "--example cable-tow --set simulation.duration=2 --set simulation.write_nodes=false ";
+  const fs::path def = dir_ / "default", paper = dir_ / "paper";
+  ASSERT_EQ(run_towsim("run " + base + "--quiet --out " + quoted(def)).status, 0);
+  EXPECT_NE(towsim::testing::slurp(def / "summary.json").find("\"integrator\": \"rosenbrock\""), std::string::npos);
+  ASSERT_EQ(run_towsim("run " + base + "--set simulation.formulation=paper --quiet --out " + quoted(paper)).status, 0);
+  EXPECT_NE(towsim::testing::slurp(paper / "summary.json").find("\"integrator\": \"rk4\""), std::string::npos);
+  const CliResult check = run_towsim("check " + base);
+  EXPECT_EQ(check.status, 0) << check.out;
+  EXPECT_NE(check.out.find("integrator                  rosenbrock, tolerance 1e-05, max step 1 s\n"), std::string::npos)
+      << check.out;
+  EXPECT_NE(check.out.find("first step                  0.01 s\n"), std::string::npos) << check.out;
+  const CliResult check_paper = run_towsim("check " + base + "--set simulation.formulation=paper");
+  EXPECT_NE(check_paper.out.find("integrator                  rk4\n"), std::string::npos) << check_paper.out;
+  EXPECT_NE(check_paper.out.find("time step                   0.01 s\n"), std::string::npos) << check_paper.out;
+}
+
 TEST_F(Cli, UsageErrorsExit2) {
   EXPECT_EQ(run_towsim("run --example cable-tow").status, 2);  // no --out
   EXPECT_EQ(run_towsim("").status, 2);                         // no subcommand

@@ -194,7 +194,7 @@ inline Integrator default_integrator(Formulation f) {
 }
 
 /// The tolerance a scenario gets when it names none [-]: 1e-5 for
-/// rosenbrock (tow force within ~6e-5 to 9e-5 of converged on the benchmark
+/// rosenbrock (tow force within 6e-5 to 1.4e-4 of converged on the benchmark
 /// cases, docs/performance.md), 1e-6 for dopri5 and cash_karp54 (whose error
 /// control sees only the state); rk4 does not use it.
 inline double default_tolerance(Integrator i) { return i == Integrator::Rosenbrock ? 1e-5 : 1e-6; }
