@@ -364,7 +364,8 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
       const double kr = jac.element_stiffness[k] / (l * l);
       iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * ddv));
       iw.Mom[k].setZero();
-      iw.Fd[k] = -hg * (ca * e.dot(ddv) + ka * (hg * e.dot(ddv) + e.dot(ddx))) * e -
+      const double pL = k == 0 ? r.top_dL : 0.0, pLr = k == 0 ? r.top_dLr : 0.0;  // the winch's paid-out part
+      iw.Fd[k] = -hg * (ca * (e.dot(ddv) - pLr) + ka * (hg * e.dot(ddv) + e.dot(ddx) - pL)) * e -
                  hg * kr * (hg * l * de + l * rot.cross(e));
       dv += ddv;
       dx += ddx;

@@ -272,6 +272,12 @@ class DefaultSystem final : public System {
     const bool drum = winch_ && model_.winch.mode == Winch::Mode::Tension && !is_elastic(model_.cable.elements.front());
     rhs_.winch_dl = drum ? r[winch_offset()] : 0.0;
     rhs_.winch_dlr = drum ? r[winch_offset() + 1] : 0.0;
+    if (elastic_top_) {
+      // The top element's spring and damper see L_1, L_1' (their rows stay explicit: W = I there).
+      const double lam = js_.length[0] / js_.top_unstretched;
+      rhs_.top_dL = lam * r[winch_offset()];
+      rhs_.top_dLr = lam * r[winch_offset() + 1];
+    }
     implicit_stage_solve(model_, js_, jws_, hg, rhs_, iw_);
     // Rows without local terms keep k = r (W = I there: still a W-method).
     k = r;
@@ -347,13 +353,11 @@ class DefaultSystem final : public System {
   }
   /// Length control: the top element's length and rate at t from the schedule.
   void impose_winch(double t, PhysicalState& s) const {
-    if (!winch_ || model_.winch.mode != Winch::Mode::Imposed) return;
+    // Over an elastic top element L_1 stays the state's (integrated exactly
+    // from the schedule's L_1'', reset to it after every step): the
+    // Rosenbrock-W stage solve sees the spring's dependence on it.
+    if (!winch_ || model_.winch.mode != Winch::Mode::Imposed || elastic_top_) return;
     const WinchKinematics k = winch_kinematics(model_.winch, t);
-    if (elastic_top_) {
-      s.top_unstretched = k.length - fixed_length_;
-      s.top_unstretched_rate = k.rate;
-      return;
-    }
     s.length[0] = k.length - fixed_length_;
     s.length_rate[0] = k.rate;
   }

@@ -65,6 +65,10 @@ void build_winch(const WinchSpec& w, Model& m);
 /// Checks of winch: against the built chain (initial length, limits,
 /// attachments); false when one failed.
 bool check_winch_model(const WinchSpec& w, const Model& m, Diagnostics& d);
+
+/// With rk4 and a winch on an elastic cable: the fixed step against the
+/// axial bound of the top element at its shortest (docs/theory.md §6.5).
+void check_winch_rk4(const ScenarioSpec& s, const Model& m, Diagnostics& d);
 /// Build the waves (into m.fluid) and the vessel (into m.tow) from a checked
 /// spec; needs m.tow and m.fluid built.
 void attach_waves(const ScenarioSpec& s, Model& m);

@@ -145,6 +145,8 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   if (spec.winch.present) {
     build_winch(spec.winch, m);
     if (!check_winch_model(spec.winch, m, diags)) return std::nullopt;
+    check_winch_rk4(spec, m, diags);
+    if (!diags.ok()) return std::nullopt;
   }
   m.initial = build_initial(spec.initial);
   m.sim = build_simulation(spec.simulation, spec.winch.present);

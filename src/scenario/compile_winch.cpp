@@ -1,6 +1,9 @@
 // Checking and building winch: (docs/scenario.md "winch").
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+
+#include "towsim/dynamics/state.hpp"
 
 #include "checks.hpp"
 
@@ -42,7 +45,34 @@ void check_speeds(const WinchSpec& w, Diagnostics& d) {
   }
 }
 
+/// v to 3 significant digits, rounded down (a bound users can copy).
+std::string down3(double v) {
+  const double p = std::pow(10.0, std::floor(std::log10(v)) - 2);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g", std::floor(v / p) * p);
+  return buf;
+}
+
 }  // namespace
+
+void check_winch_rk4(const ScenarioSpec& s, const Model& m, Diagnostics& d) {
+  if (!elastic_winch(m) || s.simulation.integrator.value != "rk4") return;
+  // The top element at its shortest: (split_at - 1) L_e after a split,
+  // remove_at L_e before a removal (when the winch can haul in), its
+  // initial length.
+  const Winch& win = m.winch;
+  bool hauls_in = win.mode == Winch::Mode::Tension;
+  for (const WinchPiece& p : win.schedule) hauls_in = hauls_in || p.rate < 0 || p.acc < 0;
+  double shortest = std::min(m.cable.elements.front().length, (win.split_at - 1) * win.nominal_length);
+  if (hauls_in) shortest = std::min(shortest, win.remove_at * win.nominal_length);
+  const Element el = scaled_element(m.cable.elements.front(), shortest);
+  const double h_max = rk4_axial_step_limit(el);
+  if (s.simulation.time_step.value > h_max)
+    report_at(s.simulation.time_step.where, d,
+              "with integrator: rk4 and a winch on an elastic cable, the top element shortens to " + fmt_num(shortest) +
+                  " m (split_at, remove_at): its axial wave needs simulation.time_step <= " + down3(h_max) +
+                  " s; use integrator: rosenbrock or a smaller step");
+}
 
 void check_winch(const ScenarioSpec& s, Diagnostics& d) {
   const WinchSpec& w = s.winch;

@@ -63,6 +63,20 @@ TEST_F(WinchKeys, ElasticCableCompiles) {
                               "(axial_stiffness at cable.sections.1.axial_stiffness)"));
 }
 
+// rk4: the top element at its shortest bounds the step; 10 elements of
+// 10 m, EA 1e7, m' 1.5: c = 2582 m/s; paying out only, 0.5 L_e = 5 m
+// after a split: 0.8 * 5 / c = 1.549e-3 s.
+TEST_F(WinchKeys, ElasticCableRk4StepBound) {
+  const std::string cable = "cable:\n  length: 100\n  elements: 10\n  mass_per_length: 1.5\n  diameter: 0.019\n"
+                            "  axial_stiffness: 1.0e7\n";
+  const auto s = load(cable + kSim + "  integrator: rk4\n  time_step: 0.002\nwinch:\n  rate: 1\n");
+  EXPECT_EQ(s.diags.str(), at("10:14: simulation.time_step: with integrator: rk4 and a winch on an elastic cable, "
+                              "the top element shortens to 5 m (split_at, remove_at): its axial wave needs "
+                              "simulation.time_step <= 0.00154 s; use integrator: rosenbrock or a smaller step"));
+  const auto ok = load(cable + kSim + "  integrator: rk4\n  time_step: 0.0015\nwinch:\n  rate: 1\n");
+  EXPECT_EQ(ok.diags.str(), "");
+}
+
 TEST_F(WinchKeys, ValidRateCompiles) {
   const auto s = load(kCable + kSim + "winch:\n  rate: [[0, 0], [10, 1], [20, 1], [30, 0]]\n  max_length: 120\n" +
                       "  rating: 1.0e4\n");

@@ -106,6 +106,10 @@ struct StageRhs {
   std::vector<Vec3> rotb;         // per body: rotation vector of the attitude increment [rad]
   std::vector<double> dl, dlr;    // per element: increments of l_k [m] and l_k' [m/s] (elastic; else 0)
   double winch_dl = 0, winch_dlr = 0;  // tension-controlled winch: increments of l_1 [m] and l_1' [m/s]
+  // Winch over an elastic top element: the increments of L_1, L_1' times
+  // l_1/L_1, as its spring and damper see them (T depends on l_1 - lam L_1).
+  double top_dL = 0;              // [m]
+  double top_dLr = 0;             // [m/s]
 };
 
 /// Factorise M + hg C + hg^2 K in O(n): the backward pass of the recursion
