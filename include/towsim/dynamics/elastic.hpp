@@ -41,12 +41,6 @@ inline double paid_out_tension(const Element& el, double l, double l_rate, doubl
   return T > 0 ? T : 0.0;
 }
 
-/// Local axial stiffness dT/dl of an element at length l [N/m]: EA / L
-/// while taut, 0 when slack or inextensible. The stiff part of the elastic
-/// element's force, for an implicit integrator's local linearisation
-/// (together with element_axial_damping_rate).
-inline double element_axial_stiffness(const Element& el, double l) {
-  return is_elastic(el) && element_strain(el, l) > 0 ? el.axial_stiffness / el.length : 0.0;
 /// Stop length of a slack elastic element, as a fraction of L [-]: below
 /// it the compression stop acts (docs/theory.md §5.4 "Compression stop").
 inline constexpr double kStopFraction = 0.1;
