@@ -204,7 +204,8 @@ void describe_run(const Model& m, std::ostream& out) {
   out << "\nsimulation\n";
   line(out, "integrator", std::string(integrator_key(s.integrator)) +
                               (s.integrator == Integrator::RK4 ? "" : ", tolerance " + fmt_num(s.tolerance) +
-                                                                           ", max step " + fmt_num(s.max_step) + " s"));
+                                                                           (std::isfinite(s.max_step) ? ", max step " + fmt_num(s.max_step) + " s"
+                                                                                                    : std::string(", no max step"))));
   line(out, "formulation", s.formulation == Formulation::Paper ? "paper" : "default");
   line(out, s.integrator == Integrator::RK4 ? "time step" : "first step", fmt_num(s.time_step) + " s");
   line(out, "duration", fmt_num(s.duration) + " s");

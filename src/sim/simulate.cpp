@@ -459,10 +459,12 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   const bool dense = model.sim.integrator == Integrator::Rosenbrock;
   bool pending_event = false;
   StateVector y_out;  // dense output state
+  double written = t;  // time of the last sample written [s]
   for (long k = 1; k <= n_out && check.empty(); ++k) {
     if (stop_flag && *stop_flag) {
+      // Stopped at the last sample on disk (a dense-output step may have passed it).
       stats.status = "interrupted";
-      stats.message = "interrupted by signal at t = " + std::to_string(t) + " s";
+      stats.message = "interrupted by signal at t = " + std::to_string(written) + " s";
       break;
     }
     const double out_time = std::min(T, static_cast<double>(k) * dT);
@@ -522,6 +524,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       stats.message = "internal: no state at output time " + std::to_string(out_time) + " s";
       break;
     }
+    written = out_time;
     if (progress) progress(out_time / T);
   }
   if (!check.empty() && stats.status == "ok") {
@@ -529,7 +532,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     stats.message = check;
   }
   if (ros) keep_ros_errors(*ros, stats);
-  stats.end_time = t;
+  stats.end_time = stats.status == "interrupted" ? written : t;
   stats.slack.finish(t);
   stats.rhs_evaluations += chain.sys->rhs_evaluations;
   stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
