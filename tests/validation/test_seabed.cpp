@@ -24,6 +24,37 @@ double apparent_weight(const testing::CableSpec& c) {
   return (c.mass_per_length - kRho * std::numbers::pi / 4 * c.diameter * c.diameter) * kG;
 }
 
+/// How far 10 s of the dynamics (rosenbrock, tolerance 1e-8) started from
+/// the steady configuration `r` (tow velocity U) move from it: joints and
+/// bodies relative to the tow point [m], joint speeds against U [m/s], tow
+/// force change relative to its size [-].
+struct Drift {
+  double x = 0, v = 0, force = 0;
+};
+Drift drift_from_steady(Model m, const StaticsResult& r, const Vec3& U) {
+  m.initial.kind = Initial::Kind::Steady;
+  m.sim.integrator = Integrator::Rosenbrock;
+  m.sim.tolerance = 1e-8;
+  m.sim.duration = 10;
+  m.sim.time_step = 0.01;
+  m.sim.output_interval = 1;
+  const auto samples = testing::run(m);
+  EXPECT_FALSE(samples.empty());
+  Drift d;
+  auto moved = [&](const Vec3& p, const Vec3& tow, const Vec3& p0) {
+    d.x = std::max(d.x, ((p - tow) - (p0 - r.sample.tow_pos)).norm());
+  };
+  for (const Sample& smp : samples) {
+    for (std::size_t j = 0; j < smp.node_pos.size(); ++j) {
+      moved(smp.node_pos[j], smp.tow_pos, r.sample.node_pos[j]);
+      d.v = std::max(d.v, (smp.node_vel[j] - U).norm());
+    }
+    for (std::size_t b = 0; b < smp.bodies.size(); ++b) moved(smp.bodies[b].pos, smp.tow_pos, r.sample.bodies[b].pos);
+    d.force = std::max(d.force, (smp.tow_force - r.tow_force).norm() / r.tow_force.norm());
+  }
+  return d;
+}
+
 // ---------------------------------------------------------------------------
 // The law at one point: geometry of a sloped table, and the friction's
 // smoothing converging to Coulomb at second order in v_s.
@@ -283,21 +314,8 @@ TEST(SeabedInline, DraggedBodyIsASteadyStateOfTheDynamics) {
   const StaticsResult r = solve_statics(m, Vec3(U, 0, 0));
   ASSERT_TRUE(r.converged) << r.message;
   EXPECT_TRUE(r.message.empty()) << r.message;
-  m.initial.kind = Initial::Kind::Steady;
-  m.sim.integrator = Integrator::Rosenbrock;
-  m.sim.tolerance = 1e-8;
-  m.sim.duration = 10;
-  m.sim.time_step = 0.01;
-  m.sim.output_interval = 1;
-  const auto samples = testing::run(m);
-  ASSERT_FALSE(samples.empty());
-  double dx = 0, dT = 0;
-  for (const Sample& smp : samples) {
-    for (std::size_t j = 0; j < smp.node_pos.size(); ++j)
-      dx = std::max(dx, ((smp.node_pos[j] - smp.tow_pos) - (r.sample.node_pos[j] - r.sample.tow_pos)).norm());
-    dx = std::max(dx, ((smp.bodies[0].pos - smp.tow_pos) - (r.sample.bodies[0].pos - r.sample.tow_pos)).norm());
-    dT = std::max(dT, (smp.tow_force - r.tow_force).norm() / r.tow_force.norm());
-  }
+  const Drift d = drift_from_steady(m, r, Vec3(U, 0, 0));
+  const double dx = d.x, dT = d.force;
   std::printf("dragged in-line clump: %d iterations, residual %.2e; 10 s of dynamics: drift %.2e m, tow force "
               "change %.2e\n",
               r.iterations, r.residual, dx, dT);
@@ -378,22 +396,8 @@ TEST(SeabedDragged, SteadyStateStaysSteadyInTheDynamics) {
   Model m = dragged_model(cs, U);
   const StaticsResult r = solve_statics(m, Vec3(U, 0, 0));
   ASSERT_TRUE(r.converged) << r.message;
-  m.initial.kind = Initial::Kind::Steady;
-  m.sim.integrator = Integrator::Rosenbrock;
-  m.sim.tolerance = 1e-8;
-  m.sim.duration = 10;
-  m.sim.time_step = 0.01;
-  m.sim.output_interval = 1;
-  const auto samples = testing::run(m);
-  ASSERT_FALSE(samples.empty());
-  double dx = 0, dv = 0, dT = 0;
-  for (const Sample& smp : samples) {
-    for (std::size_t j = 0; j < smp.node_pos.size(); ++j) {
-      dx = std::max(dx, ((smp.node_pos[j] - smp.tow_pos) - (r.sample.node_pos[j] - r.sample.tow_pos)).norm());
-      dv = std::max(dv, (smp.node_vel[j] - Vec3(U, 0, 0)).norm());
-    }
-    dT = std::max(dT, (smp.tow_force - r.tow_force).norm() / r.tow_force.norm());
-  }
+  const Drift d = drift_from_steady(m, r, Vec3(U, 0, 0));
+  const double dx = d.x, dv = d.v, dT = d.force;
   std::printf("dragged, 10 s of dynamics from the statics: max joint drift %.2e m, max |v - U| %.2e m/s, max tow "
               "force change %.2e\n",
               dx, dv, dT);
@@ -442,19 +446,8 @@ TEST(SeabedSlope, RestingCableHangsOnItsTensionAlongTheSlope) {
   EXPECT_NEAR(T, Tc, w * L);  // the discrete chain's kinks at the touchdown: O(w L)
   // The dynamics from it (rosenbrock, tolerance 1e-8, 10 s): every joint
   // within 1 mm of its place, speeds below 1 mm/s.
-  m.initial.kind = Initial::Kind::Steady;
-  m.sim.integrator = Integrator::Rosenbrock;
-  m.sim.tolerance = 1e-8;
-  m.sim.duration = 10;
-  m.sim.time_step = 0.01;
-  m.sim.output_interval = 1;
-  const auto samples = testing::run(m);
-  double dx = 0, dv = 0;
-  for (const Sample& smp : samples)
-    for (std::size_t j = 0; j < smp.node_pos.size(); ++j) {
-      dx = std::max(dx, (smp.node_pos[j] - r.sample.node_pos[j]).norm());
-      dv = std::max(dv, smp.node_vel[j].norm());
-    }
+  const Drift drift = drift_from_steady(m, r, Vec3::Zero());
+  const double dx = drift.x, dv = drift.v;
   std::printf("slope at rest, 10 s of dynamics: drift %.2e m, speed %.2e m/s\n", dx, dv);
   EXPECT_LT(dx, 1e-3);
   EXPECT_LT(dv, 1e-3);
