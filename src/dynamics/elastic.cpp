@@ -57,7 +57,7 @@ Vec3 elastic_forward(const ElasticWork& ew, const Vec3& e, const Vec3& w, double
 
 Vec3 elastic_forward(const ElasticWork& ew, const Vec3& e, const Vec3& w, double l, double l_rate, const Vec3& a,
                      const Vec3& shift, Vec3& alpha, double& l_acc) {
-  const Vec3 dd = ew.Ainv * (ew.r - ew.G * a);
+  Vec3 dd = ew.Ainv * (ew.r - ew.G * a);
   // d_1'' = dd + shift = l'' e + 2 l' (w x e) + l (alpha x e) - l |w|^2 e.
   const Vec3 d1 = dd + shift;
   const double along = e.dot(d1);
