@@ -21,7 +21,7 @@ Seabed Seabed::flat(double d, double stiffness, double damping, double friction)
 double Seabed::depth_at(double x_g) const { return interpolate(x, depth, x_g); }
 
 Vec3 Seabed::normal(double x_g) const {
-  if (depth.size() < 2 || x_g < x.front() || x_g >= x.back()) return Vec3::UnitZ();
+  if (depth.size() < 2 || !(x_g >= x.front() && x_g < x.back())) return Vec3::UnitZ();  // NaN too
   const auto i = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), x_g) - x.begin()) - 1;
   // z_b = -depth(x): the surface z - z_b(x) = 0 has gradient (depth'(x), 0, 1).
   const double slope = (depth[i + 1] - depth[i]) / (x[i + 1] - x[i]);

@@ -32,7 +32,7 @@ double wrap180(double d) {
 
 /// Bracketing interval and weight of x in increasing xs, held at the ends.
 void bracket(const std::vector<double>& xs, double x, std::size_t& i0, std::size_t& i1, double& w) {
-  if (xs.size() == 1 || x <= xs.front()) {
+  if (xs.size() == 1 || !(x > xs.front())) {  // NaN too
     i0 = i1 = 0, w = 0;
     return;
   }

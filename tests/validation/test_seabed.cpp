@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "../support/models.hpp"
@@ -67,6 +68,11 @@ TEST(SeabedLaw, SlopedTableGeometry) {
   EXPECT_LT((sb.normal(40) - n).norm(), 1e-15);
   EXPECT_EQ(sb.normal(-10), Vec3::UnitZ());  // held flat beyond the table
   EXPECT_EQ(sb.normal(150), Vec3::UnitZ());
+  // A NaN abscissa (a rejected trial state) reads inside the table (ASan
+  // found a read past it): the first row, and a flat normal.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(sb.depth_at(nan), 100.0);
+  EXPECT_EQ(sb.normal(nan), Vec3::UnitZ());
   // A point at distance d along the normal from the bottom point (40, -80).
   for (double d : {-0.3, 0.0, 2.0}) EXPECT_NEAR(sb.gap(Vec3(40, 0, -80) + d * n), d, 1e-13);
   // In contact: the normal force is along n, of size k l delta at rest.
