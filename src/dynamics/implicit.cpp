@@ -220,7 +220,6 @@ ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
   K.assign(n + 1, Mat3::Zero());
   b.assign(n + 1, Vec3::Zero());
   T.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
-  GT.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
   Phi.assign(n, Eigen::Matrix2d::Zero());
   H.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
   TH.assign(n, Mat3::Zero());
@@ -299,8 +298,6 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
     // (Mt and K symmetric: D symmetric, inverted in closed form).
     const Mat3 A = 0.5 * Mt + *Kk, B = 0.25 * Mt + *Kk;
     const Vec3 g1 = L * (A * t1), g2 = L * (A * t2), v2 = B * t2;
-    iw.GT[k].col(0) = g1;
-    iw.GT[k].col(1) = g2;
     const double L2 = L * L, dd = element_rot_inertia(el) + hg * hg * jac.element_stiffness[k];
     const double d11 = L2 * t1.dot(B * t1) + dd, d22 = L2 * t2.dot(v2) + dd, d12 = L2 * t1.dot(v2);
     const double idet = 1.0 / (d11 * d22 - d12 * d12);
@@ -337,7 +334,7 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
   const bool free_top = model.tow.mode != Tow::Mode::Motion;
   // Tension-controlled winch, tow point held: the pay-out is a prismatic
   // joint at the top (its increments move the top material along e_1).
-  const bool drum = model.winch.mode == Winch::Mode::Tension && !free_top && n > 0 && !is_elastic(els.front());
+  const bool drum = model.winch.mode == Winch::Mode::Tension && !free_top && n > 0 && !elastic_winch(model);
   // Right-hand side as loads: -hg C dv at each damper (dv: the velocity
   // increments r_v carried down the chain), -hg K (hg dw + rot) on rotations,
   // -hg K (hg dv + dx) on joint springs (dx: the joints' displacements).

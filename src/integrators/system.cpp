@@ -50,8 +50,7 @@ PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, 
 /// unless length control).
 double winch_jump(const Model& m, const PhysicalState& s, double t) {
   if (m.winch.mode != Winch::Mode::Imposed) return 0;
-  const double rate = elastic_winch(m) ? s.top_unstretched_rate : element_length_rate(s, 0);
-  return winch_kinematics(m.winch, t).rate - rate;
+  return winch_kinematics(m.winch, t).rate - payout_rate(m, s);
 }
 
 /// Velocity jump of the material at the sheave for a pay-out speed jump dL:
@@ -217,9 +216,9 @@ class DefaultSystem final : public System {
     // speed is a jump dl' e_1 of the top material's velocity.
     PhysicalState s = physical(y);
     const double dl = winch_ ? winch_jump(model_, s, t) : 0.0;
-    const Vec3 dv = tow_jump(model_, t) + (winch_ ? Vec3(sheave_jump(model_, s, dl)) : Vec3::Zero());
-    if (dv.norm() == 0) return 0;
     const Vec3 dsheave = winch_ ? Vec3(sheave_jump(model_, s, dl)) : Vec3::Zero();
+    const Vec3 dv = tow_jump(model_, t) + dsheave;
+    if (dv.norm() == 0) return 0;
     s = jumped(model_, s, dv, t, ws_);
     if (elastic_top_ && model_.winch.mode == Winch::Mode::Imposed) {
       // l_1' = (d_1' relative to the sheave's material) + the sheave's pay-out.
@@ -269,7 +268,7 @@ class DefaultSystem final : public System {
     // A tension-controlled winch's rows (l_1, l_1'): the drum in the stage solve.
     // (Over an elastic top element the winch sets its unstretched L_1, which
     // moves no joint: W = I on those rows.)
-    const bool drum = winch_ && model_.winch.mode == Winch::Mode::Tension && !is_elastic(model_.cable.elements.front());
+    const bool drum = winch_ && model_.winch.mode == Winch::Mode::Tension && !elastic_top_;
     rhs_.winch_dl = drum ? r[winch_offset()] : 0.0;
     rhs_.winch_dlr = drum ? r[winch_offset() + 1] : 0.0;
     if (elastic_top_) {

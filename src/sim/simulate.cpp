@@ -117,7 +117,7 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
   out.tow_force = ws.acc.tow_force;
   out.deployed_length = 0;
   for (double L : ws.L) out.deployed_length += L;
-  out.payout_speed = !ws.winch ? 0.0 : elastic_winch(model) ? s.top_unstretched_rate : element_length_rate(s, 0);
+  out.payout_speed = ws.winch ? payout_rate(model, s) : 0.0;
   // A node: position, velocity, force through it onto the part below, that
   // force along the adjacent element el's axis e (tension pulls the part
   // below back along -e), el's strain and, with breaking loads, the node's
@@ -370,9 +370,7 @@ void winch_event_at(Chain& c, StateVector& y, double t, RunStats& stats) {
       break;
     case WinchEvent::Remove: {
       const Winch& w = c.model->winch;
-      const double rate = w.mode == Winch::Mode::Imposed ? winch_kinematics(w, t).rate
-                          : elastic_winch(*c.model)  ? s.top_unstretched_rate
-                                                     : element_length_rate(s, 0);
+      const double rate = w.mode == Winch::Mode::Imposed ? winch_kinematics(w, t).rate : payout_rate(*c.model, s);
       Removal r = remove_top(*c.model, s, t, rate);
       m = std::make_unique<Model>(std::move(r.model));
       s2 = std::move(r.state);

@@ -645,11 +645,22 @@ void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
   if (!sys->has_stage_solve()) return;
   double weight = 1.0;  // force scale of the error norm: the chain's apparent weight [N]
   for (const Element& el : rm.cable.elements) weight += std::abs(el.weight);
+  // No rotation rates: every point moving at V.
+  auto stop_rotations = [](PhysicalState& st) {
+    for (auto& w : st.w) w.setZero();
+    for (auto& b : st.bodies) b.w.setZero();
+  };
+  // The iterate handed back: at rest, the tow point at its start.
+  auto accept = [&](PhysicalState st) {
+    stop_rotations(st);
+    st.r0 = rm.tow.start;
+    st.v0 = p.V;
+    p.accept_state(st);
+  };
   PhysicalState s = p.base;
   s.r0 = rm.tow.start;
   s.v0 = p.V;
-  for (auto& w : s.w) w.setZero();
-  for (auto& b : s.bodies) b.w.setZero();
+  stop_rotations(s);
   StateVector y = sys->initial(s, 0.0);
   RosenbrockW ros(*sys, kRelaxTolerance, weight);
   double t = 0, h = 1e-3, previous = 0;
@@ -667,28 +678,18 @@ void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
       ke += p.scale[static_cast<std::size_t>(p.n + b)] * s.bodies[static_cast<std::size_t>(b)].w.squaredNorm();
     const bool peak = ke < previous;
     previous = peak ? 0.0 : ke;
-    if (peak || step % kCheckEvery == 0) {
-      for (auto& w : s.w) w.setZero();
-      for (auto& b : s.bodies) b.w.setZero();
-    }
     if (peak) {
+      stop_rotations(s);
       y = sys->initial(s, t);
       ros.invalidate();
     }
     if (step % kCheckEvery == 0) {
-      s.r0 = rm.tow.start;
-      s.v0 = p.V;
-      p.accept_state(s);
+      accept(s);
       const double res = p.max_alpha(p.residual(zero));
       if (res < target) return;
     }
   }
-  s = sys->physical(y);
-  for (auto& w : s.w) w.setZero();
-  for (auto& b : s.bodies) b.w.setZero();
-  s.r0 = rm.tow.start;
-  s.v0 = p.V;
-  p.accept_state(s);
+  accept(sys->physical(y));
 }
 
 /// Elastic elements (docs/theory.md §5.4, §7): the equilibrium of a chain of

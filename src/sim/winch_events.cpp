@@ -37,6 +37,28 @@ Model without_second(const Model& model) {
   return m;
 }
 
+/// The start of a removal: the old chain's energy [J], the removed top
+/// element's kinetic energy [J], and the chord P_0 -> P_2 the next element
+/// will span (length [m], direction [-], P_2's velocity relative to the
+/// sheave [m/s], R_g).
+struct TopRemoval {
+  double E_old = 0, removed_energy = 0, L = 0;
+  Vec3 e = Vec3::UnitZ(), dv2 = Vec3::Zero();
+};
+TopRemoval top_removal(const Model& model, const PhysicalState& s) {
+  TopRemoval t;
+  Workspace ws(model);
+  t.E_old = energy(model, s, ws);
+  const Element& el = ws.top;
+  t.removed_energy =
+      0.5 * ws.vG[0].dot(ws.Mt[0] * ws.vG[0]) + 0.5 * (el.inertia + el.added_inertia) * s.w[0].squaredNorm();
+  const Vec3 d = ws.P[2] - ws.P[0];
+  t.L = d.norm();
+  t.e = d / t.L;
+  t.dv2 = ws.vP[2] - s.v0;
+  return t;
+}
+
 }  // namespace
 
 PhysicalState split_elastic_state(const Model& model, const PhysicalState& s) {
@@ -69,7 +91,7 @@ WinchEvent winch_event(const Model& model, const PhysicalState& s) {
   const Winch& w = model.winch;
   if (!w.active() || model.cable.elements.empty()) return WinchEvent::None;
   // The paid-out material decides: l_1, or L_1 over an elastic top element.
-  const double l = elastic_winch(model) ? s.top_unstretched : element_length(model, s, 0);
+  const double l = paid_out_length(model, s);
   if (l > w.split_at * w.nominal_length) return WinchEvent::Split;
   const bool more = !model.cable.sections.empty() ? model.cable.sections[0].elements > 1 : model.cable.n() > 1;
   if (l < w.remove_at * w.nominal_length && more) return WinchEvent::Remove;
@@ -112,28 +134,18 @@ Removal remove_top(const Model& model, const PhysicalState& s, double t, double 
   (void)t;
   if (elastic_winch(model)) return remove_elastic_top(model, s, rate);
   Removal r;
-  Workspace ws_old(model);
-  const double E_old = energy(model, s, ws_old);
-  const Element& el = ws_old.top;
-  r.removed_energy = 0.5 * ws_old.vG[0].dot(ws_old.Mt[0] * ws_old.vG[0]) +
-                     0.5 * (el.inertia + el.added_inertia) * s.w[0].squaredNorm();
+  const TopRemoval top = top_removal(model, s);
+  const double E_old = top.E_old;
+  r.removed_energy = top.removed_energy;
   const double l = element_length(model, s, 0);
   // The next element now spans the sheave P_0 to its own bottom joint P_2.
-  const Vec3 d = ws_old.P[2] - ws_old.P[0];
-  const double L = d.norm();  // [m]
-  const Vec3 e = d / L;
-  const Vec3 dv2 = ws_old.vP[2] - s.v0;  // P_2's velocity relative to the sheave [m/s]
+  const double L = top.L;  // [m]
+  const Vec3& e = top.e;
+  const Vec3& dv2 = top.dv2;             // P_2's velocity relative to the sheave [m/s]
   const double r_star = dv2.dot(e);      // provisional pay-out speed [m/s]
   const Vec3 w = e.cross(dv2 - r_star * e) / L;
 
-  r.model = model;
-  auto& els = r.model.cable.elements;
-  els.erase(els.begin() + 1);
-  if (!r.model.cable.sections.empty()) {
-    r.model.cable.sections[0].elements -= 1;
-    r.model.cable.sections[0].length -= model.winch.nominal_length;
-  }
-  shift_joints(r.model, -1);
+  r.model = without_second(model);
   // Cable drawn in by straightening the kink at P_1 (zero when collinear).
   r.model.winch.length_offset += l + model.winch.nominal_length - L;
 
@@ -165,18 +177,14 @@ Removal remove_top(const Model& model, const PhysicalState& s, double t, double 
 
 Removal remove_elastic_top(const Model& model, const PhysicalState& s, double rate) {
   Removal r;
-  Workspace ws_old(model);
-  const double E_old = energy(model, s, ws_old);
-  const Element& el = ws_old.top;
-  r.removed_energy = 0.5 * ws_old.vG[0].dot(ws_old.Mt[0] * ws_old.vG[0]) +
-                     0.5 * (el.inertia + el.added_inertia) * s.w[0].squaredNorm();
+  const TopRemoval top = top_removal(model, s);
+  r.removed_energy = top.removed_energy;
   // The next element takes in the top one's material (L_1 + L_2) and spans
   // the sheave P_0 to its own bottom joint P_2, which keeps its position and
   // velocity; l and l' are free coordinates here: no impulse.
-  const Vec3 d = ws_old.P[2] - ws_old.P[0];
-  const double l = d.norm();  // [m]
-  const Vec3 e = d / l;
-  const Vec3 dv2 = ws_old.vP[2] - s.v0;  // P_2's velocity relative to the sheave [m/s]
+  const double l = top.L;  // [m]
+  const Vec3& e = top.e;
+  const Vec3& dv2 = top.dv2;  // P_2's velocity relative to the sheave [m/s]
   const double lr = dv2.dot(e);
   r.model = without_second(model);
   PhysicalState& n = r.state;
@@ -193,7 +201,7 @@ Removal remove_elastic_top(const Model& model, const PhysicalState& s, double ra
   n.top_unstretched_rate = rate;
   Workspace ws(r.model);
   r.energy_before_impulse = energy(r.model, n, ws);
-  r.energy_lost = E_old - r.energy_before_impulse;
+  r.energy_lost = top.E_old - r.energy_before_impulse;
   return r;
 }
 

@@ -69,7 +69,7 @@ struct ImplicitWorkspace {
   std::vector<Mat3> K;        // f_k = K_k a_k + b_k [kg] (k = 0..n)
   std::vector<Vec3> b;        // [N]
   // Factorisation (implicit_factor: depends on hg and the Jacobian point only):
-  std::vector<Eigen::Matrix<double, 3, 2>> T, GT;  // tangent basis [-], G T [kg m]
+  std::vector<Eigen::Matrix<double, 3, 2>> T;      // tangent basis [-]
   std::vector<Eigen::Matrix2d> Phi;                // inverse rotational block [1/(kg m^2)]
   std::vector<Eigen::Matrix<double, 3, 2>> H;      // G T Phi [1/m]
   std::vector<Mat3> TH;                            // T H^T = T Phi (G T)^T: beta's slope on the top

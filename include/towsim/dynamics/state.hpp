@@ -170,6 +170,17 @@ inline double element_length(const Model& model, const PhysicalState& s, std::si
 /// Current rate of the length of element k (0-based) [m/s].
 inline double element_length_rate(const PhysicalState& s, std::size_t k) { return s.length_rate_of(k); }
 
+/// The winch's coordinate, the paid-out length of the top element: its
+/// unstretched L_1 over an elastic top element, else its length l_1 [m].
+inline double paid_out_length(const Model& model, const PhysicalState& s) {
+  return elastic_winch(model) ? s.top_unstretched : element_length(model, s, 0);
+}
+
+/// Its rate, the pay-out speed: L_1' over an elastic top element, else l_1' [m/s].
+inline double payout_rate(const Model& model, const PhysicalState& s) {
+  return elastic_winch(model) ? s.top_unstretched_rate : element_length_rate(s, 0);
+}
+
 /// The element k (0-based) as the dynamics use it: the model's, or the
 /// winch's top element at its current length (filled by compute_kinematics).
 inline const Element& current_element(const Model& model, const Workspace& ws, std::size_t k) {
