@@ -32,14 +32,16 @@ constexpr double kMinLength = 0.05;
 void track_elastic(const Model& model, const System& sys, const StateVector& y, double t, RunStats& stats) {
   if (!lengths_in_state(model)) return;
   PhysicalState s = sys.physical(y);
+  double top_unstretched = 0;  // L_1 when the winch sets it [m]
   if (elastic_winch(model)) {
+    top_unstretched = s.top_unstretched;
     // The winch's top element at the strain l_1/L_1 of the model's L:
     // equivalent length and rate (its pay-out's damping term left out).
     const double scale = model.cable.elements[0].length / s.top_unstretched;
     s.length[0] *= scale;
     s.length_rate[0] *= scale;
   }
-  stats.slack.update(model, s.length, s.length_rate, t);
+  stats.slack.update(model, s.length, s.length_rate, t, top_unstretched);
 }
 
 /// RK4 only: compare the step with the stability limit at this sample. Beyond

@@ -8,7 +8,7 @@
 namespace towsim {
 
 void SlackRecord::update(const Model& model, const std::vector<double>& length, const std::vector<double>& rate,
-                         double t) {
+                         double t, double top_unstretched) {
   const auto& els = model.cable.elements;
   int first = 0, last = 0;
   double min_strain = 0, from = 0, to = 0;
@@ -16,20 +16,22 @@ void SlackRecord::update(const Model& model, const std::vector<double>& length, 
   int peak_el = 0;
   for (std::size_t i = 0; i < els.size() && i < length.size(); ++i) {
     const Element& el = els[i];
+    // Unstretched length of element i along the cable [m].
+    const double Lu = i == 0 && top_unstretched > 0 ? top_unstretched : el.length;
     if (!is_elastic(el)) {
-      arc += el.length;
+      arc += Lu;
       continue;
     }
     const double strain = element_strain(el, length[i]);
     if (strain < -kSlackStrain) {
       if (first == 0) first = static_cast<int>(i) + 1, from = arc;
       last = static_cast<int>(i) + 1;
-      to = arc + el.length;
+      to = arc + Lu;
       min_strain = std::min(min_strain, strain);
     }
     const double T = element_tension(el, length[i], i < rate.size() ? rate[i] : 0.0);
     if (T > peak) peak = T, peak_el = static_cast<int>(i) + 1;
-    arc += el.length;
+    arc += Lu;
   }
   // Peak tension of the run and of the current snap.
   if (peak > max_tension) max_tension = peak, max_tension_time = t, max_tension_element = peak_el;

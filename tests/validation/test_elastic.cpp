@@ -477,6 +477,33 @@ TEST(ElasticSlack, LightCableUnderHeaveGoesSlackWithZeroTension) {
   EXPECT_GT(st.slack.max_tension, static_top);
 }
 
+TEST(ElasticSlack, EpisodeSpanFollowsTheWinchTopLength) {
+  // A winch over an elastic cable sets the top element's unstretched length
+  // L_1 (here 14 m against the model's 10 m): the slack episode of element 2
+  // lies from L_1 to L_1 + 10 m along the cable, not from the model's 10 m.
+  CableSpec c;
+  c.n = 3;
+  c.length = 30;
+  Model m = cable_model(c);
+  make_elastic(m, 1e5);
+  const double L1 = 14.0;
+  // Lengths at the model's unstretched lengths (10 m each): element 2 at
+  // strain -1e-3 (slack), the others taut.
+  const std::vector<double> length{10.001, 9.99, 10.001}, rate(3, 0.0);
+  SlackRecord r;
+  r.update(m, length, rate, 1.0, L1);
+  ASSERT_EQ(r.events().size(), 1U);
+  const SlackEvent& ev = r.events().front();
+  EXPECT_EQ(ev.first_element, 2);
+  EXPECT_EQ(ev.last_element, 2);
+  EXPECT_DOUBLE_EQ(ev.from, L1);         // exact: sums of the lengths given
+  EXPECT_DOUBLE_EQ(ev.to, L1 + 10.0);
+  // Without a winch length: the model's.
+  SlackRecord plain;
+  plain.update(m, length, rate, 1.0);
+  EXPECT_DOUBLE_EQ(plain.events().front().from, 10.0);
+}
+
 TEST(ElasticSlack, HardHeaveFoldsNoElement) {
   // The harder heave of the note above (3 m, 3 s: 13 m/s^2 peak downwards,
   // twice the 6 m/s^2 at which the vertical cable sinks along itself): the

@@ -36,8 +36,12 @@ class SlackRecord {
   static constexpr std::size_t kMaxEvents = 1000;  // episodes kept (all are counted)
 
   /// Account for the state at time t: lengths l_k [m] and rates l_k' [m/s]
-  /// of every element (index k-1).
-  void update(const Model& model, const std::vector<double>& length, const std::vector<double>& rate, double t);
+  /// of every element (index k-1), given at the strain of the model's
+  /// unstretched lengths. top_unstretched > 0: the top element's own
+  /// unstretched length L_1 [m] (a winch over an elastic cable), which places
+  /// the elements below it along the cable (from, to).
+  void update(const Model& model, const std::vector<double>& length, const std::vector<double>& rate, double t,
+              double top_unstretched = 0);
   /// Close an episode still open at the end of the run (time t).
   void finish(double t);
 
