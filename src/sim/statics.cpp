@@ -634,11 +634,21 @@ void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
   constexpr int kMaxRelaxSteps = 20000;  // accepted steps [-]
   constexpr int kCheckEvery = 20;        // steps between residual checks [-]
   constexpr double kRelaxTolerance = 1e-5;  // local error target of the steps [-]
+  constexpr double kSharpSlip = 0.1;        // the relaxation's v_s' / U, at most [-]
   Model rm = p.model;
   const double U = p.V.norm();
   // At rest the friction vanishes at the equilibrium; left in, its viscous
   // slope mu N / v_s makes the lying cable only creep: relax without it.
   if (!(U > 0) && rm.seabed) rm.seabed->friction = 0;
+  // Moving near the smoothing speed v_s the same slope makes the lying
+  // length creep as well: relax with a sharper law, v_s' = U / 10, scaled
+  // to the same friction at the steady slip U (so the same equilibrium).
+  if (U > 0 && rm.seabed && rm.seabed->slip_speed > kSharpSlip * U) {
+    Seabed& sb = *rm.seabed;
+    const double sharp = kSharpSlip * U;
+    sb.friction *= std::hypot(U, sharp) / std::hypot(U, sb.slip_speed);
+    sb.slip_speed = sharp;
+  }
   rm.tow.pieces.clear();
   if (U > 0) rm.tow.pieces.emplace_back(Ramp{p.V / U, U, 0.0});
   const std::unique_ptr<System> sys = make_system(rm);

@@ -354,7 +354,7 @@ Model dragged_model(testing::CableSpec& cs, double U) {
 }
 
 TEST(SeabedDragged, SteadyTowHasTheClosedForms) {
-  for (double U : {0.1, 0.5, 1.0}) {
+  for (double U : {0.01, 0.1, 0.5, 1.0}) {
     testing::CableSpec cs;
     const Model m = dragged_model(cs, U);
     const double w = apparent_weight(cs), L = cs.length / cs.n, mu = 0.5, delta = w / 1e5;
@@ -379,7 +379,7 @@ TEST(SeabedDragged, SteadyTowHasTheClosedForms) {
       worst = std::max(worst, std::abs(step - mu * s * w * L) / (mu * s * w * L));
     }
     const double T = r.tow_force.norm(), Tc = w * (110 - delta) + mu * s * w * r.sample.contact_length;
-    std::printf("dragged U = %.1f: %d iterations, %d lying steps within %.1e of mu s w L; T = %.3f N, closed form "
+    std::printf("dragged U = %.2f: %d iterations, %d lying steps within %.1e of mu s w L; T = %.3f N, closed form "
                 "%.3f N (%+.2e w L)\n",
                 U, r.iterations, lying, worst, T, Tc, (T - Tc) / (w * L));
     EXPECT_GE(lying, 5) << U;
@@ -397,19 +397,23 @@ TEST(SeabedDragged, SteadyStateStaysSteadyInTheDynamics) {
   // 1 mm and moves at U within 1 mm/s, and the tow force stays within 1e-3
   // of the statics' (the integration error of a 1e-8 tolerance on a state
   // at rest, with contact springs of 1e5 N/m per m, is far below these).
-  testing::CableSpec cs;
-  const double U = 0.5;
-  Model m = dragged_model(cs, U);
-  const StaticsResult r = solve_statics(m, Vec3(U, 0, 0));
-  ASSERT_TRUE(r.converged) << r.message;
-  const Drift d = drift_from_steady(m, r, Vec3(U, 0, 0));
-  const double dx = d.x, dv = d.v, dT = d.force;
-  std::printf("dragged, 10 s of dynamics from the statics: max joint drift %.2e m, max |v - U| %.2e m/s, max tow "
-              "force change %.2e\n",
-              dx, dv, dT);
-  EXPECT_LT(dx, 1e-3);
-  EXPECT_LT(dv, 1e-3);
-  EXPECT_LT(dT, 1e-3);
+  // U = 0.01 m/s: the friction's smoothing speed, where its viscous slope
+  // made the relaxation creep (the statics relax with a sharper law of the
+  // same steady friction, then solve with the true one).
+  for (double U : {0.01, 0.5}) {
+    testing::CableSpec cs;
+    Model m = dragged_model(cs, U);
+    const StaticsResult r = solve_statics(m, Vec3(U, 0, 0));
+    ASSERT_TRUE(r.converged) << "U = " << U << ": " << r.message;
+    const Drift d = drift_from_steady(m, r, Vec3(U, 0, 0));
+    const double dx = d.x, dv = d.v, dT = d.force;
+    std::printf("dragged at %.2f m/s, 10 s of dynamics from the statics: max joint drift %.2e m, max |v - U| %.2e "
+                "m/s, max tow force change %.2e\n",
+                U, dx, dv, dT);
+    EXPECT_LT(dx, 1e-3) << U;
+    EXPECT_LT(dv, 1e-3) << U;
+    EXPECT_LT(dT, 1e-3) << U;
+  }
 }
 
 // ---------------------------------------------------------------------------
