@@ -147,17 +147,33 @@ void body_forward(const Body& body, const BodyWork& bw, const Mat3& K2, const Ve
   acc.lower_link_force[b] = K2 * a + b2;
 }
 
+/// The winch's deployed length: the paid-out top element plus the fixed
+/// elements below it and the cable drawn in by removals (unstretched over an
+/// elastic top; as the integrator's stops at min_length/max_length see it) [m].
+double deployed_length(const Model& model, const PhysicalState& s) {
+  double L = model.winch.length_offset + paid_out_length(model, s);
+  const auto& els = model.cable.elements;
+  for (std::size_t k = 1; k < els.size(); ++k) L += els[k].length;
+  return L;
+}
+
 /// Tension-controlled winch: the pay-out acceleration l'' from the drum's
 /// equation M_d l'' = T - T_set - c l', where the tension at the sheave
 /// T = -e_1 . f_0 is affine in l'': f_0 = K_0 (a + l'' e_1) + b_0 = f + l'' K_0 e_1
 /// (f the force at l'' = 0). Clamped to the acceleration limit, and to zero
-/// where the speed limit is reached and l'' would pass it.
-double drum_acceleration(const Winch& w, const Vec3& e1, double rate, const Mat3& K0, const Vec3& f) {
-  const double T0 = -e1.dot(f);             // tension at l'' = 0 [N]
-  const double k = e1.dot(K0 * e1);         // dT/dl'' = -k [kg]
+/// where the speed limit is reached and l'' would pass it, and where the drum
+/// is stopped at min_length or max_length (deployed length L [m]) and l''
+/// would take it out: there the drum holds, so the forces are those of a
+/// fixed length (not of a drum accelerating against its stop).
+double drum_acceleration(const Winch& w, const Vec3& e1, double rate, double L, const Mat3& K0, const Vec3& f) {
+  const double T0 = -e1.dot(f);      // tension at l'' = 0 [N]
+  const double k = e1.dot(K0 * e1);  // dT/dl'' = -k [kg]
   double acc = (T0 - w.tension - w.damping * rate) / (w.drum_inertia + k);
   acc = std::clamp(acc, -w.max_acceleration, w.max_acceleration);
   if ((rate >= w.max_speed && acc > 0) || (rate <= -w.max_speed && acc < 0)) acc = 0;
+  // The stop's round-off: the projection puts L back on the limit [m].
+  const double eps = 1e-9 * std::max(1.0, L);
+  if ((L <= w.min_length + eps && rate <= 0 && acc < 0) || (L >= w.max_length - eps && rate >= 0 && acc > 0)) acc = 0;
   return acc;
 }
 
@@ -194,7 +210,8 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   if (imposed_a0 || model.tow.mode == Tow::Mode::Motion) {
     acc.a0 = imposed_a0 ? *imposed_a0 : tow_kinematics(model.tow, t).acc;
     if (winch && model.winch.mode == Winch::Mode::Tension)
-      acc.top_length_acc = drum_acceleration(model.winch, e1, pay_rate, K_pay, ws.K[0] * (acc.a0 + a_extra) + ws.b[0]);
+      acc.top_length_acc = drum_acceleration(model.winch, e1, pay_rate, deployed_length(model, s), K_pay,
+                                             ws.K[0] * (acc.a0 + a_extra) + ws.b[0]);
   }
   const Vec3 a_pay = elastic_top ? Vec3(lam * acc.top_length_acc * e1) : Vec3(acc.top_length_acc * e1);
   if (imposed_a0 || model.tow.mode == Tow::Mode::Motion) {
