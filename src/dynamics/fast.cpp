@@ -147,17 +147,33 @@ void body_forward(const Body& body, const BodyWork& bw, const Mat3& K2, const Ve
   acc.lower_link_force[b] = K2 * a + b2;
 }
 
+/// The winch's deployed length: the paid-out top element plus the fixed
+/// elements below it and the cable drawn in by removals (unstretched over an
+/// elastic top; as the integrator's stops at min_length/max_length see it) [m].
+double deployed_length(const Model& model, const PhysicalState& s) {
+  double L = model.winch.length_offset + paid_out_length(model, s);
+  const auto& els = model.cable.elements;
+  for (std::size_t k = 1; k < els.size(); ++k) L += els[k].length;
+  return L;
+}
+
 /// Tension-controlled winch: the pay-out acceleration l'' from the drum's
 /// equation M_d l'' = T - T_set - c l', where the tension at the sheave
 /// T = -e_1 . f_0 is affine in l'': f_0 = K_0 (a + l'' e_1) + b_0 = f + l'' K_0 e_1
 /// (f the force at l'' = 0). Clamped to the acceleration limit, and to zero
-/// where the speed limit is reached and l'' would pass it.
-double drum_acceleration(const Winch& w, const Vec3& e1, double rate, const Mat3& K0, const Vec3& f) {
-  const double T0 = -e1.dot(f);             // tension at l'' = 0 [N]
-  const double k = e1.dot(K0 * e1);         // dT/dl'' = -k [kg]
+/// where the speed limit is reached and l'' would pass it, and where the drum
+/// is stopped at min_length or max_length (deployed length L [m]) and l''
+/// would take it out: there the drum holds, so the forces are those of a
+/// fixed length (not of a drum accelerating against its stop).
+double drum_acceleration(const Winch& w, const Vec3& e1, double rate, double L, const Mat3& K0, const Vec3& f) {
+  const double T0 = -e1.dot(f);      // tension at l'' = 0 [N]
+  const double k = e1.dot(K0 * e1);  // dT/dl'' = -k [kg]
   double acc = (T0 - w.tension - w.damping * rate) / (w.drum_inertia + k);
   acc = std::clamp(acc, -w.max_acceleration, w.max_acceleration);
   if ((rate >= w.max_speed && acc > 0) || (rate <= -w.max_speed && acc < 0)) acc = 0;
+  // The stop's round-off: the projection puts L back on the limit [m].
+  const double eps = 1e-9 * std::max(1.0, L);
+  if ((L <= w.min_length + eps && rate <= 0 && acc < 0) || (L >= w.max_length - eps && rate >= 0 && acc > 0)) acc = 0;
   return acc;
 }
 
@@ -194,7 +210,8 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   if (imposed_a0 || model.tow.mode == Tow::Mode::Motion) {
     acc.a0 = imposed_a0 ? *imposed_a0 : tow_kinematics(model.tow, t).acc;
     if (winch && model.winch.mode == Winch::Mode::Tension)
-      acc.top_length_acc = drum_acceleration(model.winch, e1, pay_rate, K_pay, ws.K[0] * (acc.a0 + a_extra) + ws.b[0]);
+      acc.top_length_acc = drum_acceleration(model.winch, e1, pay_rate, deployed_length(model, s), K_pay,
+                                             ws.K[0] * (acc.a0 + a_extra) + ws.b[0]);
   }
   const Vec3 a_pay = elastic_top ? Vec3(lam * acc.top_length_acc * e1) : Vec3(acc.top_length_acc * e1);
   if (imposed_a0 || model.tow.mode == Tow::Mode::Motion) {
@@ -242,6 +259,35 @@ void check_fits(const Model& model, const PhysicalState& s, const Workspace& ws)
     throw std::logic_error("towsim: workspace or state does not fit the model");
 }
 
+/// A cable landing vertically on the bottom (docs/theory.md §3.2): a joint in
+/// contact at the end of a vertical line of elements (the element above comes
+/// down within kVertical of the vertical, and the one below, if any, is
+/// vertical too) gets a push of kTip times its normal force along the bottom
+/// (towards +x_g, or +y_g where the bottom's normal is along x_g). Such an
+/// upright column standing on the bottom is an unstable equilibrium that the
+/// exact symmetry of a vertical pay-out would otherwise keep for ever, driven
+/// into the bottom by the winch; the push only starts its fall (it stops once
+/// the element leans by kVertical). A cable lying on the bottom (horizontal
+/// elements below its touchdown) never gets it.
+void seabed_tipping(const Model& model, const PhysicalState& s, Workspace& ws) {
+  if (!model.seabed) return;
+  constexpr double kVertical = 1e-6;  // [rad]: an element leaning less is vertical
+  constexpr double kTip = 1e-3;       // push / normal force [-]
+  const std::size_t n = s.e.size();
+  auto vertical = [&](std::size_t i) { return s.e[i].head<2>().norm() <= kVertical; };
+  for (std::size_t k = 1; k <= n && k < ws.Fs.size(); ++k) {
+    if (ws.ls[k] <= 0 || ws.body_at[k] >= 0) continue;
+    // The element above points down to P_k; the one below stands on it.
+    if (s.e[k - 1].z() >= 0 || !vertical(k - 1) || (k < n && !vertical(k))) continue;
+    const Vec3 nb = model.seabed->normal(ws.P[k].x());  // the bottom's normal [-, R_g]
+    Vec3 d = Vec3::UnitX() - nb.x() * nb;
+    if (d.norm() < 0.1) d = Vec3::UnitY() - nb.y() * nb;
+    const Vec3 push = kTip * std::abs(ws.Fs[k].dot(nb)) * d.normalized();  // [N, R_g]
+    ws.Fs[k] += push;
+    ws.Fa[k] += push;
+  }
+}
+
 }  // namespace
 
 void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
@@ -261,6 +307,7 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
     body_loads(model.fluid, model.bodies[b], t, ws.body[b]);
   }
   seabed_loads(model, ws);  // point loads at joints (ws.Fa) and on bodies, like attachments
+  seabed_tipping(model, s, ws);
 }
 
 void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& dv, Workspace& ws) {

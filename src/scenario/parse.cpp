@@ -203,7 +203,7 @@ void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {
   parse_tangential(r, cable.tangential_law, cable.tangential_coef, cable.tangential_table, d);
   r.read("added_mass", cable.added_mass);
   r.choice("added_mass_model", cable.added_mass_model, {"ideal_fluid", "morison"});
-  r.read("sign_smoothing_speed", cable.sign_smoothing_speed);
+  r.read_speed("sign_smoothing_speed", cable.sign_smoothing_speed);
   r.read("breaking_load", cable.breaking_load);
   r.read("axial_stiffness", cable.axial_stiffness);
   r.read("axial_damping", cable.axial_damping);

@@ -205,6 +205,12 @@ void MapReader::read_speed(const std::string& key, Field<double>& f, bool requir
   }
 }
 
+const YNode* MapReader::alias(const std::string& key) {
+  if (std::find(aliases_.begin(), aliases_.end(), key) == aliases_.end()) aliases_.push_back(key);
+  const YNode* v = node_ != nullptr ? node_->find(key) : nullptr;
+  return v == nullptr || v->is_null() ? nullptr : v;
+}
+
 void MapReader::choice(const std::string& key, Field<std::string>& f,
                        const std::vector<std::string>& choices, bool required) {
   Field<std::string> tmp = f;

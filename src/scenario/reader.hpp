@@ -77,6 +77,9 @@ class MapReader {
   /// Read a speed [m/s] given as `key` (m/s) or `key`_kn (knots, 1 kn =
   /// 1852/3600 m/s exactly); both is an error.
   void read_speed(const std::string& key, Field<double>& f, bool required = false);
+  /// The value of an accepted alias key (a `_kn` form) that "expected one
+  /// of" does not list, or nullptr when absent.
+  const YNode* alias(const std::string& key);
   /// Read a text field that must be one of `choices`.
   void choice(const std::string& key, Field<std::string>& f, const std::vector<std::string>& choices,
               bool required = false);

@@ -1,5 +1,7 @@
 // The deployed length for a target depth at steady tow (docs/theory.md "Winch").
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "towsim/sim/statics.hpp"
 
@@ -64,8 +66,18 @@ TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double dep
     return r;
   }
   if (fa * fb > 0) {
-    r.message = "no deployed length between " + std::to_string(a) + " and " + std::to_string(b) +
-                " m reaches depth " + std::to_string(depth) + " m";
+    // Out of reach: say how far the search got (f = reached depth - target).
+    const char* what = end_body(model) != nullptr ? "the body" : "the cable end";
+    char buf[256];
+    if (fa > 0)
+      std::snprintf(buf, sizeof buf,
+                    "depth %.7g m is shallower than this tow reaches: %s is at %.7g m with %.7g m deployed", depth,
+                    what, depth + fa, std::abs(a - below) < 1e-9 * std::max(1.0, below) ? below : a);
+    else
+      std::snprintf(buf, sizeof buf,
+                    "depth %.7g m is deeper than this tow reaches: %s is at %.7g m with %.7g m deployed", depth, what,
+                    depth + fb, b);
+    r.message = buf;
     return r;
   }
   // Illinois (regula falsi with halving): depth is smooth and monotone in L.

@@ -56,6 +56,19 @@ TEST(CliStaticsErrors, ForceModeIsRefused) {
             "--set:1:10: tow.mode: statics needs mode: motion (the steady speed comes from the tow law; got force)\n");
 }
 
+// A target depth out of reach says how far the search got (before: "no
+// deployed length between 0.000000 and 0.000000 m reaches depth 0.010000 m"):
+// paper-3d-turn's sphere hangs 0.05 m below its link point, so even with no
+// cable it is deeper than 0.01 m. Exit 3, as any statics that finds nothing.
+TEST(CliStaticsErrors, TargetDepthOutOfReachSaysWhy) {
+  const auto [status, out] = run_towsim("statics --example paper-3d-turn --target-depth 0.01");
+  EXPECT_EQ(status, 3) << out;
+  EXPECT_NE(out.find("--target-depth 0.01: depth 0.01 m is shallower than this tow reaches: the body is at 0.04"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find(" m with 0 m deployed"), std::string::npos) << out;
+}
+
 // The statics output equals the first sample of a run started `initial:
 // steady` from the same scenario: both come from one statics solve and one
 // sample assembly. The tow is at its full speed from t = 0 (ramp_time 0), so

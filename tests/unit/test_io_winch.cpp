@@ -93,6 +93,29 @@ TEST_F(WinchKeys, ValidRateCompiles) {
   EXPECT_DOUBLE_EQ(towsim::winch_kinematics(w, 100).rate, 0);
 }
 
+// Speeds in knots (INTERFACE.md: any speed key as `<key>_kn`): the pay-out
+// rate (a number or a table: its speeds converted, its times not) and
+// max_speed; 1 kn = 1852/3600 m/s exactly. Both forms of one key: an error.
+TEST_F(WinchKeys, SpeedsInKnots) {
+  const double kn = 1852.0 / 3600.0;  // [m/s]
+  const auto s = load(kCable + kSim + "winch:\n  rate_kn: [[0, 0], [10, 2], [20, 2], [30, 0]]\n  max_speed_kn: 3\n");
+  ASSERT_EQ(s.diags.str(), "");
+  ASSERT_TRUE(s.model.has_value());
+  const towsim::Winch& w = s.model->winch;
+  EXPECT_EQ(w.mode, towsim::Winch::Mode::Imposed);
+  EXPECT_DOUBLE_EQ(w.max_speed, 3 * kn);
+  EXPECT_DOUBLE_EQ(towsim::winch_kinematics(w, 15).rate, 2 * kn);
+  EXPECT_NEAR(towsim::winch_kinematics(w, 40).length, 100 + 20 * 2 * kn, 1e-12);  // 5 + 10 + 5 s at full speed
+  const auto c = load(kCable + kSim + "winch:\n  rate_kn: 1\n");
+  ASSERT_EQ(c.diags.str(), "");
+  EXPECT_DOUBLE_EQ(towsim::winch_kinematics(c.model->winch, 10).rate, kn);
+  const auto both = load(kCable + kSim + "winch:\n  rate: 1\n  rate_kn: 2\n  max_speed: 2\n  max_speed_kn: 4\n");
+  EXPECT_EQ(both.diags.str(), at("10:12: winch.rate_kn: give either 'rate' or 'rate_kn', not both") +
+                                  at("12:3: winch.max_speed_kn: give either 'max_speed' or 'max_speed_kn', not both"));
+  const auto over = load(kCable + kSim + "winch:\n  rate_kn: [[0, 0], [10, 5], [20, 0]]\n  max_speed_kn: 4\n");
+  EXPECT_EQ(over.diags.str(), at("9:21: winch.rate_kn.1: pay-out speed 2.572222222 m/s exceeds winch.max_speed (2.057777778 m/s)"));
+}
+
 // The rate schedule's stops: paying out into max_length stops there (the
 // speed drops to 0) and resumes as soon as the table's speed turns back;
 // hauling in along a ramp through zero stops at min_length and resumes

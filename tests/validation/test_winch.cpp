@@ -454,6 +454,43 @@ TEST(Winch, TensionControlStopsAtMaxLength) {
   for (const Sample& s : sink.samples) EXPECT_LE(s.deployed_length, 45 + 1e-9);
 }
 
+// A tension winch stopped at a length limit holds the drum: the load hangs at
+// rest, so the tow tension is the static weight (m' L + M) g (vacuum), not
+// the tension of a drum accelerating against its stop (before the fix: 4000 N
+// set, 1500 N of acceleration reported at the max_length stop; at min_length
+// the set tension itself). Both limits, rk4 and rosenbrock. Tolerance 1e-6
+// relative: the stop's impulse brings the whole vertical line to rest (all
+// the motion is axial), so nothing rings; what is left is round-off.
+TEST(Winch, TensionControlHoldsStaticTensionAtItsStops) {
+  const double g = 9.81, Le = 10, mpl = 2.0, M = 500;
+  for (const Integrator integ : {Integrator::RK4, Integrator::Rosenbrock}) {
+    for (const bool at_max : {true, false}) {
+      Model m = winch_model(3, Le, mpl, M, 0.0);
+      m.winch.mode = Winch::Mode::Tension;
+      m.winch.drum_inertia = 300;
+      // Below the weight (pays out to 45 m) or above it (hauls in to 20 m).
+      m.winch.tension = at_max ? 4000 : 8000;
+      if (at_max) m.winch.max_length = 45;
+      m.winch.min_length = at_max ? Le : 2 * Le;
+      m.winch.schedule.clear();
+      m.sim.integrator = integ;
+      m.sim.duration = 12;
+      m.sim.time_step = 1e-3;
+      m.sim.output_interval = 0.5;
+      MemorySink sink;
+      const RunStats st = simulate(m, sink);
+      ASSERT_EQ(st.status, "ok") << st.message;
+      const Sample& last = sink.samples.back();
+      const double L = at_max ? 45.0 : 20.0;
+      ASSERT_NEAR(last.deployed_length, L, 1e-9);
+      EXPECT_EQ(last.payout_speed, 0);
+      const double T_static = (mpl * L + M) * g;  // [N]
+      EXPECT_NEAR(last.tow_force.norm(), T_static, 1e-6 * T_static)
+          << (at_max ? "max_length" : "min_length") << ", integrator " << static_cast<int>(integ);
+    }
+  }
+}
+
 // Heave compensation (a regression check of the tension mode, not a closed
 // form): fish-depth-change's fish at 4 kn with the sheave heaving 2 m at 8 s.
 // A constant-tension winch set at the steady tension (drum 200 kg, damping
