@@ -342,6 +342,37 @@ TEST(RosenbrockKmCable, StableAndAccurateAtTenTimesTheRk4Limit) {
   }
 }
 
+// The force error estimate is honest at large steps: in km-cable-1000's ramp
+// the state error lets the steps grow to 0.3-0.66 s, where the tow force
+// reads the stiff components (rocking of the top elements) directly. The
+// estimate compares the forces at y1 and at the embedded solution itself;
+// with the embedded solution filtered by (I - hg W)^-1 (as the state error
+// is) their error was divided by ~hg |lambda| and the tow force came out
+// 1.7e-3 off at tolerance 1e-4 (docs/performance.md, "Force error estimate").
+TEST(RosenbrockKmCable, ForceErrorEstimateIsHonestAtLargeSteps) {
+  Model m = km_cable();
+  m.sim.output_interval = 0.1;  // dense outputs inside the large steps too
+  Model ref = m;
+  ref.sim.integrator = Integrator::RK4;
+  ref.sim.time_step = 0.0125;  // tow force error ~1e-8 (docs/performance.md)
+  const auto a = testing::run(ref);
+  m.sim.integrator = Integrator::Rosenbrock;
+  m.sim.tolerance = 1e-4;
+  RunStats st;
+  const auto b = testing::run(m, &st);
+  ASSERT_EQ(a.size(), b.size());
+  double e = 0, peak = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    e = std::max(e, (a[i].tow_force - b[i].tow_force).norm());
+    peak = std::max(peak, a[i].tow_force.norm());
+  }
+  std::cout << "[measured] km-cable-1000, 12 s, rosenbrock tol 1e-4: max tow force error / peak " << e / peak << " ("
+            << st.steps << " steps)\n";
+  // Measured 7.8e-4 in 61 steps (filtered force estimate: 1.7e-3 in 50):
+  // bound 1e-3, the accuracy issue 10 asks of the tow force at this tolerance.
+  EXPECT_LT(e / peak, 1e-3);
+}
+
 // ---------------------------------------------------------------------------
 // 5. The RK4 stability estimate: against the measured limit, and the run's
 // warning and refusal.

@@ -13,9 +13,15 @@ namespace towsim {
 
 class RosenbrockW {
  public:
+  /// Where the forces of the force error estimate are compared with those
+  /// at y1: at the embedded solution itself (runs: honest on what users
+  /// read) or at the filtered one, y1 - (I - hg W)^-1 (y1 - yhat) (a
+  /// relaxation, whose path does not matter: fewer steps). docs/theory.md §6.3.
+  enum class ForceEstimate { Embedded, Filtered };
+
   /// tol: relative and absolute tolerance [-]; force_scale: absolute force
   /// floor of the force error norm [N] (the system's apparent weight).
-  RosenbrockW(System& sys, double tol, double force_scale);
+  RosenbrockW(System& sys, double tol, double force_scale, ForceEstimate force_estimate = ForceEstimate::Embedded);
 
   /// Try one step of size h from (y, t). Accepted: y, t advanced (y
   /// projected), returns true. Either way h becomes the next proposal [s].
@@ -37,6 +43,7 @@ class RosenbrockW {
   static constexpr int kStages = 4;
   System& sys_;
   double tol_, force_scale_;
+  ForceEstimate force_estimate_;
   std::array<std::array<double, kStages>, kStages> a_{}, c_{};  // transformed coefficients
   std::array<double, kStages> m_{}, mhat_{}, alpha_{};          // weights, stage times
   std::array<std::array<double, kStages>, kStages> gi_{};       // Gamma^-1
@@ -44,9 +51,9 @@ class RosenbrockW {
   bool have_f0_ = false;
   bool last_rejected_ = false;
   StateVector f0_, fi_, yi_, rhs_, y1_, yhat_, scratch_;
-  StateVector y0d_;             // start of the last accepted step (dense output)
-  double t0d_ = 0, hd_ = 0;     // its start and size [s]
-  bool dense_ = false;          // y0d_, t0d_, hd_ and u_ describe the last accepted step
+  StateVector y0d_;          // start of the last accepted step (dense output)
+  double t0d_ = 0, hd_ = 0;  // its start and size [s]
+  bool dense_ = false;       // y0d_, t0d_, hd_ and u_ describe the last accepted step
   std::array<StateVector, kStages> u_;
 };
 
