@@ -1,5 +1,5 @@
 // The Rosenbrock-W stage solve with a body's own seabed contact points
-// (docs/theory.md §6.3 "Seabed contact of a body"): the stage matrix against
+// (docs/theory.md §6.3, "A body's own contact"): the stage matrix against
 // a finite-difference Jacobian of the dynamics, a heavy sled landing on a
 // stiff bottom (steps bounded by accuracy, not by the contact; the sink is
 // weight / stiffness), and the sled dragged along the bottom at fixed large
@@ -194,12 +194,12 @@ TEST(RosenbrockBodyContact, StageMatrixIsTheDynamicsJacobian) {
     // Without the body's contact terms all three were 1.00 (W had none of
     // the contact's part, which dominates J). With them: the sphere at rest
     // 1.3e-9, the differences' own error (eps_mach |f| / 1e-7 against
-    // |J X| ~ 1e4): bound 1e-6. The runner 7.0e-4 at rest and 3.0e-3 sliding:
-    // terms outside the contact that W leaves out by design (only the
-    // symmetric part of the body's load Jacobian, local chain terms; the
-    // share grows as the contact force shrinks: 5.5e-4 and 3.0e-2 at a
-    // tenth of the sink), not attributed further here: bound 1e-2, a
-    // hundredth of the mismatch without the terms.
+    // |J X| ~ 1e4): bound 1e-6. The runner: 7.0e-4 at rest, terms W leaves
+    // out by design (the contact forces' lever-arm stiffness, -2 R F in
+    // pitch: negative, and a W never takes negative stiffness), and 3.0e-3
+    // sliding, outside the contact (the same absolute mismatch, 4.2 against
+    // 3.9, with the seabed removed: the symmetrised drag, local chain
+    // terms): bound 1e-2, a hundredth of the mismatch without the terms.
     EXPECT_LT(e, c.bound) << c.name;
   }
 }
