@@ -165,6 +165,26 @@ void seabed_local_terms(const Seabed& sb, const Vec3& p, const Vec3& v, double l
   C += sb.friction * fn / std::sqrt(q2) * (P - ut * ut.transpose() / q2);
 }
 
+// ---- A body's own seabed contact (its hull points) ------------------------
+void body_contact_local_jacobian(const Seabed& sb, const Body& body, const BodyWork& bw, Mat6& C, Mat6& K) {
+  C.setZero();
+  K.setZero();
+  hull_points(sb, body, bw, [&](const Vec3& p, double length) {
+    const Vec3 r = p - bw.O;
+    const Vec3 v = bw.vO + bw.w.cross(r);
+    const SeabedForce f = sb.contact(p, v, length);
+    if (f.length <= 0) return;
+    Mat3 Cp = Mat3::Zero(), Kp = Mat3::Zero();
+    seabed_local_terms(sb, p, v, f.length, f.total(), Cp, Kp);
+    // The point moves with the body: dp = dx_O - [r]x dtheta.
+    Eigen::Matrix<double, 3, 6> J;
+    J << Mat3::Identity(), -skew(r);
+    C.noalias() += J.transpose() * Cp * J;
+    K.noalias() += J.transpose() * Kp * J;
+  });
+}
+// ---- end of a body's own seabed contact -----------------------------------
+
 void local_jacobian(const Model& model, const PhysicalState& s, const Workspace& ws, double t, LocalJacobian& jac) {
   const auto& els = model.cable.elements;
   for (std::size_t k = 0; k < els.size(); ++k) {
@@ -200,6 +220,16 @@ void local_jacobian(const Model& model, const PhysicalState& s, const Workspace&
   }
   for (std::size_t b = 0; b < model.bodies.size(); ++b)
     body_local_jacobian(model.fluid, model.bodies[b], ws.body[b], t, jac.body_damping[b], jac.body_stiffness[b]);
+  // The bodies' own seabed contact (hull points).
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    if (model.seabed) {
+      body_contact_local_jacobian(*model.seabed, model.bodies[b], ws.body[b], jac.body_contact_damping[b],
+                                  jac.body_contact_stiffness[b]);
+    } else {
+      jac.body_contact_damping[b].setZero();
+      jac.body_contact_stiffness[b].setZero();
+    }
+  }
 }
 
 ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
@@ -212,6 +242,8 @@ ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
   jac.bodyq_stiffness.assign(nb, Mat3::Zero());
   jac.body_damping.assign(nb, Mat6::Zero());
   jac.body_stiffness.assign(nb, Mat3::Zero());
+  jac.body_contact_damping.assign(nb, Mat6::Zero());
+  jac.body_contact_stiffness.assign(nb, Mat6::Zero());
   F.assign(n, Vec3::Zero());
   Mom.assign(n, Vec3::Zero());
   Fa.assign(n + 1, Vec3::Zero());
@@ -261,6 +293,7 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
       const std::size_t b = idx(bi);
       Mat6 Me = ws.body[b].Mw + hg * jac.body_damping[b];
       Me.bottomRightCorner<3, 3>() += hg * hg * jac.body_stiffness[b];
+      Me += hg * jac.body_contact_damping[b] + hg * hg * jac.body_contact_stiffness[b];  // its own seabed contact
       body_factor(model.bodies[b], ws.body[b], Me, Kk, b, iw);
       iw.bKQ[b] += hg * jac.bodyq_damping[b] + hg * hg * jac.bodyq_stiffness[b];  // seabed at Q
       Kk = &iw.bKQ[b];
@@ -378,15 +411,18 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
       const BodyWork& bw = ws.body[b];
       const Vec3& dwb = r.dwb[b];
       const Vec3 dvO = dv - dwb.cross(bw.rQ);  // v_O = v_Q + omega x (O - Q)
-      Vec6 dnu;
+      const Vec3 dxO = dx - r.rotb[b].cross(bw.rQ);
+      Vec6 dnu, dxi;
       dnu << dvO, dwb;
-      const Vec6 g = -hg * (jac.body_damping[b] * dnu);
+      dxi << dxO, r.rotb[b];
+      Vec6 g = -hg * (jac.body_damping[b] * dnu);
+      // Its own seabed contact: -hg C_c dnu - hg K_c (hg dnu + dxi).
+      g -= hg * (jac.body_contact_damping[b] * dnu) + hg * (jac.body_contact_stiffness[b] * (hg * dnu + dxi));
       iw.Fb[b] = g.head<3>();
       iw.Mb[b] = g.tail<3>() - hg * (jac.body_stiffness[b] * (hg * dwb + r.rotb[b]));
       // Seabed at Q (a force there, on the articulated body at Q: see the bias sweep).
       iw.FQ[b] = -hg * (jac.bodyq_damping[b] * dv) - hg * (jac.bodyq_stiffness[b] * (hg * dv + dx));
       if (model.bodies[b].inline_body) {
-        const Vec3 dxO = dx - r.rotb[b].cross(bw.rQ);
         dv = dvO + dwb.cross(bw.rQ2);
         dx = dxO + r.rotb[b].cross(bw.rQ2);
       }

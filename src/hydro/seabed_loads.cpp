@@ -6,45 +6,20 @@ namespace towsim {
 
 namespace {
 
-/// Length of cable a body with no sphere or cylinder represents at its CG [m].
-constexpr double kBareBodyLength = 1.0;
-
 /// Add a contact force f at the body point p [m, R_g] to the body's loads.
 void add_body_contact(BodyWork& bw, const Vec3& p, const Vec3& f) {
   bw.Fb += f;
   bw.Mb += (p - bw.O).cross(f);
 }
 
-/// Contact of a body point p (body-fixed) representing `length` [m].
-SeabedForce body_point(const Seabed& sb, BodyWork& bw, const Vec3& p, double length) {
-  SeabedForce f = sb.contact(p, bw.vO + bw.w.cross(p - bw.O), length);
-  if (f.length > 0) add_body_contact(bw, p, f.total());
-  return f;
-}
-
-/// The hull points of one body: each sphere's lowest point towards the bottom
-/// (length: its diameter), each cylinder's end discs' lowest points (half its
-/// length each, as a cable element), else the CG (kBareBodyLength).
+/// The contact of each hull point of one body (hull_points).
 void hull_contact(const Seabed& sb, const Body& body, BodyWork& bw, double& normal, double& friction) {
-  auto account = [&](const SeabedForce& f) {
+  hull_points(sb, body, bw, [&](const Vec3& p, double length) {
+    const SeabedForce f = sb.contact(p, bw.vO + bw.w.cross(p - bw.O), length);
+    if (f.length > 0) add_body_contact(bw, p, f.total());
     normal += f.normal.norm();
     friction += f.friction.norm();
-  };
-  for (const SphereLoad& sp : body.spheres) {
-    const Vec3 c = bw.O + bw.R * sp.center;
-    account(body_point(sb, bw, c - sp.radius * sb.normal(c.x()), 2 * sp.radius));
-  }
-  for (const CylinderLoad& cy : body.cylinders) {
-    const Vec3 a = bw.R * cy.axis;
-    for (double side : {-0.5, 0.5}) {
-      const Vec3 ce = bw.O + bw.R * cy.center + side * cy.length * a;
-      const Vec3 nrm = sb.normal(ce.x());
-      const Vec3 d = nrm - nrm.dot(a) * a;  // towards the bottom in the disc's plane: -d
-      const Vec3 p = d.norm() > 1e-12 ? Vec3(ce - 0.5 * cy.diameter * d.normalized()) : ce;
-      account(body_point(sb, bw, p, 0.5 * cy.length));
-    }
-  }
-  if (body.spheres.empty() && body.cylinders.empty()) account(body_point(sb, bw, bw.O + bw.R * body.cg, kBareBodyLength));
+  });
 }
 
 }  // namespace

@@ -29,6 +29,10 @@ struct LocalJacobian {
   std::vector<Mat6> body_damping;        // -d(F; M about O_t)/d(v_O; omega_B) [SI, R_g]
   std::vector<Mat3> body_stiffness;      // rotation of the body about its link point Q, loads held
                                          // in space: moment per radian [N m/rad, R_g]
+  // Seabed at body b's own hull points: -d(F; M about O_t)/d(v_O; omega_B) and
+  // -d(F; M about O_t)/d(x_O; theta) [SI, R_g] (body_contact_local_jacobian).
+  std::vector<Mat6> body_contact_damping;
+  std::vector<Mat6> body_contact_stiffness;
 };
 
 /// Per-part hook, element: drag damping at G and rocking stiffness, from the
@@ -51,6 +55,12 @@ Mat3 attachment_local_damping(const Model& model, const Attachment& a, const Vec
 /// (n: the bottom normal; the friction's dependence on the penetration is left out).
 void seabed_local_terms(const Seabed& sb, const Vec3& p, const Vec3& v, double length, const Vec3& f, Mat3& C,
                         Mat3& K);
+
+/// Per-part hook, a body's own seabed contact (its hull points, hull_points):
+/// each point p in contact adds its seabed_local_terms (C_p, K_p) through
+/// dp = dx_O + dtheta x r, r = p - O_t: C = sum J^T C_p J, K = sum J^T K_p J,
+/// J = [I, -[r]x] (6x6 on (v_O, omega_B) and (x_O, theta)); zero off the bottom.
+void body_contact_local_jacobian(const Seabed& sb, const Body& body, const BodyWork& bw, Mat6& C, Mat6& K);
 
 /// Fill `jac` for the state whose evaluation `ws` holds (forward_dynamics at (s, t)).
 void local_jacobian(const Model& model, const PhysicalState& s, const Workspace& ws, double t, LocalJacobian& jac);

@@ -51,6 +51,32 @@ void attachment_loads(const Model& model, double t, Workspace& ws);
 /// BodyWork's Fs_q, ls_q. Call after attachment_loads and body_loads.
 void seabed_loads(const Model& model, Workspace& ws);
 
+/// Length of hull a body with no sphere or cylinder represents at its CG [m].
+inline constexpr double kBareBodyLength = 1.0;
+
+/// A body's hull contact points (docs/theory.md §3.2), for seabed_loads and
+/// the implicit integrator's local Jacobian alike: visit(p, length) for each
+/// sphere's lowest point towards the bottom (length: its diameter), each
+/// cylinder's end discs' lowest points (half its length each, as a cable
+/// element), else the CG (kBareBodyLength); p [m, R_g], length [m].
+template <class Visit>
+void hull_points(const Seabed& sb, const Body& body, const BodyWork& bw, Visit&& visit) {
+  for (const SphereLoad& sp : body.spheres) {
+    const Vec3 c = bw.O + bw.R * sp.center;
+    visit(Vec3(c - sp.radius * sb.normal(c.x())), 2 * sp.radius);
+  }
+  for (const CylinderLoad& cy : body.cylinders) {
+    const Vec3 a = bw.R * cy.axis;
+    for (double side : {-0.5, 0.5}) {
+      const Vec3 ce = bw.O + bw.R * cy.center + side * cy.length * a;
+      const Vec3 nrm = sb.normal(ce.x());
+      const Vec3 d = nrm - nrm.dot(a) * a;  // towards the bottom in the disc's plane: -d
+      visit(d.norm() > 1e-12 ? Vec3(ce - 0.5 * cy.diameter * d.normalized()) : ce, 0.5 * cy.length);
+    }
+  }
+  if (body.spheres.empty() && body.cylinders.empty()) visit(Vec3(bw.O + bw.R * body.cg), kBareBodyLength);
+}
+
 /// Normal stiffness of the seabed contact at joint k (0..n) for the current
 /// kinematics: d|F_n|/d(penetration) = stiffness * length in contact [N/m]
 /// (at an in-line body's joint: of the half-element below, at Q2); 0 off the
