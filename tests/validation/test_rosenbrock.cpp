@@ -10,25 +10,18 @@
 
 #include "../support/models.hpp"
 #include "../support/physics.hpp"
+#include "../support/rosenbrock.hpp"
 #include "towsim/scenario/examples.hpp"
 #include "towsim/scenario/scenario.hpp"
 
 namespace towsim {
 namespace {
 
+using testing::fixed_rosenbrock;
+
 using testing::CableSpec;
 
 constexpr double kG = 9.81;
-
-/// Fixed steps h with the Rosenbrock method: a tolerance no step can fail
-/// and max_step = h (the run still lands on output times and breakpoints).
-Model fixed_rosenbrock(Model m, double h) {
-  m.sim.integrator = Integrator::Rosenbrock;
-  m.sim.tolerance = 1e10;
-  m.sim.time_step = h;
-  m.sim.max_step = h;
-  return m;
-}
 
 double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   double d = 0;

@@ -15,9 +15,13 @@
 
 #include "../support/models.hpp"
 #include "../support/physics.hpp"
+#include "../support/rosenbrock.hpp"
 
 namespace towsim {
 namespace {
+
+using testing::fixed_rosenbrock;
+using testing::stage_W;
 
 constexpr double kRho = 1025, kG = 9.81;         // the test models' water [kg/m^3] and gravity [m/s^2]
 constexpr double kMass = 1135, kRadius = 0.368;  // km-turn-100's sled: mass [kg], sphere radius [m]
@@ -73,31 +77,6 @@ double sink(const Model& m, const Sample& s) { return kRadius - s.bodies[0].pos.
 /// omega = sqrt(k 2r / M): M the sled with its added mass and the cable
 /// (1135 + 107 + 22.4 kg; Force mode: the whole chain moves with it) [s].
 double spring_bound(double k) { return 2 * std::sqrt(2.0) / std::sqrt(k * 2 * kRadius / 1264.0); }
-
-/// Fixed steps h with the Rosenbrock method (as in test_rosenbrock.cpp).
-Model fixed_rosenbrock(Model m, double h) {
-  m.sim.integrator = Integrator::Rosenbrock;
-  m.sim.tolerance = 1e10;
-  m.sim.time_step = h;
-  m.sim.max_step = h;
-  return m;
-}
-
-/// W of the stage solve at hg: W = (I - S^-1) / hg, S the solve's matrix
-/// (columns: the solve of each unit right-hand side), as in
-/// test_rosenbrock_elastic_body.cpp.
-Eigen::MatrixXd stage_W(System& sys, std::size_t N, double hg) {
-  Eigen::MatrixXd S(N, N);
-  StateVector r(N), k(N);
-  for (std::size_t j = 0; j < N; ++j) {
-    std::fill(r.begin(), r.end(), 0.0);
-    r[j] = 1;
-    sys.stage_solve(hg, r, k);
-    for (std::size_t i = 0; i < N; ++i) S(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = k[i];
-  }
-  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(S.rows(), S.cols());
-  return (I - S.inverse()) / hg;
-}
 
 /// Relative mismatch of the stage matrix's W and the dynamics' Jacobian J
 /// (central differences, step 1e-7) at the initial state of m with the

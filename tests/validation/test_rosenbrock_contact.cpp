@@ -11,22 +11,16 @@
 
 #include "../support/models.hpp"
 #include "../support/physics.hpp"
+#include "../support/rosenbrock.hpp"
 #include "towsim/dynamics/elastic.hpp"
 #include "towsim/sim/statics.hpp"
 
 namespace towsim {
 namespace {
 
-constexpr double kRho = 1025, kG = 9.81;  // the test models' water [kg/m^3] and gravity [m/s^2]
+using testing::fixed_rosenbrock;
 
-/// Fixed steps h with the Rosenbrock method (as in test_rosenbrock.cpp).
-Model fixed_rosenbrock(Model m, double h) {
-  m.sim.integrator = Integrator::Rosenbrock;
-  m.sim.tolerance = 1e10;
-  m.sim.time_step = h;
-  m.sim.max_step = h;
-  return m;
-}
+constexpr double kRho = 1025, kG = 9.81;  // the test models' water [kg/m^3] and gravity [m/s^2]
 
 /// 150 m of the test cable in 100 elements from a fixed tow point at the
 /// origin, bottom 101 m down (test_seabed.cpp's lying case n100).

@@ -12,10 +12,13 @@
 
 #include "../support/models.hpp"
 #include "../support/physics.hpp"
+#include "../support/rosenbrock.hpp"
 #include "towsim/dynamics/elastic.hpp"
 
 namespace towsim {
 namespace {
+
+using testing::stage_W;
 
 /// bench/scenarios/km-turn-100-elastic.yaml in code: 1 km of cable in n
 /// elements (EA [N]; 0: inextensible), the 1135 kg sphere (r 0.368 m, Cd
@@ -38,21 +41,6 @@ Model km_model(int n, double EA) {
   m.sim.time_step = 0.01;
   m.sim.output_interval = 1;
   return m;
-}
-
-/// W of the stage solve at hg: W = (I - S^-1) / hg, S the solve's matrix
-/// (columns: the solve of each unit right-hand side).
-Eigen::MatrixXd stage_W(System& sys, std::size_t N, double hg) {
-  Eigen::MatrixXd S(N, N);
-  StateVector r(N), k(N);
-  for (std::size_t j = 0; j < N; ++j) {
-    std::fill(r.begin(), r.end(), 0.0);
-    r[j] = 1;
-    sys.stage_solve(hg, r, k);
-    for (std::size_t i = 0; i < N; ++i) S(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = k[i];
-  }
-  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(S.rows(), S.cols());
-  return (I - S.inverse()) / hg;
 }
 
 // A W-method keeps its order with any W, but its stability (L-stability on

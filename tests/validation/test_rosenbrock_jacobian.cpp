@@ -15,10 +15,13 @@
 
 #include "../support/models.hpp"
 #include "../support/physics.hpp"
+#include "../support/rosenbrock.hpp"
 #include "towsim/integrators/system.hpp"
 
 namespace towsim {
 namespace {
+
+using testing::stage_W;
 
 struct JacCase {
   const char* name;
@@ -43,19 +46,6 @@ Model km_cable_piece(const JacCase& c) {
   m.tow.pieces.push_back(testing::turn_piece(7.5, 15));
   m.sim.integrator = Integrator::Rosenbrock;
   return m;
-}
-
-/// W of the stage solve at hg: (I - S^-1) / hg, S's columns the solves of unit right-hand sides.
-Eigen::MatrixXd stage_W(System& sys, std::size_t N, double hg) {
-  Eigen::MatrixXd S(N, N);
-  StateVector r(N), k(N);
-  for (std::size_t j = 0; j < N; ++j) {
-    std::fill(r.begin(), r.end(), 0.0);
-    r[j] = 1;
-    sys.stage_solve(hg, r, k);
-    for (std::size_t i = 0; i < N; ++i) S(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = k[i];
-  }
-  return (Eigen::MatrixXd::Identity(S.rows(), S.cols()) - S.inverse()) / hg;
 }
 
 /// An orthonormal basis of the plane normal to e.
