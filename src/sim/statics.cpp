@@ -159,11 +159,35 @@ struct SteadyProblem {
   }
 };
 
+/// How far the body's lowest point in contact lies below its link Q along
+/// the bottom's normal n (attitude R): its hull's contact points (as
+/// seabed_loads: each sphere's lowest point, each cylinder's end discs'
+/// lowest points, else the CG) and an in-line body's lower link Q2 [m, >= 0].
+double body_drop(const Body& body, const Mat3& R, const Vec3& n) {
+  double drop = 0;
+  auto below = [&](const Vec3& r) { drop = std::max(drop, -n.dot(R * (r - body.link_point))); };  // r: body axes
+  for (const SphereLoad& sp : body.spheres)
+    drop = std::max(drop, -n.dot(R * (sp.center - body.link_point)) + sp.radius);
+  for (const CylinderLoad& cy : body.cylinders) {
+    const Vec3 a = R * cy.axis;
+    const Vec3 d = n - n.dot(a) * a;  // towards the bottom in the discs' plane: -d
+    const double r = d.norm() > 1e-12 ? 0.5 * cy.diameter * d.norm() : 0.0;  // the disc's reach along -n
+    for (double side : {-0.5, 0.5})
+      drop = std::max(drop, -n.dot(R * (cy.center - body.link_point)) - side * cy.length * n.dot(a) + r);
+  }
+  if (body.spheres.empty() && body.cylinders.empty()) below(body.cg);
+  if (body.inline_body) below(body.lower_link_point);
+  return drop;
+}
+
 /// With a seabed, the starting chain does not pass below it: walking down
 /// from the tow point, the element that would cross the bottom is turned in
 /// its vertical plane (towards where the chain heads horizontally, else
 /// against the tow velocity, else +x) so that its end rests on the bottom, and
-/// every element after it lies along the bottom in that heading.
+/// every element after it lies along the bottom in that heading. An element
+/// ending at a body's link Q ends high enough for the body (at its attitude)
+/// to rest on its lowest point (body_drop), rising from the bottom if needed;
+/// the cable below an in-line body then starts from its lower link.
 void lay_on_seabed(SteadyProblem& p) {
   const Model& m = p.model;
   if (!m.seabed) return;
@@ -177,21 +201,31 @@ void lay_on_seabed(SteadyProblem& p) {
     const double L = m.cable.elements[k].length;
     Vec3& e = s.e[k];
     if (std::hypot(e.x(), e.y()) > 1e-6) h = Vec3(e.x(), e.y(), 0).normalized();
-    if (sb.gap(top + L * e) >= 0) continue;
+    // The gap its end needs: a body hanging there rests on its lowest point.
+    // Only at rest: dragged, a start that puts the body above the bottom
+    // leads the solve to a spurious inverted column (the in-line sphere
+    // dragged at 0.5 m/s in test_seabed.cpp); unlifted it stays unsolved.
+    double need = 0;  // [m]
+    if (const int bi = p.ws.body_at[k + 1]; bi >= 0 && !(p.V.norm() > 0)) {
+      const auto ub = static_cast<std::size_t>(bi);
+      need = body_drop(m.bodies[ub], s.bodies[ub].q.toRotationMatrix(), sb.normal((top + L * e).x()));
+    }
+    if (sb.gap(top + L * e) >= need) continue;
     // Along the bottom at the top joint, in the heading h.
     const Vec3 n = sb.normal(top.x());
     const Vec3 along = (h - h.dot(n) * n).normalized();
     auto dir = [&](double th) { return Vec3(std::sin(th) * h - std::cos(th) * Vec3::UnitZ()); };
-    if (sb.gap(top) <= 0 || sb.gap(top + L * dir(0.5 * M_PI)) < 0) {
+    const double highest = need > 0 ? M_PI : 0.5 * M_PI;  // rising to a body, else at most along the bottom [rad]
+    if (need <= 0 && (sb.gap(top) <= 0 || sb.gap(top + L * dir(highest)) < 0)) {
       e = along;
       continue;
     }
-    // Bisection on the angle from the vertical: the end on the bottom.
-    double lo = 0, hi = 0.5 * M_PI;  // gap(lo) < 0 <= gap(hi)
-    if (sb.gap(top + L * dir(lo)) >= 0) lo = hi;
+    // Bisection on the angle from the vertical: the end at the gap it needs.
+    double lo = 0, hi = highest;  // gap(lo) < need <= gap(hi)
+    if (sb.gap(top + L * dir(lo)) >= need || sb.gap(top + L * dir(hi)) < need) lo = hi;
     for (int it = 0; it < 60 && lo < hi; ++it) {
       const double mid = 0.5 * (lo + hi);
-      (sb.gap(top + L * dir(mid)) < 0 ? lo : hi) = mid;
+      (sb.gap(top + L * dir(mid)) < need ? lo : hi) = mid;
     }
     e = dir(hi).normalized();
   }
@@ -756,13 +790,15 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
   // relaxation is cheap and leaves the dense solve less to do).
   if (!p.sweeps) relax(p, V.norm() > 0 ? 1e-3 : 1e-6, stop_flag);
   solve_rigid(p, stop_flag, out);
-  if (!out.converged && !out.interrupted && model.seabed && p.sweeps && V.norm() > 0) {
-    // The sweeps and the dense polish failed with a moving tow on the bottom
-    // (a body or attachments: not laid by lay_along_bottom): relax from the
-    // better iterate, then the dense solve alone.
+  if (!out.converged && !out.interrupted && model.seabed && p.sweeps) {
+    // The sweeps and the dense polish failed with cable on the bottom (a
+    // moving or a stationary tow with a body or attachments: not laid by
+    // lay_along_bottom; the sweeps leave the contact out): relax from the
+    // better iterate (at rest to 1e-6, as on a slope), then the dense solve
+    // alone.
     const int before = out.iterations;
     p.sweeps = false;
-    relax(p, 1e-3, stop_flag);
+    relax(p, V.norm() > 0 ? 1e-3 : 1e-6, stop_flag);
     out.message.clear();  // the failed attempt's
     solve_rigid(p, stop_flag, out);
     out.iterations += before;

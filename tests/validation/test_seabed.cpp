@@ -330,6 +330,121 @@ TEST(SeabedInline, DraggedBodyIsASteadyStateOfTheDynamics) {
   EXPECT_LT(dT, 1e-3);
 }
 
+// An in-line depressor with a hull (a sphere of radius 0.3 m at O, links
+// 0.3 m above and below it, as docs/scenario.md) between 110 m of cable (11
+// elements) and a 20 m pigtail (4 elements), stationary tow point. Before,
+// the statics started it with its hull and lower link 0.6 m into the bottom
+// (the elements were laid, not the body) and the sweeps, which leave the
+// contact out, and the dense solve stalled (0.15 to 1.5 rad/s^2 left).
+Model depressor_model(double depth, double mass, testing::CableSpec& cs) {
+  cs.n = 11;
+  cs.length = 110;
+  Model m = testing::cable_model(cs);
+  m.seabed = Seabed::flat(depth, 1e5, 1e3, 0.5);
+  m.tow.mode = Tow::Mode::Motion;  // no pieces: the tow point stays at the origin
+  m.bodies.emplace_back();
+  Body& b = m.bodies.back();
+  b.mass = mass;
+  b.inertia_cg = 4 * Mat3::Identity();
+  b.link_point = Vec3(0, 0, 0.3);
+  b.lower_link_point = Vec3(0, 0, -0.3);
+  b.spheres.push_back({Vec3::Zero(), 0.3, 0.5, 0.5});
+  b.inline_body = true;
+  b.joint = cs.n;
+  b.name = "depressor";
+  finalize_body(b, m.fluid);
+  for (int i = 0; i < 4; ++i)
+    m.cable.elements.push_back(make_element(5.0, cs.mass_per_length, cs.diameter, cs.cd, cs.tangential,
+                                            m.cable.tangential_law, cs.ca, m.fluid));
+  return m;
+}
+
+/// The body's apparent weight (its sphere's buoyancy included) [N].
+double body_apparent_weight(const Model& m) {
+  const Body& b = m.bodies.front();
+  return (b.mass - kRho * b.displaced_volume) * kG;
+}
+
+// Heavy (200 kg, 825 N in water) on a 100 m bottom: the body rests on its
+// sphere with the cable on both sides lying. The body adds nothing to the top
+// tension (MODEL.md 9): |T - w h| <= w (L/2 + 2 delta) as SeabedLying; the
+// bottom carries everything else: the contact forces' vertical sum plus the
+// top tension's is the apparent weight of cable and body (1e-6: the
+// residual's force noise); the sphere rests on the bottom, sunk by at most
+// all that can lean on it (its own weight and half of each adjacent element)
+// over its spring k 2r; 10 s of dynamics from the result stay within 1 mm.
+TEST(SeabedInline, DepressorRestingOnTheBottom) {
+  testing::CableSpec cs;
+  const double depth = 100;
+  const Model m = depressor_model(depth, 200, cs);
+  const double w = apparent_weight(cs), L = 10, delta = w / 1e5, Wb = body_apparent_weight(m);
+  const StaticsResult r = solve_statics(m, Vec3::Zero());
+  ASSERT_TRUE(r.converged) << r.message;
+  const double T = r.tow_force.norm();
+  const double sink = 0.3 - (depth + r.sample.bodies[0].pos.z());  // the sphere's lowest point below the bottom [m]
+  const double W = w * (110 + 20) + Wb;                            // apparent weight of it all [N]
+  std::printf(
+      "resting depressor: %d iterations, residual %.2e; (T - w h) / (w L / 2) = %.4f; contact + T_z - W = "
+      "%.2e N; sphere sink %.3e m (bound %.3e)\n",
+      r.iterations, r.residual, (T - w * depth) / (0.5 * w * L), r.sample.seabed_normal + r.tow_force.z() - W, sink,
+      (Wb + 0.5 * w * (L + 5)) / (1e5 * 0.6));
+  EXPECT_LE(std::abs(T - w * depth), w * (0.5 * L + 2 * delta));
+  EXPECT_NEAR(r.sample.seabed_normal + r.tow_force.z(), W, 1e-6 * W);
+  EXPECT_GT(sink, 0);
+  EXPECT_LE(sink, (Wb + 0.5 * w * (L + 5)) / (1e5 * 0.6));
+  const Drift d = drift_from_steady(m, r, Vec3::Zero());
+  std::printf("  10 s of dynamics: drift %.2e m, speed %.2e m/s, tow force change %.2e\n", d.x, d.v, d.force);
+  EXPECT_LT(d.x, 1e-3);
+  EXPECT_LT(d.v, 1e-3);
+  EXPECT_LT(d.force, 1e-3);
+}
+
+// The same depressor over 125 m: it hangs, only the pigtail's end lies. The
+// suspended cable spans the depth less the body's 0.6 m between its links,
+// so T = w (h - 0.6) + W_b within w (L_p / 2 + 2 delta) (the pigtail's
+// crossing element, L_p = 5 m); straight up; 10 s of dynamics stay put.
+TEST(SeabedInline, DepressorHangingPigtailLying) {
+  testing::CableSpec cs;
+  const double depth = 125;
+  const Model m = depressor_model(depth, 200, cs);
+  const double w = apparent_weight(cs), delta = w / 1e5, Wb = body_apparent_weight(m);
+  const StaticsResult r = solve_statics(m, Vec3::Zero());
+  ASSERT_TRUE(r.converged) << r.message;
+  const double T = r.tow_force.norm(), T0 = w * (depth - 0.6) + Wb;
+  std::printf("hanging depressor: (T - w (h - 0.6) - W_b) / (w L_p / 2) = %.4f, contact %.3f m\n",
+              (T - T0) / (0.5 * w * 5), r.sample.contact_length);
+  EXPECT_LE(std::abs(T - T0), w * (0.5 * 5 + 2 * delta));
+  EXPECT_NEAR(r.tow_force.z(), T, 1e-9 * T);
+  EXPECT_GT(r.sample.contact_length, 0);
+  const Drift d = drift_from_steady(m, r, Vec3::Zero());
+  std::printf("  10 s of dynamics: drift %.2e m, tow force change %.2e\n", d.x, d.force);
+  EXPECT_LT(d.x, 1e-3);
+  EXPECT_LT(d.force, 1e-3);
+}
+
+// The audit's case as given: 100 kg with a 0.3 m sphere displaces 115.9 kg,
+// so the depressor floats (156 N up) above the bottom; the statics converge
+// to an equilibrium of the dynamics (10 s stay within 1 mm) whose top tension
+// is still w h within w (L/2 + 2 delta): the body's lift is carried by the
+// cable's weight on the bottom.
+TEST(SeabedInline, BuoyantDepressorOverTheBottom) {
+  testing::CableSpec cs;
+  const double depth = 100;
+  const Model m = depressor_model(depth, 100, cs);
+  const double w = apparent_weight(cs), L = 10, delta = w / 1e5;
+  ASSERT_LT(body_apparent_weight(m), 0);
+  const StaticsResult r = solve_statics(m, Vec3::Zero());
+  ASSERT_TRUE(r.converged) << r.message;
+  const double T = r.tow_force.norm();
+  std::printf("buoyant depressor: body %.3f m above the bottom, (T - w h) / (w L / 2) = %.4f\n",
+              depth + r.sample.bodies[0].pos.z(), (T - w * depth) / (0.5 * w * L));
+  EXPECT_LE(std::abs(T - w * depth), w * (0.5 * L + 2 * delta));
+  const Drift d = drift_from_steady(m, r, Vec3::Zero());
+  std::printf("  10 s of dynamics: drift %.2e m, tow force change %.2e\n", d.x, d.force);
+  EXPECT_LT(d.x, 1e-3);
+  EXPECT_LT(d.force, 1e-3);
+}
+
 INSTANTIATE_TEST_SUITE_P(Seabed, SeabedLying,
                          ::testing::Values(LyingCase{75, 101.0}, LyingCase{100, 101.0}, LyingCase{150, 100.3}),
                          [](const auto& info) { return "n" + std::to_string(info.param.n); });
