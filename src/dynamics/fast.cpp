@@ -208,7 +208,7 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   const Mat3 K_pay = elastic_top ? Mat3(lam * ws.K[0]) : ws.K[0];  // d(f_0)/d(L_1'') along e_1 [kg]
   if (winch && model.winch.mode == Winch::Mode::Imposed) acc.top_length_acc = winch_kinematics(model.winch, t).acc;
   if (imposed_a0 || model.tow.mode == Tow::Mode::Motion) {
-    acc.a0 = imposed_a0 ? *imposed_a0 : tow_kinematics(model.tow, t).acc;
+    acc.a0 = imposed_a0 ? *imposed_a0 : tow_kinematics(model.tow, t, ws.course).acc;
     if (winch && model.winch.mode == Winch::Mode::Tension)
       acc.top_length_acc = drum_acceleration(model.winch, e1, pay_rate, deployed_length(model, s), K_pay,
                                              ws.K[0] * (acc.a0 + a_extra) + ws.b[0]);

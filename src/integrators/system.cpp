@@ -19,9 +19,9 @@ using CMap3 = Eigen::Map<const Vec3>;
 void set3(StateVector& y, std::size_t i, const Vec3& v) { y[i] = v.x(), y[i + 1] = v.y(), y[i + 2] = v.z(); }
 
 /// In Motion mode, put the imposed tow position and velocity at t into (r0, v0).
-void impose_tow(const Model& m, double t, Vec3& r0, Vec3& v0) {
+void impose_tow(const Model& m, double t, Vec3& r0, Vec3& v0, CourseCache& course) {
   if (m.tow.mode != Tow::Mode::Motion) return;
-  const TowKinematics k = tow_kinematics(m.tow, t);
+  const TowKinematics k = tow_kinematics(m.tow, t, course);
   r0 = k.pos;
   v0 = k.vel;
 }
@@ -123,7 +123,7 @@ class DefaultSystem final : public System {
     ++rhs_evaluations;
     unpack(y, s_);
     const double tl = law_time(t);
-    impose_tow(model_, tl, s_.r0, s_.v0);
+    impose_tow(model_, tl, s_.r0, s_.v0, ws_.course);
     impose_winch(tl, s_);
     forward_dynamics(model_, s_, tl, ws_);
     dy.resize(size_);
@@ -156,7 +156,7 @@ class DefaultSystem final : public System {
 
   void project(StateVector& y, double t) override {
     if (model_.tow.mode == Tow::Mode::Motion) {
-      const TowKinematics k = tow_kinematics(model_.tow, t);
+      const TowKinematics k = tow_kinematics(model_.tow, t, ws_.course);
       set3(y, 0, k.pos);
       set3(y, 3, k.vel);
     }
@@ -439,7 +439,7 @@ class PaperSystem final : public System {
     ++rhs_evaluations;
     unpack(y, p_);
     const double tl = law_time(t);
-    impose_tow(model_, tl, p_.r0, p_.v0);
+    impose_tow(model_, tl, p_.r0, p_.v0, eval_ws_.course);
     paper_dynamics(model_, p_, tl, pw_);
     dy.resize(y.size());
     set3(dy, 0, p_.v0);
@@ -450,7 +450,7 @@ class PaperSystem final : public System {
 
   void project(StateVector& y, double t) override {
     unpack(y, p_);
-    impose_tow(model_, t, p_.r0, p_.v0);
+    impose_tow(model_, t, p_.r0, p_.v0, eval_ws_.course);
     rechart(model_, p_);
     pack(p_, y);
   }

@@ -442,13 +442,27 @@ const std::vector<std::string>& node_columns() {
   return c;
 }
 
-void node_values(const Sample& s, std::size_t k, std::vector<double>& out) {
+namespace {
+
+/// Node k's values unrounded, appended in the order of node_columns(model)
+/// (without a model: of node_columns()). put_number writes v and tidy(v) alike.
+void raw_node_values(const Model* model, const Sample& s, std::size_t k, std::vector<double>& out) {
   const double nan = std::nan("");
   const Vec3 v = k < s.node_vel.size() ? s.node_vel[k] : Vec3::Constant(nan);
-  for (double x : {s.node_pos[k].x(), s.node_pos[k].y(), s.node_pos[k].z(), v.x(), v.y(), v.z(),
-                   k < s.tension.size() ? s.tension[k] : nan, k < s.axial.size() ? s.axial[k] : nan,
-                   k < s.strain.size() ? s.strain[k] : nan})
-    out.push_back(tidy(x));  // as written
+  out.insert(out.end(), {s.node_pos[k].x(), s.node_pos[k].y(), s.node_pos[k].z(), v.x(), v.y(), v.z(),
+                         k < s.tension.size() ? s.tension[k] : nan, k < s.axial.size() ? s.axial[k] : nan,
+                         k < s.strain.size() ? s.strain[k] : nan});
+  if (model == nullptr) return;
+  if (!s.utilisation.empty()) out.push_back(k < s.utilisation.size() ? s.utilisation[k] : nan);
+  if (model->seabed) out.push_back(k < s.node_seabed.size() ? s.node_seabed[k].norm() : nan);
+}
+
+}  // namespace
+
+void node_values(const Sample& s, std::size_t k, std::vector<double>& out) {
+  const std::size_t from = out.size();
+  raw_node_values(nullptr, s, k, out);
+  for (std::size_t i = from; i < out.size(); ++i) out[i] = tidy(out[i]);  // as written
 }
 
 std::vector<std::string> node_columns(const Model& model) {
@@ -461,10 +475,9 @@ std::vector<std::string> node_columns(const Model& model) {
 }
 
 void node_values(const Model& model, const Sample& s, std::size_t k, std::vector<double>& out) {
-  node_values(s, k, out);
-  const double nan = std::nan("");
-  if (!s.utilisation.empty()) out.push_back(tidy(k < s.utilisation.size() ? s.utilisation[k] : nan));
-  if (model.seabed) out.push_back(tidy(k < s.node_seabed.size() ? s.node_seabed[k].norm() : nan));
+  const std::size_t from = out.size();
+  raw_node_values(&model, s, k, out);
+  for (std::size_t i = from; i < out.size(); ++i) out[i] = tidy(out[i]);  // as written
 }
 
 std::vector<double> node_arc_lengths(const Model& model) {
@@ -550,14 +563,22 @@ void RunWriter::write(const Sample& s) {
   buf_ += '\n';
   write_all(series_, buf_);
   if (nodes_ == nullptr) return;
-  // nodes.csv: one row per node.
+  // nodes.csv: one row per node, the time formatted once; the values
+  // unrounded (put_number rounds them as tidy would).
   buf_.clear();
+  time_.clear();
+  put_time(time_, s.t);
+  auto put_integer = [this](long i) {
+    char b[24];
+    buf_ += ',';
+    buf_.append(b, std::to_chars(b, b + sizeof b, i).ptr);
+  };
   for (std::size_t k = 0; k < s.node_pos.size(); ++k) {
-    put_time(buf_, s.t);
-    buf_ += ',' + std::to_string(k);
-    if (node_ids_) buf_ += ',' + std::to_string(k < s.node_id.size() ? s.node_id[k] : static_cast<long>(k));
+    buf_ += time_;
+    put_integer(static_cast<long>(k));
+    if (node_ids_) put_integer(k < s.node_id.size() ? s.node_id[k] : static_cast<long>(k));
     values_.clear();
-    node_values(model(), s, k, values_);
+    raw_node_values(&model(), s, k, values_);
     for (double v : values_) {
       buf_ += ',';
       put_number(buf_, v);

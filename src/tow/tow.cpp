@@ -6,6 +6,7 @@
 #include <cmath>
 #include <concepts>
 #include <type_traits>
+#include <utility>
 
 #include "towsim/model/table.hpp"
 
@@ -39,6 +40,7 @@ TowKinematics offsets(const Tow& tow, double t) {
 }
 
 enum class Event { Begin, TurnEnd, SpeedEnd };
+using CourseSegment = std::pair<double, CourseState>;  // end [s], state at the start
 constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 
 /// Walk the course from the first manoeuvre up to time t, event by event
@@ -46,8 +48,10 @@ constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 /// on_event(time, event, piece index, course) at each one before t; leave c
 /// at the segment containing t. False when there is no course at t: no
 /// manoeuvre, t not after the first one, or no horizontal speed then (no heading).
+/// `segments`, when given, receives each segment's end and starting state.
 template <class OnEvent>
-bool walk(const Tow& tow, double t, CourseState& c, OnEvent&& on_event) {
+bool walk(const Tow& tow, double t, CourseState& c, OnEvent&& on_event,
+          std::vector<CourseSegment>* segments = nullptr) {
   const auto& ps = tow.pieces;
   std::size_t i = 0;
   while (i < ps.size() && !is_manoeuvre(ps[i])) ++i;
@@ -83,6 +87,7 @@ bool walk(const Tow& tow, double t, CourseState& c, OnEvent&& on_event) {
     const double t_next = i < ps.size() ? start_time(ps[i]) : CourseState::kNever;
     const double t_turn = turn_end_time(c);
     const double te = std::min({t_next, c.a_end, t_turn});
+    if (segments != nullptr) segments->push_back({te, c});
     if (!(te < t)) return true;
     const bool turn_ends = t_turn == te, speed_ends = c.a_end == te;
     advance(c, te, turn_ends);
@@ -119,6 +124,50 @@ TowKinematics tow_law_kinematics(const Tow& tow, double t) {
   k.acc = Vec3(h.acc.x(), h.acc.y(), k.acc.z());
   return k;
 }
+
+void CourseCache::build(const Tow& tow) {
+  built_ = true;
+  has_last_ = false;
+  start_ = tow.start;
+  pieces_ = tow.pieces;
+  segments_.clear();
+  // The walk to the end records every segment; t_first_ as in walk.
+  std::vector<CourseSegment> seg;
+  CourseState c;
+  course_ = walk(
+      tow, CourseState::kNever, c, [](double, Event, std::size_t, const CourseState&) {}, &seg);
+  for (const auto& [end, state] : seg) segments_.push_back({end, state});
+  const auto& ps = tow.pieces;
+  const auto first = std::find_if(ps.begin(), ps.end(), [](const TowLaw& p) { return is_manoeuvre(p); });
+  t_first_ = first == ps.end() ? CourseState::kNever : start_time(*first);
+}
+
+TowKinematics CourseCache::law_at(const Tow& tow, double t) {
+  // A track (a table of any length) would cost more to compare at each call
+  // than the walk: such a tow is walked as without the cache.
+  if (std::any_of(tow.pieces.begin(), tow.pieces.end(),
+                  [](const TowLaw& p) { return std::holds_alternative<Track>(p); }))
+    return tow_law_kinematics(tow, t);
+  if (!built_ || tow.start != start_ || tow.pieces != pieces_) build(tow);
+  if (has_last_ && t == last_t_ && std::signbit(t) == std::signbit(last_t_)) return last_;  // -0 is not 0 here
+  TowKinematics k = offsets(tow, t);
+  // As walk: a course only after the first manoeuvre; then the segment
+  // containing t, the first that does not end before it.
+  if (course_ && t > t_first_) {
+    const auto seg = std::partition_point(segments_.begin(), segments_.end(),
+                                          [t](const Segment& s) { return s.end < t; });
+    const TowKinematics h = course_at(seg->state, t);
+    k.pos = Vec3(h.pos.x(), h.pos.y(), k.pos.z());
+    k.vel = Vec3(h.vel.x(), h.vel.y(), k.vel.z());
+    k.acc = Vec3(h.acc.x(), h.acc.y(), k.acc.z());
+  }
+  has_last_ = true;
+  last_t_ = t;
+  last_ = k;
+  return k;
+}
+
+TowKinematics tow_law_kinematics(const Tow& tow, double t, CourseCache& cache) { return cache.law_at(tow, t); }
 
 std::vector<double> tow_breakpoints(const Tow& tow) {
   std::vector<double> out;

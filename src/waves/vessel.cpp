@@ -236,6 +236,11 @@ TowKinematics tow_kinematics(const Tow& tow, double t) {
   return tow.vessel ? tow.vessel->tow_point(k, t) : k;
 }
 
+TowKinematics tow_kinematics(const Tow& tow, double t, CourseCache& cache) {
+  const TowKinematics k = tow_law_kinematics(tow, t, cache);
+  return tow.vessel ? tow.vessel->tow_point(k, t) : k;
+}
+
 }  // namespace towsim
 
 namespace towsim {

@@ -111,7 +111,7 @@ std::vector<std::string> timeseries_columns(const Model& model);
 std::string timeseries_header(const Model& model);
 /// One sample's timeseries.csv values as written (tidied), in the order of
 /// timeseries_columns() (the files and the Python API both use this).
-void timeseries_values(const Model& model, const Sample& s, std::vector<double>& out);
+void timeseries_values(const Model& model, const Sample& s, std::vector<double>& v);
 
 /// The per-node columns of nodes.csv (after `time,node`): x, y, z, vx, vy, vz, tension, axial_force, strain.
 const std::vector<std::string>& node_columns();
@@ -192,6 +192,7 @@ class RunWriter : public RunRecord {
   std::FILE* nodes_ = nullptr;
   bool node_ids_ = false;  // nodes.csv has a node_id column (a model with a winch)
   std::string buf_;
+  std::string time_;  // the sample's time as written
   std::vector<double> values_;
 };
 

@@ -12,6 +12,8 @@ struct Heave {
   double period = 1;      // [s]
   double start_time = 0;  // [s]
 
+  bool operator==(const Heave&) const = default;
+
   /// Displacement (along z), its velocity and acceleration at t.
   TowKinematics at(double t) const;
   /// Times where the law is not smooth: its start.

@@ -13,6 +13,8 @@ struct Ramp {
   double speed = 0;                // final speed [m/s]
   double ramp_time = 0;            // time to reach it [s] (0 = at speed from t = 0)
 
+  bool operator==(const Ramp&) const = default;
+
   /// Displacement from the tow start, its velocity and acceleration at t.
   TowKinematics at(double t) const;
   /// Times where the law is not smooth: the end of the ramp.

@@ -13,6 +13,8 @@ struct SpeedChange {
   double start_time = 0;  // [s]
   double ramp_time = 1;   // [s], > 0
 
+  bool operator==(const SpeedChange&) const = default;
+
   /// Start the change: the rate and its end.
   void begin(CourseState& c) const;
 };

@@ -15,6 +15,8 @@ struct Track {
   std::vector<Vec3> pos;     // [m, R_g], relative to the tow start
   std::vector<Vec3> curv;    // spline second derivatives at the rows [m/s^2, R_g] (prepare())
 
+  bool operator==(const Track&) const = default;
+
   /// A track through these rows, with its spline prepared.
   static Track make(std::vector<double> time, std::vector<Vec3> pos);
   /// Compute `curv`, so that evaluating costs O(log rows) with no allocation.

@@ -15,6 +15,8 @@ struct Turn {
   bool port = true;        // true = to port (left), false = starboard
   double angle = CourseState::kNever;  // change of heading at which it ends [rad]
 
+  bool operator==(const Turn&) const = default;
+
   /// Start turning: set the curvature and the heading change left.
   void begin(CourseState& c) const;
 };
