@@ -37,7 +37,8 @@ void describe_fluid(const Fluid& f, std::ostream& out) {
     return;
   }
   for (std::size_t i = 0; i < f.current_velocity.size(); ++i)
-    line(out, i == 0 ? "current" : "", vec(f.current_velocity[i]) + " m/s at depth " + fmt_num(f.current_depth[i]) + " m");
+    line(out, i == 0 ? "current" : "",
+         vec(f.current_velocity[i]) + " m/s at depth " + fmt_num(f.current_depth[i]) + " m");
 }
 
 /// The seabed: depth (or its table) and contact law.
@@ -59,14 +60,18 @@ void describe_seabed(const Model& m, std::ostream& out) {
 void describe_elements(const Cable& c, const Section* sec, const Element& e, int count, std::ostream& out) {
   line(out, "element length", fmt_num(e.length) + " m");
   line(out, "diameter", fmt_num(e.diameter) + " m");
-  line(out, "mass in air", fmt_num(e.mass / e.length) + " kg/m, " + fmt_num(e.mass) + " kg per element, " +
-                               fmt_num(e.mass * count) + " kg in all");
-  line(out, "apparent weight in water", fmt_num(e.weight / e.length) + " N/m, " + fmt_num(e.weight) +
-                                            " N per element (" + sinks(e.weight, e.mass * 9.81) + ")");
-  line(out, "added mass (normal)", fmt_num(e.added_mass / e.length) + " kg/m, " + fmt_num(e.added_mass) +
-                                       " kg per element (" +
-                                       (c.added_mass_model == AddedMassModel::Morison ? "morison" : "ideal_fluid") + ")");
+  line(out, "mass in air",
+       fmt_num(e.mass / e.length) + " kg/m, " + fmt_num(e.mass) + " kg per element, " + fmt_num(e.mass * count) +
+           " kg in all");
+  line(out, "apparent weight in water",
+       fmt_num(e.weight / e.length) + " N/m, " + fmt_num(e.weight) + " N per element (" +
+           sinks(e.weight, e.mass * 9.81) + ")");
+  line(out, "added mass (normal)",
+       fmt_num(e.added_mass / e.length) + " kg/m, " + fmt_num(e.added_mass) + " kg per element (" +
+           (c.added_mass_model == AddedMassModel::Morison ? "morison" : "ideal_fluid") + ")");
   line(out, "normal drag factor", "1/2 rho Cd D = " + fmt_num(e.drag_factor / e.length) + " kg/m^2");
+  // The section's breaking load, in its own block.
+  if (sec != nullptr && sec->breaking_load > 0) line(out, "breaking load", fmt_num(sec->breaking_load) + " N");
   // Faired cable: a table replaces a default law.
   auto table = [](const LoadingTable& t, const char* f) {
     return std::string("table ") + f + "(phi), " + std::to_string(t.f.size()) + " rows, times 1/2 rho Cd D |u|^2";
@@ -76,12 +81,13 @@ void describe_elements(const Cable& c, const Section* sec, const Element& e, int
     line(out, "tangential drag", table(sec->tangential_loading, "ft"));
     return;
   }
-  line(out, "tangential drag", std::string(c.tangential_law == TangentialLaw::Skin ? "skin: 1/2 rho pi D Ct" : "pode: 1/2 rho Cd f D") +
-                                   " = " + fmt_num(e.friction_factor / e.length) + " kg/m^2");
+  line(out, "tangential drag",
+       std::string(c.tangential_law == TangentialLaw::Skin ? "skin: 1/2 rho pi D Ct" : "pode: 1/2 rho Cd f D") + " = " +
+           fmt_num(e.friction_factor / e.length) + " kg/m^2");
   if (is_elastic(e))
-    line(out, "axial stiffness", "EA = " + fmt_num(e.axial_stiffness) + " N, damping " + fmt_num(e.axial_damping) +
-                                     " N s; wave speed " + fmt_num(axial_wave_speed(e)) + " m/s, rk4 step <= " +
-                                     fmt_num(rk4_axial_step_limit(e)) + " s");
+    line(out, "axial stiffness",
+         "EA = " + fmt_num(e.axial_stiffness) + " N, damping " + fmt_num(e.axial_damping) + " N s; wave speed " +
+             fmt_num(axial_wave_speed(e)) + " m/s, rk4 step <= " + fmt_num(rk4_axial_step_limit(e)) + " s");
   else
     line(out, "axial stiffness", "inextensible");
 }
@@ -100,13 +106,12 @@ void describe_cable(const Cable& c, std::ostream& out) {
     describe_elements(c, c.sections.empty() ? nullptr : &c.sections.front(), c.elements.front(), c.n(), out);
   } else {
     for (const Section& s : c.sections) {
-      out << "section " << s.name << ": " << fmt_num(s.length) << " m in " << s.elements << " elements, from "
-          << fmt_num(arc_length(c, s.first_element)) << " m\n";
+      // A default name is already "section <i>"; a given one is prefixed.
+      out << (s.name.rfind("section ", 0) == 0 ? "" : "section ") << s.name << ": " << fmt_num(s.length) << " m in "
+          << s.elements << " elements, from " << fmt_num(arc_length(c, s.first_element)) << " m\n";
       describe_elements(c, &s, c.elements[static_cast<std::size_t>(s.first_element)], s.elements, out);
     }
   }
-  for (const Section& s : c.sections)
-    if (s.breaking_load > 0) line(out, "breaking load (" + s.name + ")", fmt_num(s.breaking_load) + " N");
   for (const Attachment& a : c.attachments)
     line(out, "attachment at " + fmt_num(a.at) + " m",
          "at joint " + std::to_string(a.joint) + " (" + fmt_num(arc_length(c, a.joint)) + " m): mass " +
@@ -127,8 +132,9 @@ void describe_body(const Body& b, const Cable& c, const Fluid& f, std::ostream& 
   line(out, "centre of buoyancy", vec(b.buoyancy_center) + " m (body axes)");
   line(out, "link point Q", vec(b.link_point) + " m (body axes)");
   if (b.inline_body) line(out, "lower link point Q2", vec(b.lower_link_point) + " m (body axes)");
-  line(out, "load models", count(b.spheres.size(), "sphere") + ", " + count(b.cylinders.size(), "cylinder") + ", " +
-                               count(b.surfaces.size(), "surface"));
+  line(out, "load models",
+       count(b.spheres.size(), "sphere") + ", " + count(b.cylinders.size(), "cylinder") + ", " +
+           count(b.surfaces.size(), "surface"));
   // Depth controllers (gains back in the keys' units, per degree).
   constexpr double deg = 180 / 3.14159265358979323846;
   for (std::size_t j = 0; j < b.surfaces.size(); ++j)
@@ -144,8 +150,8 @@ std::string piece_text(const Ramp& p) {
   return "ramp along " + vec(p.direction) + " to " + fmt_num(p.speed) + " m/s in " + fmt_num(p.ramp_time) + " s";
 }
 std::string piece_text(const Heave& p) {
-  return "heave " + fmt_num(p.amplitude) + " m, period " + fmt_num(p.period) + " s, from t = " +
-         fmt_num(p.start_time) + " s";
+  return "heave " + fmt_num(p.amplitude) + " m, period " + fmt_num(p.period) + " s, from t = " + fmt_num(p.start_time) +
+         " s";
 }
 std::string piece_text(const Turn& p) {
   std::string s = std::string("turn to ") + (p.port ? "port" : "starboard") + ", radius " + fmt_num(p.radius) +
@@ -154,8 +160,8 @@ std::string piece_text(const Turn& p) {
   return s;
 }
 std::string piece_text(const SpeedChange& p) {
-  return "speed change to " + fmt_num(p.speed) + " m/s over " + fmt_num(p.ramp_time) + " s, from t = " +
-         fmt_num(p.start_time) + " s";
+  return "speed change to " + fmt_num(p.speed) + " m/s over " + fmt_num(p.ramp_time) +
+         " s, from t = " + fmt_num(p.start_time) + " s";
 }
 std::string piece_text(const Track& p) {
   return "track of " + std::to_string(p.time.size()) + " points, t = " + fmt_num(p.time.front()) + " to " +
@@ -168,14 +174,14 @@ void describe_tow(const Tow& t, std::ostream& out) {
     if (t.force_value.size() == 1)
       line(out, "force", vec(t.force_value[0]) + " N, constant");
     else
-      line(out, "force", "table of " + std::to_string(t.force_time.size()) + " rows, t = " +
-                             fmt_num(t.force_time.front()) + " to " + fmt_num(t.force_time.back()) + " s");
+      line(out, "force",
+           "table of " + std::to_string(t.force_time.size()) + " rows, t = " + fmt_num(t.force_time.front()) + " to " +
+               fmt_num(t.force_time.back()) + " s");
     return;
   }
   out << "tow: imposed motion from " << vec(t.start) << " m\n";
   if (t.pieces.empty()) line(out, "motion", "none (fixed tow point)");
-  for (const auto& p : t.pieces)
-    line(out, "motion", std::visit([](const auto& law) { return piece_text(law); }, p));
+  for (const auto& p : t.pieces) line(out, "motion", std::visit([](const auto& law) { return piece_text(law); }, p));
 }
 
 void describe_winch(const Winch& w, std::ostream& out) {
@@ -185,14 +191,15 @@ void describe_winch(const Winch& w, std::ostream& out) {
     line(out, "drum", fmt_num(w.drum_inertia) + " kg at the rim, damping " + fmt_num(w.damping) + " N s/m");
   } else {
     const WinchKinematics end = winch_kinematics(w, w.schedule.back().t0);
-    out << "winch: imposed length, " << w.schedule.size() << " pieces, " << fmt_num(end.length) << " m from t = "
-        << fmt_num(w.schedule.back().t0) << " s\n";
+    out << "winch: imposed length, " << w.schedule.size() << " pieces, " << fmt_num(end.length)
+        << " m from t = " << fmt_num(w.schedule.back().t0) << " s\n";
   }
   const auto lim = [](double v, const char* unit) { return std::isfinite(v) ? fmt_num(v) + " " + unit : "none"; };
   line(out, "length limits", fmt_num(w.min_length) + " to " + lim(w.max_length, "m"));
   line(out, "speed limit", lim(w.max_speed, "m/s"));
-  line(out, "elements", fmt_num(w.nominal_length) + " m, split above " + fmt_num(w.split_at * w.nominal_length) +
-                            " m, removed below " + fmt_num(w.remove_at * w.nominal_length) + " m");
+  line(out, "elements",
+       fmt_num(w.nominal_length) + " m, split above " + fmt_num(w.split_at * w.nominal_length) + " m, removed below " +
+           fmt_num(w.remove_at * w.nominal_length) + " m");
   if (w.rating > 0) line(out, "rating", fmt_num(w.rating) + " N");
 }
 
@@ -202,16 +209,20 @@ void describe_run(const Model& m, std::ostream& out) {
   out << "initial: " << init[static_cast<int>(m.initial.kind)];
   if (m.initial.kind == Initial::Kind::Direction) out << " " << vec(m.initial.direction);
   out << "\nsimulation\n";
-  line(out, "integrator", std::string(integrator_key(s.integrator)) +
-                              (s.integrator == Integrator::RK4 ? "" : ", tolerance " + fmt_num(s.tolerance) +
-                                                                           (std::isfinite(s.max_step) ? ", max step " + fmt_num(s.max_step) + " s"
-                                                                                                    : std::string(", no max step"))));
+  line(out, "integrator",
+       std::string(integrator_key(s.integrator)) +
+           (s.integrator == Integrator::RK4
+                ? ""
+                : ", tolerance " + fmt_num(s.tolerance) +
+                      (std::isfinite(s.max_step) ? ", max step " + fmt_num(s.max_step) + " s"
+                                                 : std::string(", no max step"))));
   line(out, "formulation", s.formulation == Formulation::Paper ? "paper" : "default");
   line(out, s.integrator == Integrator::RK4 ? "time step" : "first step", fmt_num(s.time_step) + " s");
   line(out, "duration", fmt_num(s.duration) + " s");
   const long samples = static_cast<long>(std::floor(s.duration / s.output_interval + 1e-9)) + 1;
-  line(out, "output interval", fmt_num(s.output_interval) + " s (" + std::to_string(samples) + " samples" +
-                                   (s.write_nodes ? ", with nodes.csv)" : ", no nodes.csv)"));
+  line(out, "output interval",
+       fmt_num(s.output_interval) + " s (" + std::to_string(samples) + " samples" +
+           (s.write_nodes ? ", with nodes.csv)" : ", no nodes.csv)"));
 }
 
 }  // namespace

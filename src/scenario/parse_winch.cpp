@@ -1,7 +1,9 @@
 // Reading winch: (docs/scenario.md "winch").
+#include <optional>
 #include <utility>
 
 #include "parse_sections.hpp"
+#include "scalar.hpp"
 
 namespace towsim::io {
 
@@ -21,8 +23,13 @@ void read_number_or_table(MapReader& r, const YNode* n, const std::string& key, 
     d.error(n->loc, where.path, "expected a table [[t, value], ...] (got " + n->describe() + ")");
     return;
   }
-  double v = 0;
-  if (convert(*n, where.path, d, v)) rows.push_back(RowSpec{{0.0, v}, where});
+  // A scalar that is not a number: say that a table is accepted too.
+  const std::optional<double> v = n->is_scalar() ? scalar_to_double(n->scalar) : std::nullopt;
+  if (!v) {
+    d.error(n->loc, where.path, "expected a number or a table [[t, value], ...] (got " + n->describe() + ")");
+    return;
+  }
+  rows.push_back(RowSpec{{0.0, *v}, where});
 }
 
 }  // namespace

@@ -57,10 +57,28 @@ TEST_F(Cli, CheckPrintsDerivedQuantities) {
   EXPECT_NE(r.out.find("apparent weight in water"), std::string::npos);
 }
 
+TEST_F(Cli, CheckPrintsEachBreakingLoadInItsSectionsBlock) {
+  const fs::path scen = dir_ / "sections.yaml";
+  std::ofstream(scen) << "cable:\n  mass_per_length: 1.5\n  diameter: 0.019\n  normal_drag: 1.8\n  sections:\n"
+                         "    - {length: 50, elements: 5, breaking_load: 1.0e5}\n"
+                         "    - {length: 30, elements: 3, breaking_load: 2.0e4}\n"
+                         "simulation:\n  duration: 1\n";
+  const CliResult r = run_towsim("check " + quoted(scen));
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::size_t first = r.out.find("\nsection 0: 50 m in 5 elements");
+  const std::size_t second = r.out.find("\nsection 1: 30 m in 3 elements");
+  const std::size_t load0 = r.out.find("  breaking load               100000 N\n");
+  const std::size_t load1 = r.out.find("  breaking load               20000 N\n");
+  ASSERT_NE(first, std::string::npos) << r.out;
+  ASSERT_NE(second, std::string::npos) << r.out;
+  EXPECT_TRUE(first < load0 && load0 < second) << r.out;
+  EXPECT_TRUE(second < load1 && load1 != std::string::npos) << r.out;
+}
+
 TEST_F(Cli, RunWritesTheThreeFiles) {
   const fs::path out = dir_ / "run";
-  const CliResult r =
-      run_towsim("run --example cable-tow --set simulation.duration=2 --out " + quoted(out) + " --quiet");
+  const CliResult r = run_towsim("run --example cable-tow --set simulation.duration=2 --out " + quoted(out) +
+                                 " --quiet");
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_EQ(r.out, "");
   for (const char* f : {"timeseries.csv", "nodes.csv", "summary.json"}) EXPECT_TRUE(fs::exists(out / f)) << f;
@@ -74,12 +92,14 @@ TEST_F(Cli, Rk4StepNearItsStabilityLimitIsWarnedAbout) {
   // is above 0.9 times it (but stable: the warning is conservative). rk4
   // named: the example runs the default rosenbrock.
   const fs::path out = dir_ / "run";
-  const CliResult r = run_towsim("run --example cable-tow --set simulation.duration=20 --set simulation.time_step=0.2 "
-                                 "--set simulation.integrator=rk4 --set simulation.write_nodes=false --out " +
-                                 quoted(out));
+  const CliResult r = run_towsim(
+      "run --example cable-tow --set simulation.duration=20 --set simulation.time_step=0.2 "
+      "--set simulation.integrator=rk4 --set simulation.write_nodes=false --out " +
+      quoted(out));
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("towsim: warning: rk4 time_step 0.2 s is above 0.9 times the estimated stability limit"),
-            std::string::npos) << r.out;
+            std::string::npos)
+      << r.out;
   const std::string summary = towsim::testing::slurp(out / "summary.json");
   EXPECT_NE(summary.find("\"integrator\": \"rk4\""), std::string::npos);
   EXPECT_NE(summary.find("\"warnings\": [\n    \"rk4 time_step 0.2 s is above"), std::string::npos) << summary;
@@ -89,9 +109,10 @@ TEST_F(Cli, Rk4StepNearItsStabilityLimitIsWarnedAbout) {
 
 TEST_F(Cli, RosenbrockRunReportsItsErrorEstimate) {
   const fs::path out = dir_ / "run";
-  const CliResult r = run_towsim("run --example cable-tow --set simulation.duration=5 --set simulation.integrator=rosenbrock "
-                                 "--set simulation.tolerance=1e-5 --set simulation.write_nodes=false --quiet --out " +
-                                 quoted(out));
+  const CliResult r = run_towsim(
+      "run --example cable-tow --set simulation.duration=5 --set simulation.integrator=rosenbrock "
+      "--set simulation.tolerance=1e-5 --set simulation.write_nodes=false --quiet --out " +
+      quoted(out));
   EXPECT_EQ(r.status, 0) << r.out;
   const std::string summary = towsim::testing::slurp(out / "summary.json");
   EXPECT_NE(summary.find("\"integrator\": \"rosenbrock\""), std::string::npos) << summary;
@@ -132,8 +153,10 @@ TEST_F(Cli, UsageErrorsExit2) {
 // its tail fin meets the flow at ~33 deg, beyond its 15 deg stall angle.
 TEST_F(Cli, StalledSurfaceIsWarnedAboutWithItsTime) {
   const fs::path out = dir_ / "out";
-  const CliResult r = run_towsim("run --example fish-depth-change --set initial=hanging --set simulation.duration=5 "
-                                 "--out " + quoted(out));
+  const CliResult r = run_towsim(
+      "run --example fish-depth-change --set initial=hanging --set simulation.duration=5 "
+      "--out " +
+      quoted(out));
   ASSERT_EQ(r.status, 0) << r.out;
   const std::string prefix = "towsim: warning: the body's surface 0 stalled at t = 1 s: angle of attack ";
   const auto at = r.out.find(prefix);

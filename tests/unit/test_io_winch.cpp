@@ -4,9 +4,9 @@
 
 #include <cmath>
 
+#include "../support/scenario_files.hpp"
 #include "towsim/dynamics/state.hpp"
 #include "towsim/scenario/scenario.hpp"
-#include "../support/scenario_files.hpp"
 
 namespace {
 
@@ -18,7 +18,8 @@ using towsim::testing::kSim;  // lines 6-7
 
 TEST_F(WinchKeys, NoModeAndUnknownKey) {
   const auto s = load(kCable + kSim + "winch:\n  max_sped: 2\n");
-  EXPECT_EQ(s.diags.str(), at("9:3: winch.max_sped: unknown key (did you mean 'max_speed'?)") + at("9:3: winch: give one of rate, length or tension"));
+  EXPECT_EQ(s.diags.str(), at("9:3: winch.max_sped: unknown key (did you mean 'max_speed'?)") +
+                               at("9:3: winch: give one of rate, length or tension"));
 }
 
 TEST_F(WinchKeys, TwoModes) {
@@ -29,21 +30,33 @@ TEST_F(WinchKeys, TwoModes) {
 TEST_F(WinchKeys, SpeedsOverLimits) {
   const auto s = load(kCable + kSim +
                       "winch:\n  rate: [[0, 0], [10, 2.5], [11, 0]]\n  max_speed: 2\n  max_acceleration: 0.5\n");
-  EXPECT_EQ(s.diags.str(), at("9:18: winch.rate.1: pay-out speed 2.5 m/s exceeds winch.max_speed (2 m/s)") +
-                                at("9:29: winch.rate.2: pay-out acceleration -2.5 m/s^2 exceeds winch.max_acceleration (0.5 m/s^2)"));
+  EXPECT_EQ(s.diags.str(),
+            at("9:18: winch.rate.1: pay-out speed 2.5 m/s exceeds winch.max_speed (2 m/s)") +
+                at("9:29: winch.rate.2: pay-out acceleration -2.5 m/s^2 exceeds winch.max_acceleration (0.5 m/s^2)"));
+}
+
+TEST_F(WinchKeys, NonNumericRateSaysATableIsAcceptedToo) {
+  const auto s = load(kCable + kSim + "winch:\n  rate: fast\n");
+  EXPECT_EQ(s.diags.str(), at("9:9: winch.rate: expected a number or a table [[t, value], ...] (got 'fast')"));
+  const auto kn = load(kCable + kSim + "winch:\n  rate_kn: {a: 1}\n");
+  EXPECT_EQ(kn.diags.str(), at("9:12: winch.rate_kn: expected a number or a table [[t, value], ...] (got a mapping)"));
 }
 
 TEST_F(WinchKeys, LengthTableMustStartAtTheCableLength) {
   const auto s = load(kCable + kSim + "winch:\n  length: [[0, 90], [10, 120]]\n");
-  EXPECT_EQ(s.diags.str(), at("9:11: winch.length: the length at t = 0 (90 m) must be the cable's deployed length (100 m)"));
+  EXPECT_EQ(s.diags.str(),
+            at("9:11: winch.length: the length at t = 0 (90 m) must be the cable's deployed length (100 m)"));
 }
 
 TEST_F(WinchKeys, RefusedCombinations) {
   const auto s = load(kCable + kSim + "  formulation: paper\n" +
                       "tow:\n  mode: force\n  force: [0, 0, 10]\nwinch:\n  tension: 5000\n  split_at: 1.05\n");
-  EXPECT_EQ(s.diags.str(), at("8:16: simulation.formulation: the paper formulation has a fixed cable length: winch: needs formulation: default") +
-                                at("13:12: winch.tension: a tension-controlled winch needs tow.mode: motion (tow.mode is force)") +
-                                at("14:13: winch.split_at: split_at (1.05) must be above 1 + remove_at (0.1) so that a split element is not removed at once"));
+  EXPECT_EQ(s.diags.str(),
+            at("8:16: simulation.formulation: the paper formulation has a fixed cable length: winch: needs "
+               "formulation: default") +
+                at("13:12: winch.tension: a tension-controlled winch needs tow.mode: motion (tow.mode is force)") +
+                at("14:13: winch.split_at: split_at (1.05) must be above 1 + remove_at (0.1) so that a split element "
+                   "is not removed at once"));
 }
 
 // An elastic cable compiles: the winch pays out into its elastic top
@@ -67,8 +80,9 @@ TEST_F(WinchKeys, ElasticCableCompiles) {
 // 10 m, EA 1e7, m' 1.5: c = 2582 m/s; paying out only, 0.5 L_e = 5 m
 // after a split: 0.8 * 5 / c = 1.549e-3 s.
 TEST_F(WinchKeys, ElasticCableRk4StepBound) {
-  const std::string cable = "cable:\n  length: 100\n  elements: 10\n  mass_per_length: 1.5\n  diameter: 0.019\n"
-                            "  axial_stiffness: 1.0e7\n";
+  const std::string cable =
+      "cable:\n  length: 100\n  elements: 10\n  mass_per_length: 1.5\n  diameter: 0.019\n"
+      "  axial_stiffness: 1.0e7\n";
   const auto s = load(cable + kSim + "  integrator: rk4\n  time_step: 0.002\nwinch:\n  rate: 1\n");
   EXPECT_EQ(s.diags.str(), at("10:14: simulation.time_step: with integrator: rk4 and a winch on an elastic cable, "
                               "the top element shortens to 5 m (split_at, remove_at): its axial wave needs "
@@ -113,7 +127,8 @@ TEST_F(WinchKeys, SpeedsInKnots) {
   EXPECT_EQ(both.diags.str(), at("10:12: winch.rate_kn: give either 'rate' or 'rate_kn', not both") +
                                   at("12:3: winch.max_speed_kn: give either 'max_speed' or 'max_speed_kn', not both"));
   const auto over = load(kCable + kSim + "winch:\n  rate_kn: [[0, 0], [10, 5], [20, 0]]\n  max_speed_kn: 4\n");
-  EXPECT_EQ(over.diags.str(), at("9:21: winch.rate_kn.1: pay-out speed 2.572222222 m/s exceeds winch.max_speed (2.057777778 m/s)"));
+  EXPECT_EQ(over.diags.str(),
+            at("9:21: winch.rate_kn.1: pay-out speed 2.572222222 m/s exceeds winch.max_speed (2.057777778 m/s)"));
 }
 
 // The rate schedule's stops: paying out into max_length stops there (the
