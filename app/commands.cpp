@@ -3,16 +3,16 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
 #include <system_error>
 
-#include "towsim/scenario/examples.hpp"
 #include "towsim/output/output.hpp"
+#include "towsim/scenario/examples.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim::io {
@@ -46,8 +46,8 @@ class ProgressBar {
     char t[64];
     std::snprintf(t, sizeof t, " t = %.6g / %.6g s", tidy_time(f * duration_), duration_);
     err_ << "\r[" << std::string(static_cast<std::size_t>(filled), '#')
-         << std::string(static_cast<std::size_t>(kWidth - filled), ' ') << "] " << pct << "%" << t << eta
-         << "   " << std::flush;
+         << std::string(static_cast<std::size_t>(kWidth - filled), ' ') << "] " << pct << "%" << t << eta << "   "
+         << std::flush;
   }
   void done() {
     if (last_ >= 0) err_ << "\n" << std::flush;
@@ -119,8 +119,8 @@ void elastic_warnings(const SlackRecord& r, std::ostream& err) {
       << fmt_num(tidy(ev.to)) << " m from the tow point), for " << fmt_num(tidy_time(ev.end - ev.start)) << " s";
   if (ev.ended)
     err << ", snap " << fmt_num(tidy(ev.snap_tension)) << " N at t = " << fmt_num(tidy_time(ev.snap_time)) << " s";
-  err << "; peak element tension " << fmt_num(tidy(r.max_tension)) << " N at t = "
-      << fmt_num(tidy_time(r.max_tension_time)) << " s (see elastic in summary.json)\n";
+  err << "; peak element tension " << fmt_num(tidy(r.max_tension))
+      << " N at t = " << fmt_num(tidy_time(r.max_tension_time)) << " s (see elastic in summary.json)\n";
 }
 
 /// Print the outcome and map RunStats.status to an exit status.
@@ -132,8 +132,8 @@ int report_run(const RunStats& stats, const Model& model, const RunOptions& opts
     return kExitFailed;
   }
   if (stats.status == "interrupted") {
-    err << "towsim: interrupted at t = " << fmt_num(stats.end_time) << " s (results up to then are in "
-        << opts.out_dir << ")\n";
+    err << "towsim: interrupted at t = " << fmt_num(stats.end_time) << " s (results up to then are in " << opts.out_dir
+        << ")\n";
     return kExitInterrupted;
   }
   if (!opts.quiet) out << end_of_run_line(model, stats, final_row, ex, samples, opts.out_dir) << "\n";
@@ -193,8 +193,9 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     const bool all_elastic = std::all_of(model.cable.elements.begin(), model.cable.elements.end(), is_elastic);
     if (!opts.quiet && lengths_in_state(model)) elastic_warnings(stats.slack, err);
     if (!opts.quiet && comp.value < 0 && !all_elastic)
-      err << "towsim: warning: the cable was in compression (axial force " << fmt_num(comp.value) << " N at t = "
-          << fmt_num(comp.time) << " s; see axial_force in nodes.csv): a real cable would go slack there\n";
+      err << "towsim: warning: the cable was in compression (axial force " << fmt_num(comp.value)
+          << " N at t = " << fmt_num(comp.time)
+          << " s; see axial_force in nodes.csv): a real cable would go slack there\n";
     // An extreme attitude usually means a design that does not fly (stalled
     // fins, a body hanging nose down): say when, so the user need not dig.
     constexpr double kAttitudeWarnDeg = 30;  // |roll| or |pitch| beyond this [deg]
@@ -202,10 +203,12 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
       const BodyExtremes& be = writer.extremes().end_body_extremes;
       static const char* kAngle[2] = {"roll", "pitch"};
       for (int i = 0; i < 2; ++i) {
-        const Extreme& e = std::abs(be.min_deg[i].value) > std::abs(be.max_deg[i].value) ? be.min_deg[i] : be.max_deg[i];
+        const Extreme& e = std::abs(be.min_deg[i].value) > std::abs(be.max_deg[i].value) ? be.min_deg[i]
+                                                                                         : be.max_deg[i];
         if (std::abs(e.value) > kAttitudeWarnDeg)
-          err << "towsim: warning: the body's " << kAngle[i] << " reached " << fmt_num(e.value) << " deg at t = "
-              << fmt_num(e.time) << " s (beyond " << kAttitudeWarnDeg << " deg: check its fins, link point and "
+          err << "towsim: warning: the body's " << kAngle[i] << " reached " << fmt_num(e.value)
+              << " deg at t = " << fmt_num(e.time) << " s (beyond " << kAttitudeWarnDeg
+              << " deg: check its fins, link point and "
               << "weights; body_" << kAngle[i] << "_deg in timeseries.csv)\n";
       }
     }

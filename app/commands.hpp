@@ -19,11 +19,11 @@ namespace towsim::io {
 
 /// Exit statuses of the program (docs/contract.md §U3).
 enum ExitStatus : int {
-  kExitOk = 0,            // success
-  kExitError = 1,         // I/O or internal error (e.g. the output directory cannot be created)
-  kExitInvalid = 2,       // invalid input: nothing written
-  kExitFailed = 3,        // the simulation failed numerically (files so far kept)
-  kExitInterrupted = 130, // stopped by SIGINT/SIGTERM (files so far kept)
+  kExitOk = 0,             // success
+  kExitError = 1,          // I/O or internal error (e.g. the output directory cannot be created)
+  kExitInvalid = 2,        // invalid input: nothing written
+  kExitFailed = 3,         // the simulation failed numerically (files so far kept)
+  kExitInterrupted = 130,  // stopped by SIGINT/SIGTERM (files so far kept)
 };
 
 /// What to load: a scenario file or a built-in example, with overrides.
@@ -44,7 +44,7 @@ struct RunOptions {
 /// Options of `towsim statics`.
 struct StaticsOptions {
   InputOptions input;
-  std::string out_dir;  // where to write timeseries.csv and nodes.csv of the configuration ("" = none)
+  std::string out_dir;                 // where to write timeseries.csv and nodes.csv of the configuration ("" = none)
   std::optional<double> target_depth;  // --target-depth D: find the deployed length for this depth [m]
 };
 
@@ -55,8 +55,7 @@ LoadedScenario load_input(const InputOptions& in);
 /// `towsim run`: simulate and write timeseries.csv, nodes.csv and
 /// summary.json into the output directory. Invalid input writes nothing.
 /// `stop_flag` (may be null) interrupts the run when set. Returns an ExitStatus.
-int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err,
-                const volatile int* stop_flag = nullptr);
+int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, const volatile int* stop_flag = nullptr);
 
 /// `towsim statics`: the steady-tow equilibrium at the tow law's final
 /// velocity; prints tow force, end and body depth, link force, element

@@ -29,18 +29,19 @@ void describe_sea(const Model& m, std::ostream& out) {
     }
     const double two_pi = 2 * std::numbers::pi;
     line(out, "periods", fmt_num(two_pi / hi) + " .. " + fmt_num(two_pi / lo) + " s");
-    line(out, "travel direction (R_g)",
-         "[" + fmt_num(w->direction.x()) + ", " + fmt_num(w->direction.y()) + ", 0]");
+    line(out, "travel direction (R_g)", "[" + fmt_num(w->direction.x()) + ", " + fmt_num(w->direction.y()) + ", 0]");
     line(out, "water depth", std::isfinite(w->depth) ? fmt_num(w->depth) + " m" : std::string("deep"));
     line(out, "kinematics cut off below", fmt_num(-deepest) + " m depth (harmonics < 0.1 % of their surface value)");
-    line(out, "kinematics up to", w->wheeler ? std::string("the wave surface (Wheeler stretching)")
-                                             : std::string("the still water level z = 0 (no stretching)"));
+    line(out, "kinematics up to",
+         w->wheeler ? std::string("the wave surface (Wheeler stretching)")
+                    : std::string("the still water level z = 0 (no stretching)"));
   }
   if (const Vessel* v = m.tow.vessel.get()) {
     out << "vessel\n";
     const Vec3& s = v->sheave();
-    line(out, "tow point (sheave)", "[" + fmt_num(s.x()) + ", " + fmt_num(s.y()) + ", " + fmt_num(s.z()) +
-                                        "] m from the RAO origin (vessel axes)");
+    line(out, "tow point (sheave)",
+         "[" + fmt_num(s.x()) + ", " + fmt_num(s.y()) + ", " + fmt_num(s.z()) +
+             "] m from the RAO origin (vessel axes)");
     line(out, "motion", v->measured() ? "measured record (cubic spline)" : "RAOs at the encounter frequency");
     line(out, "statistics from", fmt_num(statistics_start(m)) + " s");
   }

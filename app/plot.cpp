@@ -1,8 +1,8 @@
 #include "plot.hpp"
 
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -44,8 +44,7 @@ struct Table {
   /// Column `n` of row `r` (NaN when absent or short).
   double at(std::size_t r, const std::string& n) const {
     const auto it = index.find(n);
-    if (it == index.end() || r >= rows.size() || it->second >= static_cast<int>(rows[r].size()))
-      return std::nan("");
+    if (it == index.end() || r >= rows.size() || it->second >= static_cast<int>(rows[r].size())) return std::nan("");
     return rows[r][static_cast<std::size_t>(it->second)];
   }
 };
@@ -104,8 +103,10 @@ bool read_csv(const fs::path& path, Table& t, std::size_t max_cols = 0) {
 std::string quote(const std::string& s) {
   std::string out = "'";
   for (char c : s) {
-    if (c == '\'') out += "''";
-    else out += c;
+    if (c == '\'')
+      out += "''";
+    else
+      out += c;
   }
   return out + "'";
 }
@@ -170,23 +171,23 @@ struct Run {
   bool has_body = false;
   bool three_d = false;
   bool has_nodes = true;
-  bool link_at_origin = true;      // body origin == cable lower end
-  bool second_sphere = false;      // plot the second sphere's centre
+  bool link_at_origin = true;       // body origin == cable lower end
+  bool second_sphere = false;       // plot the second sphere's centre
   std::array<double, 3> sphere2{};  // its centre, body axes
   double t0 = 0, t1 = 0;
-  double t_last = 0;               // the last row's time [s]
-  long rows = 0;                   // timeseries rows
-  double min_dt = 0;               // smallest output interval
+  double t_last = 0;  // the last row's time [s]
+  long rows = 0;      // timeseries rows
+  double min_dt = 0;  // smallest output interval
   std::vector<double> snapshot_times;
-  bool single = false;             // one output time: a statics configuration
-  bool has_layback = false;        // timeseries.csv has the layback column
-  bool has_winch = false;          // timeseries.csv has payout_speed (a winch)
-  bool has_rating = false;         // and winch_load_ratio (a winch rating)
-  bool has_spectra = false;        // spectra.csv (a sea-state run) with data rows
-  bool spectra_body = false;       // ... with the body's columns filled
-  double spectra_wmax = 0;         // highest omega where the wave spectrum is >= 1e-4 of its peak [rad/s]
-  double marker_every = 10;        // s between trajectory markers
-  int marker_rows = 1;             // the same in rows
+  bool single = false;        // one output time: a statics configuration
+  bool has_layback = false;   // timeseries.csv has the layback column
+  bool has_winch = false;     // timeseries.csv has payout_speed (a winch)
+  bool has_rating = false;    // and winch_load_ratio (a winch rating)
+  bool has_spectra = false;   // spectra.csv (a sea-state run) with data rows
+  bool spectra_body = false;  // ... with the body's columns filled
+  double spectra_wmax = 0;    // highest omega where the wave spectrum is >= 1e-4 of its peak [rad/s]
+  double marker_every = 10;   // s between trajectory markers
+  int marker_rows = 1;        // the same in rows
   // Data spans for the equal-scale decisions.
   double x_span = 0, y_span = 0, z_span = 0;
 };
@@ -249,7 +250,9 @@ std::string render(const std::string& name, const std::string& plot_cmd, const P
   return s.str();
 }
 
-std::string title(const Run& run, const std::string& what) { return "set title " + quote(run.model + ": " + what) + "\n"; }
+std::string title(const Run& run, const std::string& what) {
+  return "set title " + quote(run.model + ": " + what) + "\n";
+}
 
 /// Equal axis scale when the data's aspect allows a readable figure (then a
 /// wide figure gets its legend below and a lower canvas, `o.height`);
@@ -302,8 +305,7 @@ std::string fig_trajectories(const Run& run, const PlotOptions& opt) {
   const std::string every = " every " + std::to_string(run.marker_rows);
   std::ostringstream p;
   p << "plot ts using 'tow_x':'tow_z' with lines lw 2 lc rgb '" << kPalette[0] << "' title 'tow point O_r', \\\n"
-    << "  ts using 'tow_x':'tow_z'" << every << " with points pt 7 ps 0.6 lc rgb '" << kPalette[0]
-    << "' notitle, \\\n"
+    << "  ts using 'tow_x':'tow_z'" << every << " with points pt 7 ps 0.6 lc rgb '" << kPalette[0] << "' notitle, \\\n"
     << "  ts using 'end_x':'end_z' with lines lw 2 lc rgb '" << kPalette[1] << "' title "
     << quote(run.has_body && run.link_at_origin ? "cable lower end P_n (= body origin)" : "cable lower end P_n")
     << ", \\\n"
@@ -311,8 +313,7 @@ std::string fig_trajectories(const Run& run, const PlotOptions& opt) {
   if (run.has_body && !run.link_at_origin) {
     p << ", \\\n  ts using 'body_x':'body_z' with lines lw 1.5 dt 2 lc rgb '" << kPalette[3]
       << "' title 'body origin O_t', \\\n"
-      << "  ts using 'body_x':'body_z'" << every << " with points pt 6 ps 0.6 lc rgb '" << kPalette[3]
-      << "' notitle";
+      << "  ts using 'body_x':'body_z'" << every << " with points pt 6 ps 0.6 lc rgb '" << kPalette[3] << "' notitle";
   }
   if (run.second_sphere) {
     p << ", \\\n  ts using (s2x(column('body_x'), @ang)):(s2z(column('body_z'), @ang)) with lines lw 2 lc rgb '"
@@ -343,8 +344,8 @@ std::string fig_components(const Run& run, const PlotOptions& o, const std::stri
   if (!magnitude.empty())
     p << "  ts using 'time':'" << magnitude << "'";
   else
-    p << "  ts using 'time':(sqrt(column('" << prefix << "x')**2 + column('" << prefix << "y')**2 + column('"
-      << prefix << "z')**2))";
+    p << "  ts using 'time':(sqrt(column('" << prefix << "x')**2 + column('" << prefix << "y')**2 + column('" << prefix
+      << "z')**2))";
   p << " with lines lw 1 dt 2 lc rgb '#404040' title '|" << symbol << "|'";
   s << render(name, p.str(), o);
   return s.str();
@@ -433,12 +434,10 @@ std::string fig_angles(const Run& run, const PlotOptions& o) {
     << "   cr = (da <= db ? ar : br), cp = (da <= db ? ap : bp), cy = (da <= db ? ay : by)), 0)\n"
     << "upd = \"cont(column(0), column('body_roll_deg'), column('body_pitch_deg'), column('body_yaw_deg'))\"\n";
   std::ostringstream p;
-  p << "plot ts using (@upd, column('time')):(cr) with lines lw 1.5 lc rgb '" << kPalette[0]
-    << "' title 'roll', \\\n"
+  p << "plot ts using (@upd, column('time')):(cr) with lines lw 1.5 lc rgb '" << kPalette[0] << "' title 'roll', \\\n"
     << "  ts using (@upd, column('time')):(cp) with lines lw 1.5 lc rgb '" << kPalette[1]
     << "' title 'pitch (+ = nose down)', \\\n"
-    << "  ts using (@upd, column('time')):(cy) with lines lw 1.5 lc rgb '" << kPalette[2]
-    << "' title 'yaw'";
+    << "  ts using (@upd, column('time')):(cy) with lines lw 1.5 lc rgb '" << kPalette[2] << "' title 'yaw'";
   s << render(name, p.str(), o);
   return s.str();
 }
@@ -481,7 +480,8 @@ std::string fig_depth_layback(const Run& run, const PlotOptions& o) {
   s << title(run, "depth against layback of the " + who);
   s << "set xlabel 'layback: horizontal distance from the tow point (m)'\n"
     << "set ylabel 'depth -z (m), downwards'\nset yrange [*:*] reverse\n";
-  if (run.has_layback) s << "lay(dummy) = column('layback')\n";
+  if (run.has_layback)
+    s << "lay(dummy) = column('layback')\n";
   else
     s << "lay(dummy) = sqrt((column('" << p << "x') - column('tow_x'))**2 + (column('" << p
       << "y') - column('tow_y'))**2)\n";
@@ -563,8 +563,7 @@ std::string fig_spectra(const Run& run, const PlotOptions& o) {
     << "set key inside top right reverse Left box opaque samplen 2\n";
   if (run.spectra_wmax > 0)  // where the sea has energy (wave spectrum >= 1e-4 of its peak)
     p << "set xrange [0:" << num(nice(1.2 * run.spectra_wmax)) << "]\n";
-  p
-    << "set title 'one-sided spectral densities'\n"
+  p << "set title 'one-sided spectral densities'\n"
     << "set xlabel 'omega (rad/s)'\nset ylabel 'S (m^2 s/rad)'\nset logscale y\nset format y '%.0e'\n"
     << "set y2label 'S tension (N^2 s/rad)'\nset logscale y2\nset format y2 '%.0e'\nset y2tics\nset ytics nomirror\n"
     << "plot sp using 'omega':'wave_elevation' with lines lw 2 lc rgb '" << kPalette[0]
@@ -701,8 +700,7 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   Run run;
   if (summary_ok) {  // nodes.csv is optional when the run says it wrote none
     const auto f = summary.find("files");
-    if (f != summary.end() && f->is_object() && f->contains("nodes") && (*f)["nodes"].is_null())
-      run.has_nodes = false;
+    if (f != summary.end() && f->is_object() && f->contains("nodes") && (*f)["nodes"].is_null()) run.has_nodes = false;
   }
   std::vector<std::string> missing;
   if (!exists_file(root / "timeseries.csv")) missing.push_back("timeseries.csv");
@@ -733,7 +731,8 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
       if (body.contains("spheres") && body["spheres"].is_array() && body["spheres"].size() >= 2) {
         const auto& c = body["spheres"][1]["center"];
         if (c.is_array() && c.size() == 3) {
-          for (int i = 0; i < 3; ++i) run.sphere2[static_cast<std::size_t>(i)] = c[static_cast<std::size_t>(i)].get<double>();
+          for (int i = 0; i < 3; ++i)
+            run.sphere2[static_cast<std::size_t>(i)] = c[static_cast<std::size_t>(i)].get<double>();
           run.second_sphere = true;
         }
       }
@@ -751,8 +750,8 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   run.has_winch = ts.has("payout_speed");
   run.has_rating = ts.has("winch_load_ratio");
   run.has_layback = ts.has("layback");
-  std::vector<std::string> need{"time", "tow_x", "tow_y", "tow_z", "tow_force_x", "tow_force_y", "tow_force_z",
-                                "end_x", "end_y", "end_z"};
+  std::vector<std::string> need{"time",        "tow_x",       "tow_y", "tow_z", "tow_force_x",
+                                "tow_force_y", "tow_force_z", "end_x", "end_y", "end_z"};
   if (run.has_body)
     for (const char* c : {"body_x", "body_y", "body_z", "body_roll_deg", "body_pitch_deg", "body_yaw_deg",
                           "link_force_x", "link_force_y", "link_force_z"})
@@ -840,9 +839,8 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   const int count = span > 0 && step > 0 ? static_cast<int>(std::floor(span / step + 1e-9)) + 1 : 1;
   for (int k = 0; k < count && run.has_nodes; ++k) {
     const double target = times.front() + k * step;
-    const auto it = std::min_element(times.begin(), times.end(), [&](double a, double b) {
-      return std::abs(a - target) < std::abs(b - target);
-    });
+    const auto it = std::min_element(times.begin(), times.end(),
+                                     [&](double a, double b) { return std::abs(a - target) < std::abs(b - target); });
     if (run.snapshot_times.empty() || *it != run.snapshot_times.back()) run.snapshot_times.push_back(*it);
   }
 
@@ -858,7 +856,6 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
       }
       for (std::size_t r = 0; r < sp.rows.size(); ++r)
         if (sp.at(r, "wave_elevation") >= 1e-4 * peak) run.spectra_wmax = std::max(run.spectra_wmax, sp.at(r, "omega"));
-
     }
   }
 
@@ -902,12 +899,16 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   if (run.has_winch && !run.single) names.push_back("winch");
   for (const auto& name : names) {
     std::string text;
-    if (name == "trajectories_xz") text = fig_trajectories(run, opt);
+    if (name == "trajectories_xz")
+      text = fig_trajectories(run, opt);
     else if (name == "tow_force")
       text = fig_components(run, opt, name, "tow force on the cable at the tow point", "tow_force_", mag_tow, "F_R");
-    else if (name == "paths_xy") text = fig_paths(run, opt);
-    else if (name == "end_depth") text = fig_depth(run, opt);
-    else if (name == "body_angles") text = fig_angles(run, opt);
+    else if (name == "paths_xy")
+      text = fig_paths(run, opt);
+    else if (name == "end_depth")
+      text = fig_depth(run, opt);
+    else if (name == "body_angles")
+      text = fig_angles(run, opt);
     else if (name == "cable_shapes_xz" || name == "cable_shapes_xy") {
       if (!run.has_nodes) {
         log << "towsim plot: skipped " << name << " (the run wrote no nodes.csv)\n";
@@ -951,8 +952,10 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
     const bool svg = exists_file(plots / (name + ".svg")) && fs::file_size(plots / (name + ".svg"), ec) > 0;
     if (rc != 0 || !png || !svg) {
       log << "towsim plot: gnuplot failed on " << script.string();
-      if (rc < 0) log << " (" << std::strerror(err) << ")";
-      else if (rc != 0) log << " (exit status " << rc << ")";
+      if (rc < 0)
+        log << " (" << std::strerror(err) << ")";
+      else if (rc != 0)
+        log << " (exit status " << rc << ")";
       log << ":\n";
       std::ifstream in(gp_log);
       in.seekg(static_cast<std::streamoff>(before));

@@ -41,9 +41,9 @@ namespace towsim::io {
 
 /// Rendering options of plot_run.
 struct PlotOptions {
-  int width = 1000;     // PNG and SVG size, pixels
+  int width = 1000;  // PNG and SVG size, pixels
   int height = 700;
-  int snapshots = 8;    // cable shapes drawn in cable_shapes_*
+  int snapshots = 8;  // cable shapes drawn in cable_shapes_*
 };
 
 /// Render DIR's figures into DIR/plots/. Progress and errors go to `log`.

@@ -13,9 +13,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "towsim/output/output.hpp"
 #include "plot.hpp"
 #include "run_files.hpp"
+#include "towsim/output/output.hpp"
 
 namespace towsim::io {
 namespace {
@@ -32,11 +32,20 @@ std::string html(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -130,7 +139,8 @@ std::vector<std::array<std::string, 3>> summary_rows(const json& sm) {
   auto final_row = [&](const char* key, const std::string& label) {
     if (fin.is_object() && fin.contains(key)) rows.push_back({label, value(fin[key]), ""});
   };
-  if (sm.contains("status")) rows.push_back({"status", html(sm["status"].is_string() ? sm["status"].get<std::string>() : ""), ""});
+  if (sm.contains("status"))
+    rows.push_back({"status", html(sm["status"].is_string() ? sm["status"].get<std::string>() : ""), ""});
   if (sm.contains("end_time")) rows.push_back({"simulated time [s]", value(sm["end_time"]), ""});
   final_row("layback", "final layback [m]");
   final_row("body_depth", "final body depth [m]");
@@ -144,10 +154,10 @@ std::vector<std::array<std::string, 3>> summary_rows(const json& sm) {
       if (v.is_object() && v.contains("value")) {
         rows.push_back({html(k), value(v["value"]), value(v.value("time", json()))});
       } else if (v.is_object() && v.contains("min") && v.contains("max")) {
-        rows.push_back({html(k) + " min", value(v["min"].value("value", json())),
-                        value(v["min"].value("time", json()))});
-        rows.push_back({html(k) + " max", value(v["max"].value("value", json())),
-                        value(v["max"].value("time", json()))});
+        rows.push_back(
+            {html(k) + " min", value(v["min"].value("value", json())), value(v["min"].value("time", json()))});
+        rows.push_back(
+            {html(k) + " max", value(v["max"].value("value", json())), value(v["max"].value("time", json()))});
       }
     }
   for (const char* k : {"steps", "rhs_evaluations", "wall_seconds", "samples"})
@@ -168,15 +178,15 @@ bool chord_frames(const CsvTable& ts, const std::vector<std::size_t>& pick, cons
   for (std::size_t i : pick) {
     const std::size_t r = rows[i];
     const double T = tT >= 0 ? ts.at(r, tT) : std::numeric_limits<double>::quiet_NaN();
-    frames.push_back({times[i], {ts.at(r, tx), ts.at(r, ex)}, {ts.at(r, ty), ts.at(r, ey)},
-                      {ts.at(r, tz), ts.at(r, ez)}, {T, T}});
+    frames.push_back(
+        {times[i], {ts.at(r, tx), ts.at(r, ex)}, {ts.at(r, ty), ts.at(r, ey)}, {ts.at(r, tz), ts.at(r, ez)}, {T, T}});
   }
   return true;
 }
 
 /// The animation data: frames of node positions and tensions, body pose.
-bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, const ReportOptions& opt,
-                    json& data, std::string& error) {
+bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, const ReportOptions& opt, json& data,
+                    std::string& error) {
   const int ct = ts.col("time");
   std::vector<double> times;
   std::vector<std::size_t> rows;
@@ -247,8 +257,7 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
     json spheres = json::array();
     try {  // the model's load spheres, from the scenario echo
       const auto& sp = sm.at("scenario").at("body").at("spheres");
-      for (const auto& s : sp)
-        spheres.push_back({{"center", s.at("center")}, {"radius", s.at("radius")}});
+      for (const auto& s : sp) spheres.push_back({{"center", s.at("center")}, {"radius", s.at("radius")}});
     } catch (const std::exception&) {
       spheres = json::array();  // no echo (statics of an older version): one marker sphere
     }
@@ -321,7 +330,7 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
     return kInvalid;
   }
   std::string model = sm.is_object() && sm.contains("model") && sm["model"].is_string() ? sm["model"].get<std::string>()
-                                                                                         : root.filename().string();
+                                                                                        : root.filename().string();
   if (model.empty()) model = "run";
 
   // The figures: `towsim plot` first (its messages kept for the page).
@@ -341,7 +350,8 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
     << "<title>towsim report: " << html(model) << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n";
   h << "<h1>towsim report: " << html(model) << "</h1>\n<p class=\"sub\">" << html(fs::absolute(root, ec).string())
     << " &middot; " << ts.rows.size() << " output times";
-  if (sm.contains("status") && sm["status"].is_string()) h << " &middot; status " << html(sm["status"].get<std::string>());
+  if (sm.contains("status") && sm["status"].is_string())
+    h << " &middot; status " << html(sm["status"].get<std::string>());
   h << "</p>\n";
 
   // 1. The 3-D view.
@@ -384,8 +394,8 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
 
   // 4. The scenario echo.
   if (sm.contains("scenario")) {
-    h << "<h2>Scenario</h2>\n<pre>"
-      << html(sm["scenario"].dump(2, ' ', false, json::error_handler_t::replace)) << "</pre>\n";
+    h << "<h2>Scenario</h2>\n<pre>" << html(sm["scenario"].dump(2, ' ', false, json::error_handler_t::replace))
+      << "</pre>\n";
   }
   h << "<p class=\"small\">Written by towsim report. Self-contained: no network access is needed to view it.</p>\n";
 
@@ -393,7 +403,8 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
   if (!opt.viewer_js.empty()) {
     h << "<script id=\"towsim-data\" type=\"application/json\">"
       << script_safe(data.dump(-1, ' ', false, json::error_handler_t::replace)) << "</script>\n"
-      << "<script>\n" << script_safe(opt.viewer_js) << "\n</script>\n";
+      << "<script>\n"
+      << script_safe(opt.viewer_js) << "\n</script>\n";
   } else {
     h << "<script>document.documentElement.setAttribute('data-ready','no-3d');</script>\n";
   }

@@ -128,7 +128,7 @@ bool read_node_frames(const std::string& path, const std::vector<double>& wanted
     fr.y.push_back(to_double(f[static_cast<std::size_t>(cy)]));
     fr.z.push_back(to_double(f[static_cast<std::size_t>(cz)]));
     fr.tension.push_back(cT >= 0 && static_cast<int>(f.size()) > cT ? to_double(f[static_cast<std::size_t>(cT)])
-                                                                     : std::nan(""));
+                                                                    : std::nan(""));
   }
   return true;
 }
@@ -142,8 +142,8 @@ std::vector<std::size_t> spread_indices(std::size_t n, std::size_t count) {
     return out;
   }
   for (std::size_t k = 0; k < count; ++k) {
-    const auto i = static_cast<std::size_t>(std::llround(static_cast<double>(k) * static_cast<double>(n - 1) /
-                                                         static_cast<double>(count - 1)));
+    const auto i = static_cast<std::size_t>(
+        std::llround(static_cast<double>(k) * static_cast<double>(n - 1) / static_cast<double>(count - 1)));
     if (out.empty() || i != out.back()) out.push_back(i);
   }
   return out;
@@ -152,9 +152,9 @@ std::vector<std::size_t> spread_indices(std::size_t n, std::size_t count) {
 std::vector<double> arc_lengths(const NodeFrame& f) {
   std::vector<double> s(f.x.size(), 0.0);
   for (std::size_t k = 1; k < f.x.size(); ++k)
-    s[k] = s[k - 1] + std::sqrt((f.x[k] - f.x[k - 1]) * (f.x[k] - f.x[k - 1]) +
-                                (f.y[k] - f.y[k - 1]) * (f.y[k] - f.y[k - 1]) +
-                                (f.z[k] - f.z[k - 1]) * (f.z[k] - f.z[k - 1]));
+    s[k] = s[k - 1] +
+           std::sqrt((f.x[k] - f.x[k - 1]) * (f.x[k] - f.x[k - 1]) + (f.y[k] - f.y[k - 1]) * (f.y[k] - f.y[k - 1]) +
+                     (f.z[k] - f.z[k - 1]) * (f.z[k] - f.z[k - 1]));
   return s;
 }
 

@@ -23,9 +23,9 @@ bool read_csv_table(const std::string& path, CsvTable& table, std::string& error
 
 /// The nodes of one output time (nodes.csv rows of that time, in node order).
 struct NodeFrame {
-  double t = 0;                  // [s]
-  std::vector<double> x, y, z;   // joint positions [m, R_g]
-  std::vector<double> tension;   // [N] (NaN when the file has no tension column)
+  double t = 0;                 // [s]
+  std::vector<double> x, y, z;  // joint positions [m, R_g]
+  std::vector<double> tension;  // [N] (NaN when the file has no tension column)
 };
 
 /// Read `path` (nodes.csv: header with at least time, node, x, y, z) in one

@@ -3,11 +3,11 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
-#include <optional>
 #include <new>
+#include <optional>
 
-#include "towsim/dynamics/dynamics.hpp"
 #include "commands.hpp"
+#include "towsim/dynamics/dynamics.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/sim/statics.hpp"
 
@@ -22,8 +22,11 @@ void print_statics(const Model& model, const StaticsResult& r, const Sample& s, 
   out << std::setprecision(6);
   const Vec3 F = r.tow_force;
   out << "steady tow at V = (" << r.tow_velocity.transpose() << ") m/s, |V| = " << r.tow_velocity.norm() << " m/s\n";
-  out << "  converged: " << (r.converged ? "yes" : r.interrupted ? "NO, interrupted" : "NO") << " (" << r.iterations
-      << " iterations, largest angular acceleration left " << r.residual << " rad/s^2)\n";
+  out << "  converged: "
+      << (r.converged     ? "yes"
+          : r.interrupted ? "NO, interrupted"
+                          : "NO")
+      << " (" << r.iterations << " iterations, largest angular acceleration left " << r.residual << " rad/s^2)\n";
   out << "  tow force F_R = (" << F.transpose() << ") N, tension " << F.norm() << " N, "
       << std::atan2(F.z(), std::hypot(F.x(), F.y())) * kDeg << " deg above horizontal\n";
   const Vec3 end = s.node_pos.back() - s.tow_pos;
@@ -31,8 +34,8 @@ void print_statics(const Model& model, const StaticsResult& r, const Sample& s, 
       << " m horizontally from the tow point\n";
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodySample& bs = s.bodies[b];
-    out << "  " << (model.bodies[b].inline_body ? "body " + model.bodies[b].name : std::string("body")) << ": depth " << -bs.pos.z() << " m, roll/pitch/yaw ("
-        << bs.rpy_deg.transpose() << ") deg\n";
+    out << "  " << (model.bodies[b].inline_body ? "body " + model.bodies[b].name : std::string("body")) << ": depth "
+        << -bs.pos.z() << " m, roll/pitch/yaw (" << bs.rpy_deg.transpose() << ") deg\n";
     out << "  link force F_L = (" << bs.link_force.transpose() << ") N, |F_L| = " << bs.link_force.norm() << " N\n";
     if (model.bodies[b].inline_body)
       out << "  lower link force = (" << bs.lower_link_force.transpose() << ") N, |F| = " << bs.lower_link_force.norm()
@@ -41,9 +44,8 @@ void print_statics(const Model& model, const StaticsResult& r, const Sample& s, 
   out << "  element  angle below horizontal [deg]  heading [deg]  tension at top [N]\n";
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
     const Vec3& e = r.state.e[k];
-    out << "  " << std::setw(7) << k + 1 << "  " << std::setw(28) << std::asin(-e.z()) * kDeg << "  "
-        << std::setw(13) << std::atan2(e.y(), e.x()) * kDeg << "  " << std::setw(18) << r.joint_force[k].norm()
-        << "\n";
+    out << "  " << std::setw(7) << k + 1 << "  " << std::setw(28) << std::asin(-e.z()) * kDeg << "  " << std::setw(13)
+        << std::atan2(e.y(), e.x()) * kDeg << "  " << std::setw(18) << r.joint_force[k].norm() << "\n";
   }
 }
 
@@ -83,8 +85,8 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
       return kExitFailed;
     }
     deployed = with_deployed_length(model, target->length);
-    out << std::setprecision(7) << "deployed length for a depth of " << fmt_num(D) << " m: " << target->length
-        << " m (" << (end_body(model) != nullptr ? "body" : "cable end") << " at " << target->depth << " m)\n";
+    out << std::setprecision(7) << "deployed length for a depth of " << fmt_num(D) << " m: " << target->length << " m ("
+        << (end_body(model) != nullptr ? "body" : "cable end") << " at " << target->depth << " m)\n";
   }
   const Model& used = deployed ? *deployed : model;
   const StaticsResult r = target ? target->statics : solve_statics(model, final_tow_velocity(model.tow), stop_flag);
@@ -107,7 +109,8 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
     stats.steps = r.iterations;
     auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, true);
     if (target)
-      summary["target_depth"] = {{"depth", *opts.target_depth}, {"deployed_length", target->length},
+      summary["target_depth"] = {{"depth", *opts.target_depth},
+                                 {"deployed_length", target->length},
                                  {"reached_depth", target->depth}};
     if (!write_summary(opts.out_dir, summary)) {
       err << "towsim: statics: cannot write " << opts.out_dir << "/summary.json\n";

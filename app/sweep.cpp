@@ -55,7 +55,8 @@ std::string quoted(const std::string& s) {
 /// A YAML value as flow text that reads back as the same value (the VALUE of KEY=VALUE).
 std::string yaml_text(const YNode& n) {
   switch (n.kind) {
-    case YNode::Kind::Scalar: return n.quoted || needs_quotes(n.scalar) ? quoted(n.scalar) : n.scalar;
+    case YNode::Kind::Scalar:
+      return n.quoted || needs_quotes(n.scalar) ? quoted(n.scalar) : n.scalar;
     case YNode::Kind::Sequence: {
       std::string out = "[";
       for (std::size_t i = 0; i < n.items.size(); ++i) out += (i ? ", " : "") + yaml_text(n.items[i]);
@@ -69,7 +70,8 @@ std::string yaml_text(const YNode& n) {
       }
       return out + "}";
     }
-    default: return "null";
+    default:
+      return "null";
   }
 }
 
@@ -241,8 +243,7 @@ SweepSpec read_sweep_with_locs(const std::string& path, Diagnostics& d, SweepLoc
     spec.example = text;
     locs.example = ex->loc;
   }
-  if (scen != nullptr && ex != nullptr)
-    d.error(ex->key_loc, "example", "give either scenario or example, not both");
+  if (scen != nullptr && ex != nullptr) d.error(ex->key_loc, "example", "give either scenario or example, not both");
   if (scen == nullptr && ex == nullptr && root.present())
     d.error(tree.loc, "scenario", "missing: give the base scenario (scenario: FILE) or a built-in one (example: NAME)");
   if (const YNode* set = root.get("set"))
@@ -441,8 +442,8 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
     const ExpandedCase e = expand(spec, locs.common, spec.cases[i], locs.cases[i]);
     const LoadedScenario sc = load_input(case_input(spec, e.sets));
     for (const auto& x : sc.diags.list()) {
-      const bool from_set =
-          x.loc.file == "--set" && x.loc.line >= 1 && static_cast<std::size_t>(x.loc.line) <= e.locs.size();
+      const bool from_set = x.loc.file == "--set" && x.loc.line >= 1 &&
+                            static_cast<std::size_t>(x.loc.line) <= e.locs.size();
       const SourceLoc at = from_set ? e.locs[static_cast<std::size_t>(x.loc.line) - 1] : x.loc;
       const std::string msg = from_set ? x.message : x.message + " (" + case_name(i) + ")";
       if (reported.insert(Diagnostic{at, x.path, msg}.str()).second) case_errors.error(at, x.path, msg);
@@ -464,8 +465,7 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t jobs = std::min<std::size_t>(n, opts.jobs > 0 ? static_cast<std::size_t>(opts.jobs) : cores);
   try {
-    SweepTable table((std::filesystem::path(opts.out_dir) / "sweep.csv").string(), spec,
-                     figure_names(*base.model));
+    SweepTable table((std::filesystem::path(opts.out_dir) / "sweep.csv").string(), spec, figure_names(*base.model));
     std::mutex mu;
     std::atomic<std::size_t> next{0};
     std::size_t completed = 0, failed = 0;
@@ -480,8 +480,8 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
         }
         const ExpandedCase e = expand(spec, locs.common, spec.cases[i], locs.cases[i]);
         const LoadedScenario sc = load_input(case_input(spec, e.sets));
-        const std::string dir =
-            spec.write_cases ? (std::filesystem::path(opts.out_dir) / case_name(i)).string() : std::string();
+        const std::string dir = spec.write_cases ? (std::filesystem::path(opts.out_dir) / case_name(i)).string()
+                                                 : std::string();
         CaseResult r = run_case(sc, dir, stop_flag);
         std::lock_guard<std::mutex> lock(mu);
         ++completed;
@@ -501,13 +501,13 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
       if (!started[i]) table.complete(i, CaseResult{"not_run", "the sweep was interrupted before this case", {}});
     if (!table.good()) throw std::runtime_error("cannot write " + opts.out_dir + "/sweep.csv");
     if (stop_flag != nullptr && *stop_flag) {
-      err << "towsim: sweep interrupted after " << completed << " of " << n << " cases (rows so far in "
-          << opts.out_dir << "/sweep.csv)\n";
+      err << "towsim: sweep interrupted after " << completed << " of " << n << " cases (rows so far in " << opts.out_dir
+          << "/sweep.csv)\n";
       return kExitInterrupted;
     }
     if (!opts.quiet)
-      out << "sweep: " << n << " cases on " << jobs << " threads, " << n - failed << " ok, " << failed
-          << " failed -> " << opts.out_dir << "/sweep.csv\n";
+      out << "sweep: " << n << " cases on " << jobs << " threads, " << n - failed << " ok, " << failed << " failed -> "
+          << opts.out_dir << "/sweep.csv\n";
   } catch (const std::exception& e) {
     err << "towsim: " << e.what() << "\n";
     return kExitError;

@@ -27,9 +27,9 @@ std::vector<Figure> summary_figures(const nlohmann::ordered_json& summary);
 
 /// How one case ended and its figures.
 struct CaseResult {
-  std::string status;            // ok | failed | interrupted | invalid | not_run
-  std::string message;           // why it failed, or "" (invalid: every error, one per line)
-  std::vector<Figure> figures;   // summary_figures() of its summary (empty when invalid)
+  std::string status;           // ok | failed | interrupted | invalid | not_run
+  std::string message;          // why it failed, or "" (invalid: every error, one per line)
+  std::vector<Figure> figures;  // summary_figures() of its summary (empty when invalid)
 };
 
 /// Simulate a loaded, valid scenario. With `out_dir` non-empty, write the
@@ -47,12 +47,12 @@ struct SweepCase {
 /// A sweep file as read: the base scenario, the overrides every case
 /// shares, the varied keys (in column order) and the cases.
 struct SweepSpec {
-  std::string scenario;              // scenario file path (relative to the working directory), or ""
-  std::string example;               // built-in example name, or ""
-  std::vector<std::string> common;   // `set`: KEY=VALUE for every case
-  std::vector<std::string> keys;     // the keys the cases vary, in order
+  std::string scenario;             // scenario file path (relative to the working directory), or ""
+  std::string example;              // built-in example name, or ""
+  std::vector<std::string> common;  // `set`: KEY=VALUE for every case
+  std::vector<std::string> keys;    // the keys the cases vary, in order
   std::vector<SweepCase> cases;
-  bool write_cases = false;          // also write each case's files into DIR/case-NNNN/
+  bool write_cases = false;  // also write each case's files into DIR/case-NNNN/
 };
 
 /// Most cases a sweep file may expand to.
@@ -63,10 +63,10 @@ SweepSpec read_sweep(const std::string& path, Diagnostics& diags);
 
 /// Options of `towsim sweep`.
 struct SweepOptions {
-  std::string file;      // the sweep file
-  std::string out_dir;   // where sweep.csv (and case-NNNN/) go
-  int jobs = 0;          // parallel cases (0 = every core)
-  bool quiet = false;    // print nothing but errors
+  std::string file;     // the sweep file
+  std::string out_dir;  // where sweep.csv (and case-NNNN/) go
+  int jobs = 0;         // parallel cases (0 = every core)
+  bool quiet = false;   // print nothing but errors
 };
 
 /// `towsim sweep`: run the cases on `jobs` threads, write DIR/sweep.csv (one

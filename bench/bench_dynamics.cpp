@@ -72,9 +72,9 @@ void BM_forward(benchmark::State& state, bool body) {
     benchmark::ClobberMemory();
   }
   state.SetComplexityN(n);
-  state.counters["s_per_element"] =
-      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate |
-                                                     benchmark::Counter::kInvert);
+  state.counters["s_per_element"] = benchmark::Counter(static_cast<double>(n),
+                                                       benchmark::Counter::kIsIterationInvariantRate |
+                                                           benchmark::Counter::kInvert);
 }
 
 void BM_paper(benchmark::State& state, bool body) {
@@ -88,9 +88,9 @@ void BM_paper(benchmark::State& state, bool body) {
     benchmark::ClobberMemory();
   }
   state.SetComplexityN(n);
-  state.counters["s_per_element"] =
-      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate |
-                                                     benchmark::Counter::kInvert);
+  state.counters["s_per_element"] = benchmark::Counter(static_cast<double>(n),
+                                                       benchmark::Counter::kIsIterationInvariantRate |
+                                                           benchmark::Counter::kInvert);
 }
 
 void BM_stage(benchmark::State& state, bool body, bool factor) {
@@ -108,15 +108,17 @@ void BM_stage(benchmark::State& state, bool body, bool factor) {
   r.rotb.assign(m.bodies.size(), Vec3(0.001, 0, 0));
   implicit_factor(m, s, ws, 0.1, iw);
   for (auto _ : state) {
-    if (factor) implicit_factor(m, s, ws, 0.1, iw);
-    else implicit_stage_solve(m, s, ws, 0.1, r, iw);
+    if (factor)
+      implicit_factor(m, s, ws, 0.1, iw);
+    else
+      implicit_stage_solve(m, s, ws, 0.1, r, iw);
     benchmark::DoNotOptimize(iw.alpha.data());
     benchmark::ClobberMemory();
   }
   state.SetComplexityN(n);
-  state.counters["s_per_element"] =
-      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate |
-                                                     benchmark::Counter::kInvert);
+  state.counters["s_per_element"] = benchmark::Counter(static_cast<double>(n),
+                                                       benchmark::Counter::kIsIterationInvariantRate |
+                                                           benchmark::Counter::kInvert);
 }
 
 /// One explicit step of the earlier formulation (assembly of loads and the
@@ -137,9 +139,9 @@ void BM_baseline(benchmark::State& state) {
     benchmark::DoNotOptimize(cd.step());
   }
   state.SetComplexityN(n);
-  state.counters["s_per_element"] =
-      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate |
-                                                     benchmark::Counter::kInvert);
+  state.counters["s_per_element"] = benchmark::Counter(static_cast<double>(n),
+                                                       benchmark::Counter::kIsIterationInvariantRate |
+                                                           benchmark::Counter::kInvert);
 }
 
 void sizes(benchmark::internal::Benchmark* b, int max_n) {

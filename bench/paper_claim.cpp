@@ -109,10 +109,10 @@ struct Series {
 struct RunResult {
   bool ok = true;
   std::string why;
-  Series s;             // tow force at the recorded times
-  double wall = 0;      // s (median over repeats when timed)
-  double cpu = 0;       // s, process CPU time (median over repeats)
-  long work = 0;        // rhs evaluations (towsim) or steps (baseline)
+  Series s;                      // tow force at the recorded times
+  double wall = 0;               // s (median over repeats when timed)
+  double cpu = 0;                // s, process CPU time (median over repeats)
+  long work = 0;                 // rhs evaluations (towsim) or steps (baseline)
   double length_err = 0;         // baseline: max relative length error over the run
   double length_err_steady = 0;  // baseline: same over 60-120 s
 };
@@ -300,8 +300,8 @@ Noise noise(const Series& s, double h) {
 /// One method under test: runs at a step (or tolerance) with an output stride.
 struct Method {
   std::string name;
-  bool adaptive;                     // parameter is a tolerance, not a step
-  std::vector<double> ladder;        // steps [s] (or tolerances), coarse to fine
+  bool adaptive;               // parameter is a tolerance, not a step
+  std::vector<double> ladder;  // steps [s] (or tolerances), coarse to fine
   // run(param, out_interval or 0 = every step, repeats)
   std::function<RunResult(double, double, int)> run;
 };
@@ -310,15 +310,17 @@ std::vector<Method> methods(bool body, bool law_b, const Model& morison) {
   using baseline::VelocityEstimate;
   // Steps that divide the 0.5 s comparison grid (so every run is sampled on it).
   const std::vector<double> rk_ladder = {0.25, 1.0 / 6, 0.125, 0.1, 0.0625, 0.05, 0.025, 0.02, 0.01, 0.005};
-  const std::vector<double> cd_ladder = {0.25, 1.0 / 6, 0.125, 0.1,   1.0 / 12, 0.0625, 0.05,
-                                         0.025, 0.02,   0.01, 0.005, 0.0025,   0.001};
+  const std::vector<double> cd_ladder = {0.25,  1.0 / 6, 0.125, 0.1,   1.0 / 12, 0.0625, 0.05,
+                                         0.025, 0.02,    0.01,  0.005, 0.0025,   0.001};
   // The dense form gives the same numbers as the default (same equations): a shorter ladder.
   const std::vector<double> dense_ladder = {0.25, 1.0 / 6, 0.125, 0.1, 0.05, 0.02};
   std::vector<Method> ms;
   ms.push_back({"towsim default (O(n)), rk4", false, rk_ladder, [morison](double h, double out, int rep) {
                   return run_towsim(morison, Integrator::RK4, h, 1e-6, out > 0 ? out : h, Formulation::Default, rep);
                 }});
-  ms.push_back({"towsim default (O(n)), dopri5", true, {1e-3, 1e-4, 1e-5, 1e-6, 1e-7},
+  ms.push_back({"towsim default (O(n)), dopri5",
+                true,
+                {1e-3, 1e-4, 1e-5, 1e-6, 1e-7},
                 [morison](double tol, double out, int rep) {
                   return run_towsim(morison, Integrator::DOPRI5, 0.01, tol, out > 0 ? out : 0.02, Formulation::Default,
                                     rep);
@@ -384,31 +386,32 @@ void experiment(bool body, bool law_b) {
   const RunResult ref = run_towsim(morison, Integrator::DOPRI5, 1e-3, 1e-10, 0.02, Formulation::Default, 1);
   const Vec3 ref_mean = mean_force(ref.s, 60, kDuration);
   const Vec3 ref_end = mean_force(ref.s, 110, kDuration);
-  std::printf("reference: towsim default, dopri5 tol 1e-10, Morison added mass, output every 0.02 s: %ld "
-              "evaluations, %.3f s\n",
-              ref.work, std::chrono::duration<double>(Clock::now() - t0).count());
-  std::printf("reference mean tow force 60-120 s: (%.3f, %.3f, %.3f) N, |F| = %.3f N; max |F| %.3f N\n",
-              ref_mean.x(), ref_mean.y(), ref_mean.z(), ref_mean.norm(),
-              std::transform_reduce(ref.s.F.begin(), ref.s.F.end(), 0.0,
-                                    [](double a, double b) { return std::max(a, b); },
-                                    [](const Vec3& f) { return f.norm(); }));
+  std::printf(
+      "reference: towsim default, dopri5 tol 1e-10, Morison added mass, output every 0.02 s: %ld "
+      "evaluations, %.3f s\n",
+      ref.work, std::chrono::duration<double>(Clock::now() - t0).count());
+  std::printf("reference mean tow force 60-120 s: (%.3f, %.3f, %.3f) N, |F| = %.3f N; max |F| %.3f N\n", ref_mean.x(),
+              ref_mean.y(), ref_mean.z(), ref_mean.norm(),
+              std::transform_reduce(
+                  ref.s.F.begin(), ref.s.F.end(), 0.0, [](double a, double b) { return std::max(a, b); },
+                  [](const Vec3& f) { return f.norm(); }));
   {
     // Cross-check: the baseline at a very small step converges to the same tow force.
     for (double h : {1e-3, 1e-4}) {
-      const RunResult fine =
-          run_baseline(body, law_b, h, baseline::VelocityEstimate::BDF2, std::lround(kGrid / h), 1);
+      const RunResult fine = run_baseline(body, law_b, h, baseline::VelocityEstimate::BDF2, std::lround(kGrid / h), 1);
       std::printf("check: baseline (BDF2) at h = %g s: history error vs reference %.2e, max length error %.1e\n", h,
                   history_error(fine.s, ref.s), fine.length_err);
     }
   }
 
   const auto ms = methods(body, law_b, morison);
-  std::printf("\n(a) accuracy and cost per setting (error = max over t = 0.5, 1, ..., 119.5 s except 15 s of |F - "
-              "F_ref| / max |F_ref|; wall = whole %.0f s run, output every %.1f s, median of %d runs for settings "
-              "within 1 %%)\n",
-              kDuration, kGrid, g_repeats);
-  std::printf("%-36s %9s %9s %9s %8s %10s %7s %10s %10s %10s\n", "method", "h or tol", "wall[ms]", "cpu[ms]",
-              "work", "hist.err", "at[s]", "err t>=30", "err t>=60", "steady");
+  std::printf(
+      "\n(a) accuracy and cost per setting (error = max over t = 0.5, 1, ..., 119.5 s except 15 s of |F - "
+      "F_ref| / max |F_ref|; wall = whole %.0f s run, output every %.1f s, median of %d runs for settings "
+      "within 1 %%)\n",
+      kDuration, kGrid, g_repeats);
+  std::printf("%-36s %9s %9s %9s %8s %10s %7s %10s %10s %10s\n", "method", "h or tol", "wall[ms]", "cpu[ms]", "work",
+              "hist.err", "at[s]", "err t>=30", "err t>=60", "steady");
   struct Best {
     double p1 = NAN, w1 = NAN, c1 = NAN, p01 = NAN, w01 = NAN, c01 = NAN;
   };
@@ -424,27 +427,29 @@ void experiment(bool body, bool law_b) {
       const double es = r.ok ? steady_error(r.s, ref.s) : INFINITY;
       const bool new1 = eh <= 0.01 && std::isnan(best[i].p1), new01 = eh <= 0.001 && std::isnan(best[i].p01);
       if (r.ok && (new1 || new01)) r = m.run(p, kGrid, g_repeats);  // time the candidates properly
-      std::printf("%-36s %9.4g %9.3f %9.3f %8ld %10.2e %7.1f %10.2e %10.2e %10.2e%s\n", m.name.c_str(), p,
-                  1e3 * r.wall, 1e3 * r.cpu, r.work, eh, tmax, e30, e60, es,
+      std::printf("%-36s %9.4g %9.3f %9.3f %8ld %10.2e %7.1f %10.2e %10.2e %10.2e%s\n", m.name.c_str(), p, 1e3 * r.wall,
+                  1e3 * r.cpu, r.work, eh, tmax, e30, e60, es,
                   r.ok ? "" : ("  FAILED: " + r.why.substr(0, 50)).c_str());
       if (new1) best[i].p1 = p, best[i].w1 = r.wall, best[i].c1 = r.cpu;
       if (new01) best[i].p01 = p, best[i].w01 = r.wall, best[i].c01 = r.cpu;
     }
   }
-  std::printf("\n(a) cheapest setting of the ladder within 1 %% / 0.1 %% (hist. err) of the reference: whole %.0f s "
-              "run, median of %d\n",
-              kDuration, g_repeats);
-  std::printf("%-36s %9s %9s %9s | %9s %9s %9s\n", "method", "h|tol 1%", "wall[ms]", "cpu[ms]", "h|tol.1%",
-              "wall[ms]", "cpu[ms]");
+  std::printf(
+      "\n(a) cheapest setting of the ladder within 1 %% / 0.1 %% (hist. err) of the reference: whole %.0f s "
+      "run, median of %d\n",
+      kDuration, g_repeats);
+  std::printf("%-36s %9s %9s %9s | %9s %9s %9s\n", "method", "h|tol 1%", "wall[ms]", "cpu[ms]", "h|tol.1%", "wall[ms]",
+              "cpu[ms]");
   for (std::size_t i = 0; i < ms.size(); ++i)
     std::printf("%-36s %9.4g %9.3f %9.3f | %9.4g %9.3f %9.3f\n", ms[i].name.c_str(), best[i].p1, 1e3 * best[i].w1,
                 1e3 * best[i].c1, best[i].p01, 1e3 * best[i].w01, 1e3 * best[i].c01);
 
   std::vector<double> hmax(ms.size(), NAN);
   if (!law_b) {
-    std::printf("\n(b) largest stable step (bisection to 0.5 %%; stable = finite to %.0f s, lengths within 1 %%, "
-                "mean tow force 110-120 s within 10 %% of the reference)\n",
-                kDuration);
+    std::printf(
+        "\n(b) largest stable step (bisection to 0.5 %%; stable = finite to %.0f s, lengths within 1 %%, "
+        "mean tow force 110-120 s within 10 %% of the reference)\n",
+        kDuration);
     for (std::size_t i = 0; i < ms.size(); ++i) {
       if (ms[i].adaptive) continue;
       hmax[i] = largest_stable(ms[i], ms[i].ladder.back(), ms[i].ladder.front(), ref_end);
@@ -452,8 +457,9 @@ void experiment(bool body, bool law_b) {
     }
   }
 
-  std::printf("\n(c) noise of the tow force over 60-120 s, every step: sd of F - (centred 1 s moving average of F); "
-              "at h = 0.02 s also sd of the same high-pass of F - F_ref (numerical noise alone)\n");
+  std::printf(
+      "\n(c) noise of the tow force over 60-120 s, every step: sd of F - (centred 1 s moving average of F); "
+      "at h = 0.02 s also sd of the same high-pass of F - F_ref (numerical noise alone)\n");
   std::printf("%-36s %8s %10s %10s %10s %9s | %10s %10s %9s %11s\n", "method", "h [s]", "sd Fx [N]", "sd Fz [N]",
               "sd |F| [N]", "/mean|F|", "dFx [N]", "dFz [N]", "d/mean|F|", "len err 60+");
   auto noise_row = [&](const Method& m, double h) {
@@ -491,20 +497,20 @@ void experiment(bool body, bool law_b) {
 /// 0 -> 1.57 m/s in 15 s, n = 10, 30, 100 elements (30, 10, 3 m).
 void scaling() {
   using baseline::VelocityEstimate;
-  std::printf("\n==== Step limit vs element length: paper 5.2 cable alone (300 m), tow 0 -> 1.57 m/s in 15 s, %.0f s "
-              "====\n",
-              kDuration);
-  std::printf("h_max by bisection as in (b); then one run at 0.9 h_max: cpu time of the whole run, mean tow force "
-              "110-120 s vs the reference (towsim dopri5 1e-9)\n");
-  std::printf("%5s %7s %-34s %9s %9s %9s %11s\n", "n", "L [m]", "method", "h_max[s]", "cpu[ms]", "work",
-              "steady err");
+  std::printf(
+      "\n==== Step limit vs element length: paper 5.2 cable alone (300 m), tow 0 -> 1.57 m/s in 15 s, %.0f s "
+      "====\n",
+      kDuration);
+  std::printf(
+      "h_max by bisection as in (b); then one run at 0.9 h_max: cpu time of the whole run, mean tow force "
+      "110-120 s vs the reference (towsim dopri5 1e-9)\n");
+  std::printf("%5s %7s %-34s %9s %9s %9s %11s\n", "n", "L [m]", "method", "h_max[s]", "cpu[ms]", "work", "steady err");
   for (int n : {10, 30, 100}) {
     Model m;
     m.name = "scaling";
     m.cable.added_mass_model = AddedMassModel::Morison;
     for (int i = 0; i < n; ++i)
-      m.cable.elements.push_back(
-          make_element(300.0 / n, 0.14, 0.010, 1.9, 0.0, TangentialLaw::Pode, 1.0, m.fluid));
+      m.cable.elements.push_back(make_element(300.0 / n, 0.14, 0.010, 1.9, 0.0, TangentialLaw::Pode, 1.0, m.fluid));
     m.tow.pieces.push_back(Ramp{Vec3(1, 0, 0), 1.57, 15.0});
     m.sim.duration = kDuration;
     m.sim.write_nodes = false;
@@ -521,8 +527,7 @@ void scaling() {
                     return run_chain(chain, x0, h, VelocityEstimate::BDF2, out > 0 ? std::lround(out / h) : 1, rep);
                   }});
     ms.push_back({"baseline central diff., v backward", false, {}, [&chain, &x0](double h, double out, int rep) {
-                    return run_chain(chain, x0, h, VelocityEstimate::Backward, out > 0 ? std::lround(out / h) : 1,
-                                     rep);
+                    return run_chain(chain, x0, h, VelocityEstimate::Backward, out > 0 ? std::lround(out / h) : 1, rep);
                   }});
     for (const Method& me : ms) {
       const double hm = largest_stable(me, 0.002, 0.25, ref_end);
@@ -541,9 +546,10 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
     if (std::strcmp(argv[i], "--quick") == 0) g_repeats = 1;
   const auto t0 = Clock::now();
-  std::printf("paper_claim: towsim vs the earlier formulation (Cartesian joints + multipliers + central "
-              "differences), paper example 5.1 law A, %.0f s simulated\n",
-              kDuration);
+  std::printf(
+      "paper_claim: towsim vs the earlier formulation (Cartesian joints + multipliers + central "
+      "differences), paper example 5.1 law A, %.0f s simulated\n",
+      kDuration);
   experiment(true, false);   // primary: law A with the body
   experiment(true, true);    // law B: unsteady, where length fluctuations would show
   experiment(false, false);  // the cable alone

@@ -64,8 +64,9 @@ Model model(HeaveKind kind) {
 int main() {
   const char* names[] = {"heave piece (velocity jump at 15 s)", "sine through a track (spline, C2)",
                          "1 - cos through a track (C2)"};
-  std::printf("tow force, baseline (h = 1e-3 s) vs towsim (dopri5 1e-10), relative to max |F_ref|, t = 0.5 ... "
-              "119.5 s except 15 s\n");
+  std::printf(
+      "tow force, baseline (h = 1e-3 s) vs towsim (dopri5 1e-10), relative to max |F_ref|, t = 0.5 ... "
+      "119.5 s except 15 s\n");
   for (HeaveKind kind : {HeaveKind::Piece, HeaveKind::TrackSine, HeaveKind::TrackOneMinusCos}) {
     const Model m = model(kind);
     MemorySink sink;

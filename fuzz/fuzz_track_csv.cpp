@@ -33,8 +33,8 @@ const char* kHead =
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  g_file = (std::filesystem::temp_directory_path() / ("towsim_fuzz_track_" + std::to_string(::getpid()) + ".csv"))
-               .string();
+  g_file =
+      (std::filesystem::temp_directory_path() / ("towsim_fuzz_track_" + std::to_string(::getpid()) + ".csv")).string();
   std::atexit(remove_file);
   return 0;
 }

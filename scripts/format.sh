@@ -3,7 +3,7 @@
 #   scripts/format.sh --check [FILE...]  report files that differ from the style
 #                                        (exit 1 if any); default: every C++ file
 #   scripts/format.sh FILE...            reformat these files in place
-# Reformat only files you change: reformatting others makes merges hard.
+# The whole tree follows the style (.ci/run checks it): format what you change.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 CLANG_FORMAT="${CLANG_FORMAT:-clang-format}"

@@ -61,8 +61,7 @@ void CentralDifference::start(const std::vector<Vec3>& x) {
 
 double CentralDifference::length_error() const {
   double err = 0;
-  for (int k = 1; k <= N_; ++k)
-    err = std::max(err, std::abs((x_[k] - x_[k - 1]).norm() / c_.links[k - 1].length - 1));
+  for (int k = 1; k <= N_; ++k) err = std::max(err, std::abs((x_[k] - x_[k - 1]).norm() / c_.links[k - 1].length - 1));
   return err;
 }
 

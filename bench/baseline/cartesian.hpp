@@ -42,10 +42,10 @@ namespace towsim::baseline {
 
 /// A rigid straight link between joints k-1 and k.
 struct Link {
-  double length = 0;      // L [m]
-  double J = 0;           // extra rotational inertia about the centre, normal to the link [kg m^2]
+  double length = 0;        // L [m]
+  double J = 0;             // extra rotational inertia about the centre, normal to the link [kg m^2]
   bool is_element = false;  // a cable element (mass, added mass and loads of `element`)
-  Element element{};      // towsim's element data (when is_element)
+  Element element{};        // towsim's element data (when is_element)
 };
 
 /// A point mass at a joint (a sphere of the body).
@@ -58,8 +58,8 @@ struct PointMass {
 
 /// The chain: joints 0 (tow point) .. N, links 1..N (index k-1), point masses per joint.
 struct Chain {
-  Model model;               // fluid, cable options (tangential law, smoothing) and tow law
-  std::vector<Link> links;   // link k joins joints k-1 and k
+  Model model;                   // fluid, cable options (tangential law, smoothing) and tow law
+  std::vector<Link> links;       // link k joins joints k-1 and k
   std::vector<PointMass> point;  // index 0..N (point[0] unused: imposed)
   int joints() const { return static_cast<int>(links.size()) + 1; }
 };

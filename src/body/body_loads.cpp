@@ -124,8 +124,7 @@ void body_inertia(const Fluid& fluid, const Body& b, BodyWork& ws, double t) {
   dnur << -dU - wb.cross(vr), Vec3::Zero();
   h = b.rigid_mass * dnu + b.fluid_mass * dnur;
   h.head<3>() += wb.cross(PR.head<3>()) + wb.cross(PA.head<3>());
-  h.tail<3>() += wb.cross(PR.tail<3>()) + vb.cross(PR.head<3>()) + wb.cross(PA.tail<3>()) +
-                 vr.cross(PA.head<3>());
+  h.tail<3>() += wb.cross(PR.tail<3>()) + vb.cross(PR.head<3>()) + wb.cross(PA.tail<3>()) + vr.cross(PA.head<3>());
   // To R_g: B M B^T with B = diag(R, R), block by block (R M_ij R^T).
   const Mat6 M = b.rigid_mass + b.fluid_mass;
   ws.Mw.topLeftCorner<3, 3>().noalias() = R * M.topLeftCorner<3, 3>() * R.transpose();

@@ -7,9 +7,7 @@
 
 namespace towsim {
 
-double axial_wave_speed(const Element& el) {
-  return std::sqrt(el.axial_stiffness * el.length / el.mass);
-}
+double axial_wave_speed(const Element& el) { return std::sqrt(el.axial_stiffness * el.length / el.mass); }
 
 double rk4_axial_step_limit(const Element& el) {
   if (!is_elastic(el)) return std::numeric_limits<double>::infinity();

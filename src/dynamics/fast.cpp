@@ -55,8 +55,8 @@ void body_articulated(const Body& body, BodyWork& bw, const Mat3* K2, const Vec3
 /// The rotation equation lives in the plane normal to e_k: it is solved in a
 /// tangent basis T, where the element's own inertia is isotropic
 /// (T^T Mt T = (m + ma) I, Mt e = m e).
-void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat3& Kk, const Vec3& bk,
-                      std::size_t k, Workspace& ws) {
+void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat3& Kk, const Vec3& bk, std::size_t k,
+                      Workspace& ws) {
   const double L = ws.L[k], m = el.mass, ma = el.added_mass, mn = m + ma;
   // Tangent basis normal to e.
   Eigen::Index i;
@@ -81,7 +81,7 @@ void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat
   // while the division does (the recursion's critical path is K_k -> K_{k-1}).
   const double det = d11 * d22 - d12 * d12;
   const Vec3 a1 = d22 * g1 - d12 * g2, a2 = d11 * g2 - d12 * g1;  // G T adj(D)
-  Mat3 S;                                                        // G T adj(D) (G T)^T
+  Mat3 S;                                                         // G T adj(D) (G T)^T
   for (int r = 0; r < 3; ++r)
     for (int q = r; q < 3; ++q) S(r, q) = a1[r] * g1[q] + a2[r] * g2[q];
   const double idet = 1.0 / det;
@@ -135,8 +135,8 @@ void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
 /// A body's forward step from the acceleration a of its link point Q:
 /// its angular acceleration, link force and, for an in-line body, the
 /// acceleration of its lower link Q2 (returned in a) and the force there.
-void body_forward(const Body& body, const BodyWork& bw, const Mat3& K2, const Vec3& b2, std::size_t b,
-                  Vec3& a, Accelerations& acc) {
+void body_forward(const Body& body, const BodyWork& bw, const Mat3& K2, const Vec3& b2, std::size_t b, Vec3& a,
+                  Accelerations& acc) {
   acc.alpha_b[b] = bw.Phi * (bw.rhs - bw.C * (a + bw.wcent));
   acc.link_force[b] = bw.KQ * a + bw.bQ;
   acc.lower_link_force[b].setZero();
@@ -194,8 +194,8 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   // Elastic top element: the material at the sheave accelerates at
   // a_0 + lam L_1'' e_1 + 2 lam L_1' (omega_1 x e_1) + 2 (L_1'/L_1)(l_1' - lam L_1') e_1,
   // lam = l_1/L_1 (its velocity v_0 + lam L_1' e_1 seen in the material).
-  double lam = 1;                             // stretch l_1/L_1 multiplying L_1'' [-]
-  double pay_rate = 0;                        // the winch's rate: l_1' (rigid) or L_1' (elastic) [m/s]
+  double lam = 1;       // stretch l_1/L_1 multiplying L_1'' [-]
+  double pay_rate = 0;  // the winch's rate: l_1' (rigid) or L_1' (elastic) [m/s]
   if (elastic_top) {
     const double l = s.length_of(model, 0), Lu = s.top_unstretched;
     pay_rate = s.top_unstretched_rate;
@@ -229,8 +229,8 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
                            Vec3(a - acc.a0), acc.alpha[0], acc.length_acc[0]);
     } else if (is_elastic(els[k])) {
       // Elastic element: d'' from the top joint's acceleration (§5.4).
-      a += elastic_forward(ws.elastic[k], s.e[k], s.w[k], s.length_of(model, k), s.length_rate_of(k), a,
-                           acc.alpha[k], acc.length_acc[k]);
+      a += elastic_forward(ws.elastic[k], s.e[k], s.w[k], s.length_of(model, k), s.length_rate_of(k), a, acc.alpha[k],
+                           acc.length_acc[k]);
     } else {
       const Vec3 beta = ws.T[k] * (ws.Phi[k] * (ws.Tr0[k] - ws.GT[k].transpose() * a));  // alpha x e
       acc.alpha[k] = s.e[k].cross(beta);

@@ -30,8 +30,7 @@ Eigen::Matrix<double, 3, 2> tangent_basis(const Vec3& e) {
 /// A body's elimination at zero velocity, inertia part: modified inertia Me
 /// (the body's Mw plus its local terms); an in-line body first takes in the
 /// cable below, K2 at its lower link Q2.
-void body_factor(const Body& body, const BodyWork& bw, Mat6 Me, const Mat3* K2, std::size_t b,
-                 ImplicitWorkspace& iw) {
+void body_factor(const Body& body, const BodyWork& bw, Mat6 Me, const Mat3* K2, std::size_t b, ImplicitWorkspace& iw) {
   if (body.inline_body) {
     Eigen::Matrix<double, 6, 3> J2t;
     J2t << Mat3::Identity(), skew(bw.rQ2);
@@ -111,8 +110,8 @@ void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& b
   K = psd_part<3>(KO - F.dot(bw.rQ) * Mat3::Identity() + F * bw.rQ.transpose());
 }
 
-void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG,
-                            const Vec3& xG, double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K) {
+void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG, const Vec3& xG,
+                            double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K) {
   // Rocking stiffness: with the joint forces held, turning e by dtheta moves
   // the bottom joint by L dtheta x e and G by half that; the loads there
   // (tension -f_bottom.e, own loads F.e along e) resist it.
@@ -190,8 +189,8 @@ void local_jacobian(const Model& model, const PhysicalState& s, const Workspace&
   for (std::size_t k = 0; k < els.size(); ++k) {
     const int bi = ws.body_at[k + 1];
     const Vec3& fb = bi >= 0 ? ws.acc.link_force[idx(bi)] : ws.acc.joint_force[k + 1];
-    element_local_jacobian(model, current_element(model, ws, k), s.e[k], ws.vG[k], ws.G[k], t, ws.F[k], fb, jac.element_damping[k],
-                           jac.element_stiffness[k]);
+    element_local_jacobian(model, current_element(model, ws, k), s.e[k], ws.vG[k], ws.G[k], t, ws.F[k], fb,
+                           jac.element_damping[k], jac.element_stiffness[k]);
   }
   for (auto& C : jac.joint_damping) C.setZero();
   for (const Attachment& a : model.cable.attachments) {
@@ -433,10 +432,10 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
   // Joint terms exist only with attachments or a seabed (else zero: skipped).
   if (!model.cable.attachments.empty() || model.seabed.has_value())
     for (std::size_t k = 0; k <= n; ++k)
-      iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]) - hg * (jac.joint_stiffness[k] * (hg * iw.dvP[k] + iw.dxP[k]));
+      iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]) -
+                 hg * (jac.joint_stiffness[k] * (hg * iw.dvP[k] + iw.dxP[k]));
   else
     for (Vec3& f : iw.Fa) f.setZero();
-
 }
 
 /// Bias sweep up the chain.
@@ -471,7 +470,6 @@ void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws,
     iw.Tr0[k] = Eigen::Vector2d(t1.dot(r0), t2.dot(r0));
     iw.q[k] = iw.T[k] * (iw.Phi[k] * iw.Tr0[k]);
   }
-
 }
 
 /// Accelerations (the increments z) down the chain.
@@ -517,8 +515,8 @@ void stage_accelerations(const Model& model, const PhysicalState& s, const Works
 
 }  // namespace
 
-void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
-                          const StageRhs& r, ImplicitWorkspace& iw) {
+void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg, const StageRhs& r,
+                          ImplicitWorkspace& iw) {
   if (iw.hg != hg) implicit_factor(model, s, ws, hg, iw);
   stage_loads(model, s, ws, hg, r, iw);
   stage_bias(model, s, ws, iw);

@@ -65,11 +65,11 @@ Workspace::Workspace(const Model& model) {
 bool Workspace::fits(const Model& model) const {
   const std::size_t n = model.cable.elements.size();
   return P.size() == n + 1 && G.size() == n && K.size() == n + 1 && Phi.size() == n &&
-         body.size() == model.bodies.size() && acc.alpha.size() == n &&
-         acc.link_force.size() == model.bodies.size() && body_at.size() == n + 1 &&
-         std::all_of(model.bodies.begin(), model.bodies.end(), [&](const Body& b) {
+         body.size() == model.bodies.size() && acc.alpha.size() == n && acc.link_force.size() == model.bodies.size() &&
+         body_at.size() == n + 1 && std::all_of(model.bodies.begin(), model.bodies.end(), [&](const Body& b) {
            const int k = body_joint(model, b);
-           return k >= 1 && k <= static_cast<int>(n) && body.size() > static_cast<std::size_t>(body_at[static_cast<std::size_t>(k)]) &&
+           return k >= 1 && k <= static_cast<int>(n) &&
+                  body.size() > static_cast<std::size_t>(body_at[static_cast<std::size_t>(k)]) &&
                   body_at[static_cast<std::size_t>(k)] >= 0;
          });
 }

@@ -38,8 +38,8 @@ Mat3 equator_chart(const Vec3& e) {
 }
 
 /// Element angles and rates in a chart, from e and de/dt (R_g).
-void element_angles(const Mat3& chart, const Vec3& e, const Vec3& edot, double& th, double& ps,
-                    double& thd, double& psd) {
+void element_angles(const Mat3& chart, const Vec3& e, const Vec3& edot, double& th, double& ps, double& thd,
+                    double& psd) {
   const Vec3 l = chart.transpose() * e;
   const Vec3 ld = chart.transpose() * edot;
   th = std::acos(std::clamp(l.z(), -1.0, 1.0));
@@ -50,8 +50,8 @@ void element_angles(const Mat3& chart, const Vec3& e, const Vec3& edot, double& 
 }
 
 /// e, de/dtheta, de/dpsi and the velocity part of d2e/dt2 of an element, in R_g.
-void element_basis(const Mat3& chart, double th, double ps, double thd, double psd, Vec3& e, Vec3& Et,
-                   Vec3& Ep, Vec3& evp) {
+void element_basis(const Mat3& chart, double th, double ps, double thd, double psd, Vec3& e, Vec3& Et, Vec3& Ep,
+                   Vec3& evp) {
   const double st = std::sin(th), ct = std::cos(th), sp = std::sin(ps), cp = std::cos(ps);
   const Vec3 el(st * sp, -st * cp, ct);
   const Vec3 ett = -el;
@@ -126,8 +126,7 @@ PaperState to_paper(const Model& model, const PhysicalState& s, const Vec3& pole
   p.chart.assign(n, pole_frame(pole));
   for (int k = 0; k < n; ++k) {
     if (std::abs((p.chart[k].transpose() * s.e[k]).z()) > kElementSwitch) p.chart[k] = equator_chart(s.e[k]);
-    element_angles(p.chart[k], s.e[k], s.w[k].cross(s.e[k]), p.q[2 * k], p.q[2 * k + 1], p.qd[2 * k],
-                   p.qd[2 * k + 1]);
+    element_angles(p.chart[k], s.e[k], s.w[k].cross(s.e[k]), p.q[2 * k], p.q[2 * k + 1], p.qd[2 * k], p.qd[2 * k + 1]);
   }
   if (!model.bodies.empty()) {
     const BodyState& bs = s.bodies[0];
@@ -148,8 +147,7 @@ PaperState to_paper_in_charts(const Model& model, const PhysicalState& s, const 
   p.r0 = s.r0;
   p.v0 = s.v0;
   for (int k = 0; k < model.cable.n(); ++k)
-    element_angles(p.chart[k], s.e[k], s.w[k].cross(s.e[k]), p.q[2 * k], p.q[2 * k + 1], p.qd[2 * k],
-                   p.qd[2 * k + 1]);
+    element_angles(p.chart[k], s.e[k], s.w[k].cross(s.e[k]), p.q[2 * k], p.q[2 * k + 1], p.qd[2 * k], p.qd[2 * k + 1]);
   if (!model.bodies.empty()) {
     Vec3 ang, rate;
     body_angles(p.body_chart, s.bodies[0].q, s.bodies[0].w, ang, rate);
@@ -185,8 +183,7 @@ int rechart(const Model& model, PaperState& p) {
   for (int k = 0; k < n; ++k) {
     if (std::abs(std::cos(p.q[2 * k])) <= kElementSwitch) continue;
     p.chart[k] = equator_chart(s.e[k]);
-    element_angles(p.chart[k], s.e[k], s.w[k].cross(s.e[k]), p.q[2 * k], p.q[2 * k + 1], p.qd[2 * k],
-                   p.qd[2 * k + 1]);
+    element_angles(p.chart[k], s.e[k], s.w[k].cross(s.e[k]), p.q[2 * k], p.q[2 * k + 1], p.qd[2 * k], p.qd[2 * k + 1]);
     ++changed;
   }
   if (!model.bodies.empty() && std::abs(std::cos(p.q[2 * n + 1])) < kBodySwitch) {

@@ -67,8 +67,7 @@ Vec3 sheave_jump(const Model& m, const PhysicalState& s, double dL) {
 /// then per depth controller (bodies in order, surfaces in order) its integral and deflection.
 class DefaultSystem final : public System {
  public:
-  explicit DefaultSystem(const Model& m)
-      : model_(m), ws_(m), s_(PhysicalState::hanging(m)), jws_(m), js_(s_), iw_(m) {
+  explicit DefaultSystem(const Model& m) : model_(m), ws_(m), s_(PhysicalState::hanging(m)), jws_(m), js_(s_), iw_(m) {
     n_ = m.cable.n();
     winch_ = m.winch.active() && n_ > 0;
     elastic_top_ = elastic_winch(m);
@@ -100,8 +99,10 @@ class DefaultSystem final : public System {
       y[o] = q.w(), y[o + 1] = q.x(), y[o + 2] = q.y(), y[o + 3] = q.z();
       set3(y, o + 4, s.bodies[b].w);
     }
-    if (elastic_top_) y[winch_offset()] = s.top_unstretched, y[winch_offset() + 1] = s.top_unstretched_rate;
-    else if (winch_) y[winch_offset()] = element_length(model_, s, 0), y[winch_offset() + 1] = element_length_rate(s, 0);
+    if (elastic_top_)
+      y[winch_offset()] = s.top_unstretched, y[winch_offset() + 1] = s.top_unstretched_rate;
+    else if (winch_)
+      y[winch_offset()] = element_length(model_, s, 0), y[winch_offset() + 1] = element_length_rate(s, 0);
     if (lengths_) {
       const std::size_t o = length_offset();
       for (int k = 0; k < n_; ++k) {
@@ -127,8 +128,10 @@ class DefaultSystem final : public System {
     impose_winch(tl, s_);
     forward_dynamics(model_, s_, tl, ws_);
     dy.resize(size_);
-    if (elastic_top_) dy[winch_offset()] = s_.top_unstretched_rate, dy[winch_offset() + 1] = ws_.acc.top_length_acc;
-    else if (winch_) dy[winch_offset()] = s_.length_rate[0], dy[winch_offset() + 1] = ws_.acc.top_length_acc;
+    if (elastic_top_)
+      dy[winch_offset()] = s_.top_unstretched_rate, dy[winch_offset() + 1] = ws_.acc.top_length_acc;
+    else if (winch_)
+      dy[winch_offset()] = s_.length_rate[0], dy[winch_offset() + 1] = ws_.acc.top_length_acc;
     // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
     set3(dy, 0, s_.v0);
     set3(dy, 3, ws_.acc.a0);
@@ -323,7 +326,8 @@ class DefaultSystem final : public System {
   std::string describe(std::size_t i) const override {
     if (i < 6) return "tow point";
     if (i >= control_offset(0)) return "depth controller " + std::to_string((i - control_offset(0)) / 2 + 1);
-    if (lengths_ && i >= length_offset()) return "element " + std::to_string((i - length_offset()) % n_ + 1) + " (length)";
+    if (lengths_ && i >= length_offset())
+      return "element " + std::to_string((i - length_offset()) % n_ + 1) + " (length)";
     if (winch_ && i >= winch_offset()) return "winch";
     if (i < body_offset(0)) return "element " + std::to_string((i - 6) % (3 * n_) / 3 + 1);
     const std::size_t b = std::min((i - body_offset(0)) / 7, model_.bodies.size() - 1);
@@ -343,8 +347,10 @@ class DefaultSystem final : public System {
       s.bodies[b].q = Quat(y[o], y[o + 1], y[o + 2], y[o + 3]).normalized();
       s.bodies[b].w = CMap3(&y[o + 4]);
     }
-    if (elastic_top_) s.top_unstretched = y[winch_offset()], s.top_unstretched_rate = y[winch_offset() + 1];
-    else if (winch_) s.length[0] = y[winch_offset()], s.length_rate[0] = y[winch_offset() + 1];
+    if (elastic_top_)
+      s.top_unstretched = y[winch_offset()], s.top_unstretched_rate = y[winch_offset() + 1];
+    else if (winch_)
+      s.length[0] = y[winch_offset()], s.length_rate[0] = y[winch_offset() + 1];
     if (lengths_) {
       const std::size_t o = length_offset();
       for (int k = 0; k < n_; ++k) {
@@ -379,7 +385,8 @@ class DefaultSystem final : public System {
   void pack_controls(const PhysicalState& s, StateVector& y) const {
     std::size_t i = 0;
     for (const BodyState& bs : s.bodies)
-      for (const ControlState& c : bs.controls) y[control_offset(i)] = c.integral, y[control_offset(i++) + 1] = c.deflection;
+      for (const ControlState& c : bs.controls)
+        y[control_offset(i)] = c.integral, y[control_offset(i++) + 1] = c.deflection;
   }
   void unpack_controls(const StateVector& y, PhysicalState& s) const {
     std::size_t i = 0;
@@ -394,7 +401,8 @@ class DefaultSystem final : public System {
       std::size_t c = 0;
       for (const LiftingSurface& ls : model_.bodies[b].surfaces) {
         if (!ls.depth_control) continue;
-        const ControlRates r = depth_control_rates(*ls.depth_control, s_.bodies[b].controls[c++], -bw.O.z(), -bw.vO.z());
+        const ControlRates r = depth_control_rates(*ls.depth_control, s_.bodies[b].controls[c++], -bw.O.z(),
+                                                   -bw.vO.z());
         dy[control_offset(i)] = r.dintegral, dy[control_offset(i++) + 1] = r.ddeflection;
       }
     }
@@ -405,16 +413,16 @@ class DefaultSystem final : public System {
   const Model& model_;
   Workspace ws_;
   PhysicalState s_;
-  Workspace jws_;        // evaluation at the start of the step (Jacobian point)
-  PhysicalState js_;     // its state
-  ImplicitWorkspace iw_; // local Jacobian and stage-solve work arrays
-  StageRhs rhs_;         // one stage's right-hand side, per part
+  Workspace jws_;         // evaluation at the start of the step (Jacobian point)
+  PhysicalState js_;      // its state
+  ImplicitWorkspace iw_;  // local Jacobian and stage-solve work arrays
+  StageRhs rhs_;          // one stage's right-hand side, per part
   int n_ = 0;
   bool lengths_ = false;  // the state carries element lengths and rates
   std::size_t size_ = 0;
-  bool winch_ = false;       // the state carries the winch's l_1, l_1'
-  bool elastic_top_ = false; // ... as L_1, L_1' of an elastic top element (l_1, l_1' among the lengths)
-  double fixed_length_ = 0;  // deployed length but l_1 [m]
+  bool winch_ = false;        // the state carries the winch's l_1, l_1'
+  bool elastic_top_ = false;  // ... as L_1, L_1' of an elastic top element (l_1, l_1' among the lengths)
+  double fixed_length_ = 0;   // deployed length but l_1 [m]
 };
 
 /// Paper formulation: y = [r0, v0, q, q'] with q the angles in their charts.

@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "towsim/model/fluid.hpp"
-#include "towsim/waves/waves.hpp"
 #include "towsim/model/table.hpp"
+#include "towsim/waves/waves.hpp"
 
 namespace towsim {
 

@@ -36,8 +36,8 @@ double Cable::total_length() const {
   return s;
 }
 
-Element make_element(double length, double mass_per_length, double diameter, double cd,
-                     double tangential_coef, TangentialLaw law, double ca, const Fluid& fluid) {
+Element make_element(double length, double mass_per_length, double diameter, double cd, double tangential_coef,
+                     TangentialLaw law, double ca, const Fluid& fluid) {
   const double area = std::numbers::pi * diameter * diameter / 4;  // A_i [m^2]
   Element e{};
   e.length = length;

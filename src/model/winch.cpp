@@ -59,8 +59,8 @@ double first_hit(double L0, double r, double s, double target, double tmax) {
 
 }  // namespace
 
-std::vector<WinchPiece> schedule_from_rate(const std::vector<double>& t, const std::vector<double>& rate,
-                                           double L0, double min_length, double max_length) {
+std::vector<WinchPiece> schedule_from_rate(const std::vector<double>& t, const std::vector<double>& rate, double L0,
+                                           double min_length, double max_length) {
   // Segments of linear rate: [start, end), rate r_a at start, slope s.
   struct Segment {
     double start, end, r, s;

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <bit>
 #include <charconv>
-#include <cstdio>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -128,7 +128,7 @@ bool round12(double v, std::uint64_t& m, int& X) {
     m_real = a * kPow10[11 - X];
   }
   if (!(m_real >= 1e11 - 0.5 && m_real < 1e12 - 0.5)) return false;
-  m = static_cast<std::uint64_t>(m_real);                // floor
+  m = static_cast<std::uint64_t>(m_real);               // floor
   const double frac = m_real - static_cast<double>(m);  // exact
   if (std::abs(frac - 0.5) < 1e-3) return false;
   if (frac > 0.5) ++m;
@@ -220,7 +220,6 @@ double tidy_time(double t) {
   const double r = std::round(t * 1e9) / 1e9;  // nanoseconds
   return r == 0 ? 0.0 : r;
 }
-
 
 void put_number(std::string& out, double v) {
   char b[40];
@@ -360,8 +359,8 @@ std::vector<std::string> timeseries_columns(const Model& model) {
   std::vector<std::string> c{"time",        "tow_x",       "tow_y", "tow_z", "tow_force_x",
                              "tow_force_y", "tow_force_z", "end_x", "end_y", "end_z"};
   if (has_body)
-    c.insert(c.end(), {"body_x", "body_y", "body_z", "body_roll_deg", "body_pitch_deg", "body_yaw_deg",
-                       "link_force_x", "link_force_y", "link_force_z"});
+    c.insert(c.end(), {"body_x", "body_y", "body_z", "body_roll_deg", "body_pitch_deg", "body_yaw_deg", "link_force_x",
+                       "link_force_y", "link_force_z"});
   c.insert(c.end(), {"tow_tension", "end_depth", "tow_vx", "tow_vy", "tow_vz"});
   if (has_body) c.insert(c.end(), {"body_depth", "link_tension"});
   c.insert(c.end(), {"layback", "deployed_length"});
@@ -433,7 +432,8 @@ void timeseries_values(const Model& model, const Sample& s, std::vector<double>&
   }
   if (model.seabed) v.insert(v.end(), {s.contact_length, s.seabed_normal, s.seabed_friction});
   for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b)  // depth controllers
-    for (const ControlSample& c : s.bodies[b].controls) v.insert(v.end(), {c.deflection_deg, c.rate_deg_s, c.depth_error});
+    for (const ControlSample& c : s.bodies[b].controls)
+      v.insert(v.end(), {c.deflection_deg, c.rate_deg_s, c.depth_error});
   for (std::size_t i = 1; i < v.size(); ++i) v[i] = tidy(v[i]);
 }
 
@@ -611,13 +611,12 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   j["integrator"] = stats.integrator;
   // rosenbrock: largest local error estimate of an accepted step (relative,
   // state and tow/link forces) and its force part; null for the others.
-  j["integration_error_estimate"] =
-      stats.error_estimate >= 0 ? num(stats.error_estimate) : nlohmann::ordered_json(nullptr);
+  j["integration_error_estimate"] = stats.error_estimate >= 0 ? num(stats.error_estimate)
+                                                              : nlohmann::ordered_json(nullptr);
   j["force_error_estimate"] = stats.force_error_estimate >= 0 ? num(stats.force_error_estimate)
                                                               : nlohmann::ordered_json(nullptr);
   // rk4: smallest estimated stability limit of the step over the samples [s].
-  j["rk4_stability_limit"] =
-      stats.rk4_step_limit > 0 ? num(stats.rk4_step_limit) : nlohmann::ordered_json(nullptr);
+  j["rk4_stability_limit"] = stats.rk4_step_limit > 0 ? num(stats.rk4_step_limit) : nlohmann::ordered_json(nullptr);
   j["warnings"] = stats.warnings;
   j["samples"] = record.samples();
   j["files"] = {{"timeseries", "timeseries.csv"},
@@ -633,16 +632,15 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   // The end body under today's names, in-line bodies under their own.
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const Body& body = model.bodies[b];
-    const BodyExtremes& be =
-        body.inline_body && b < ex.inline_bodies.size() ? ex.inline_bodies[b] : ex.end_body_extremes;
+    const BodyExtremes& be = body.inline_body && b < ex.inline_bodies.size() ? ex.inline_bodies[b]
+                                                                             : ex.end_body_extremes;
     const std::string name = body.inline_body ? body.name : "body";
     const std::string p = body.inline_body ? body.name + "_" : "";
     e["max_" + p + "link_force"] = json_of(be.max_link_force);
     if (body.inline_body) e["max_" + p + "lower_link_force"] = json_of(be.max_lower_link_force);
     e["max_" + name + "_depth"] = json_of(be.max_depth);
     const char* names[3] = {"_roll_deg", "_pitch_deg", "_yaw_deg"};
-    for (int i = 0; i < 3; ++i)
-      e[name + names[i]] = {{"min", json_of(be.min_deg[i])}, {"max", json_of(be.max_deg[i])}};
+    for (int i = 0; i < 3; ++i) e[name + names[i]] = {{"min", json_of(be.min_deg[i])}, {"max", json_of(be.max_deg[i])}};
   }
   if (model.seabed) {
     e["max_contact_length"] = json_of(ex.max_contact_length);

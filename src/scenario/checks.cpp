@@ -20,9 +20,9 @@ bool check_symmetric(const Field<M>& f, Diagnostics& d) {
     for (int j = i + 1; j < a.cols(); ++j)
       if (std::abs(a(i, j) - a(j, i)) > 1e-9 * scale) {
         report(f.where, d,
-               "must be symmetric (got " + fmt_num(a(i, j)) + " at row " + std::to_string(i) +
-                   ", column " + std::to_string(j) + " but " + fmt_num(a(j, i)) + " at row " +
-                   std::to_string(j) + ", column " + std::to_string(i) + ")");
+               "must be symmetric (got " + fmt_num(a(i, j)) + " at row " + std::to_string(i) + ", column " +
+                   std::to_string(j) + " but " + fmt_num(a(j, i)) + " at row " + std::to_string(j) + ", column " +
+                   std::to_string(i) + ")");
         return false;
       }
   return true;
@@ -77,8 +77,8 @@ void check_inertia(const Field<Mat3>& f, Diagnostics& d) {
   }
   if (m[2] > (m[0] + m[1]) * (1 + 1e-9))
     report(f.where, d,
-           "principal moments must satisfy the triangle inequality (got " + list3(m) + ": " +
-               fmt_num(m[2]) + " > " + fmt_num(m[0]) + " + " + fmt_num(m[1]) + ")");
+           "principal moments must satisfy the triangle inequality (got " + list3(m) + ": " + fmt_num(m[2]) + " > " +
+               fmt_num(m[0]) + " + " + fmt_num(m[1]) + ")");
 }
 
 void check_psd6(const Field<Mat6>& f, Diagnostics& d) {

@@ -9,8 +9,8 @@
 namespace towsim::io {
 namespace {
 
-constexpr double kMaxSteps = 1e12;          // duration / time_step
-constexpr double kMaxSamples = 1e9;         // duration / output_interval
+constexpr double kMaxSteps = 1e12;   // duration / time_step
+constexpr double kMaxSamples = 1e9;  // duration / output_interval
 
 void check_environment(const EnvironmentSpec& e, Diagnostics& d) {
   check_non_negative(e.water_density, d);
@@ -79,8 +79,8 @@ void check_controls(const ScenarioSpec& s, Diagnostics& d) {
       if (sim.integrator.value == "rk4" && tau > 0 && sim.time_step.value > 2 * tau)
         d.error(c.servo_time_constant.given ? c.servo_time_constant.where.loc : c.where.loc,
                 join_path(c.where.path, "servo_time_constant"),
-                "must be >= simulation.time_step / 2 with integrator rk4 (got " + fmt_num(tau) +
-                    " s, time step " + fmt_num(sim.time_step.value) + " s: the servo would be unstable)");
+                "must be >= simulation.time_step / 2 with integrator rk4 (got " + fmt_num(tau) + " s, time step " +
+                    fmt_num(sim.time_step.value) + " s: the servo would be unstable)");
     }
   }
 }

@@ -101,7 +101,7 @@ LiftingSurface build_surface(const SurfaceSpec& s) {
     dc.max_rate = c.max_rate_deg_s.value * kDeg;
     dc.servo_time_constant = c.servo_time_constant.value;
     // Anti-windup tracking time: the integral time |kp/ki| unless given (1 s without both gains).
-    dc.tracking_time = c.tracking_time.given                 ? c.tracking_time.value
+    dc.tracking_time = c.tracking_time.given                  ? c.tracking_time.value
                        : (c.kp.value != 0 && c.ki.value != 0) ? std::abs(c.kp.value / c.ki.value)
                                                               : 1.0;
     dc.initial_deflection = c.initial_deflection_deg.value * kDeg;
@@ -145,9 +145,8 @@ Body build_body(const BodySpec& b, const Fluid& fluid) {
   for (const auto& s : b.spheres)
     body.spheres.push_back(SphereLoad{s.center.value, s.radius.value, s.drag.value, s.added_mass.value});
   for (const auto& c : b.cylinders)
-    body.cylinders.push_back(CylinderLoad{c.center.value, c.axis.value.normalized(), c.length.value,
-                                          c.diameter.value, c.normal_drag.value, c.axial_drag.value,
-                                          c.added_mass.value});
+    body.cylinders.push_back(CylinderLoad{c.center.value, c.axis.value.normalized(), c.length.value, c.diameter.value,
+                                          c.normal_drag.value, c.axial_drag.value, c.added_mass.value});
   for (const auto& s : b.surfaces) body.surfaces.push_back(build_surface(s));
   for (const auto& th : b.thrusters) {
     Thruster t{th.point.value, th.direction.value.normalized(), {}, {}};

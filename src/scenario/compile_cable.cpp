@@ -9,8 +9,8 @@
 #include <set>
 
 #include "checks.hpp"
-#include "towsim/dynamics/elastic.hpp"
 #include "reader.hpp"
+#include "towsim/dynamics/elastic.hpp"
 
 namespace towsim::io {
 namespace {
@@ -19,7 +19,7 @@ constexpr long long kMaxElements = 100000;  // elements in the whole cable
 
 /// A section's properties after inheriting the cable-level values.
 struct Resolved {
-  Where where;                // the section (or the cable, single-section form)
+  Where where;  // the section (or the cable, single-section form)
   std::string name;
   Field<double> length;
   Field<long long> elements;
@@ -150,13 +150,14 @@ void check_elastic(const Resolved& s, const SimulationSpec& sim, Diagnostics& d)
   el.axial_stiffness = s.axial_stiffness.value;
   el.axial_damping = s.axial_damping.given ? s.axial_damping.value : 0.0;
   const double h_max = rk4_axial_step_limit(el);
-  const std::string damping =
-      el.axial_damping > 0 ? ", axial damping " + fmt_num(el.axial_damping) + " N s" : std::string();
+  const std::string damping = el.axial_damping > 0 ? ", axial damping " + fmt_num(el.axial_damping) + " N s"
+                                                   : std::string();
   if (sim.time_step.value > h_max)
     d.error(s.axial_stiffness.where.loc, s.axial_stiffness.where.path,
             "with integrator: rk4, the axial wave (speed " + sig(axial_wave_speed(el), 4, false) + " m/s over " +
-                fmt_num(el.length) + " m elements" + damping + ") needs simulation.time_step <= " + sig(h_max, 3, true) +
-                " s (it is " + fmt_num(sim.time_step.value) + " s); use integrator: rosenbrock (implicit in the axial mode) or a smaller step");
+                fmt_num(el.length) + " m elements" + damping +
+                ") needs simulation.time_step <= " + sig(h_max, 3, true) + " s (it is " + fmt_num(sim.time_step.value) +
+                " s); use integrator: rosenbrock (implicit in the axial mode) or a smaller step");
 }
 
 /// The order of sections and bodies: a section first, never two bodies in a
@@ -215,8 +216,10 @@ void check_attachments(const CableSpec& c, const std::vector<Resolved>& secs, bo
   std::set<int> body_joints;
   int joint = 0;
   for (std::size_t i = 0, s = 0; i < c.item_body.size(); ++i) {
-    if (c.item_body[i] >= 0) body_joints.insert(joint);
-    else joint += static_cast<int>(secs[s++].elements.value);
+    if (c.item_body[i] >= 0)
+      body_joints.insert(joint);
+    else
+      joint += static_cast<int>(secs[s++].elements.value);
   }
   if (end_body) body_joints.insert(nearest_joint(secs, total));
   for (const AttachmentSpec& a : c.attachments) {
@@ -276,8 +279,7 @@ void build_chain(const CableSpec& c, const BodySpec& end_body, Model& m) {
   const std::vector<Resolved> secs = resolve(c);
   Cable& cable = m.cable;
   cable.tangential_law = cable_law(secs) == "skin" ? TangentialLaw::Skin : TangentialLaw::Pode;
-  cable.added_mass_model =
-      c.added_mass_model.value == "morison" ? AddedMassModel::Morison : AddedMassModel::IdealFluid;
+  cable.added_mass_model = c.added_mass_model.value == "morison" ? AddedMassModel::Morison : AddedMassModel::IdealFluid;
   cable.sign_smoothing_speed = c.sign_smoothing_speed.value;
   // Sections in order; after each but the last, the in-line body between.
   std::size_t section = 0;

@@ -22,7 +22,8 @@ void check_seabed(const ScenarioSpec& s, Diagnostics& d) {
   const SeabedSpec& sb = s.environment.seabed;
   if (!sb.present) return;
   for (const RowSpec& row : sb.depth)
-    if (!(row.values[1] > 0)) d.error(row.where.loc, row.where.path, "depth must be > 0 (got " + fmt_num(row.values[1]) + ")");
+    if (!(row.values[1] > 0))
+      d.error(row.where.loc, row.where.path, "depth must be > 0 (got " + fmt_num(row.values[1]) + ")");
   check_increasing(sb.depth, "x values", d);
   check_positive(sb.stiffness, d);
   check_non_negative(sb.damping, d);
@@ -77,8 +78,8 @@ void check_seabed_start(const ScenarioSpec& s, const Model& m, Diagnostics& d) {
     if (k > 0) arc += m.cable.elements[k - 1].length;
     if (sb.gap(ws.P[k]) < 0) {
       d.error(w.loc, w.path,
-              "cable joint " + std::to_string(k) + " (" + fmt_num(arc) + " m from the tow point) starts below the seabed " +
-                  below_text(sb, ws.P[k]) + fix);
+              "cable joint " + std::to_string(k) + " (" + fmt_num(arc) +
+                  " m from the tow point) starts below the seabed " + below_text(sb, ws.P[k]) + fix);
       return;
     }
   }
@@ -93,7 +94,8 @@ void check_seabed_start(const ScenarioSpec& s, const Model& m, Diagnostics& d) {
     };
     for (const SphereLoad& sp : body.spheres) consider(bw.O + bw.R * sp.center, sp.radius);
     for (const CylinderLoad& cy : body.cylinders)
-      for (double side : {-0.5, 0.5}) consider(bw.O + bw.R * (cy.center + side * cy.length * cy.axis), 0.5 * cy.diameter);
+      for (double side : {-0.5, 0.5})
+        consider(bw.O + bw.R * (cy.center + side * cy.length * cy.axis), 0.5 * cy.diameter);
     if (lowest < 0) {
       d.error(w.loc, w.path, "body " + body.name + " starts below the seabed " + below_text(sb, where) + fix);
       return;

@@ -26,8 +26,7 @@ void check_piece(const PieceSpec& p, Diagnostics& d) {
   } else if (t == "track") {
     check_positive(p.speed_scale, d);
     if (p.track.empty()) return;
-    if (p.track.size() < 2)
-      d.error(p.track_where.loc, p.track_where.path, "a track needs at least 2 rows (got 1)");
+    if (p.track.size() < 2) d.error(p.track_where.loc, p.track_where.path, "a track needs at least 2 rows (got 1)");
     check_increasing(p.track, "times", d);
   }
 }
@@ -35,25 +34,24 @@ void check_piece(const PieceSpec& p, Diagnostics& d) {
 /// Manoeuvres in time order; no turn during a turn that never ends, no speed
 /// change during another one (both known without running the course).
 void check_manoeuvre_order(const TowSpec& t, Diagnostics& d) {
-  const PieceSpec* prev = nullptr;        // the previous manoeuvre
-  const PieceSpec* endless = nullptr;     // a turn without angle_deg
-  const PieceSpec* speed = nullptr;       // the previous speed change
+  const PieceSpec* prev = nullptr;     // the previous manoeuvre
+  const PieceSpec* endless = nullptr;  // a turn without angle_deg
+  const PieceSpec* speed = nullptr;    // the previous speed change
   for (const auto& p : t.motion) {
     if (!p.manoeuvre()) continue;
     const double t0 = p.start_time.value;
     if (prev != nullptr && t0 < prev->start_time.value) {
       d.error(p.where.loc, p.where.path,
-              "starts at t = " + fmt_num(t0) + " s, before " + prev->where.path + " (t = " +
-                  fmt_num(prev->start_time.value) + " s): list turns and speed changes in time order");
+              "starts at t = " + fmt_num(t0) + " s, before " + prev->where.path +
+                  " (t = " + fmt_num(prev->start_time.value) + " s): list turns and speed changes in time order");
     } else if (p.type.value == "turn" && endless != nullptr) {
       d.error(p.where.loc, p.where.path,
               "a turn cannot start while the turn " + endless->where.path +
                   " goes on (it has no angle_deg: it never ends)");
-    } else if (p.type.value == "speed" && speed != nullptr &&
-               t0 < speed->start_time.value + speed->ramp_time.value) {
+    } else if (p.type.value == "speed" && speed != nullptr && t0 < speed->start_time.value + speed->ramp_time.value) {
       d.error(p.where.loc, p.where.path,
-              "a speed change cannot start while the speed change " + speed->where.path + " goes on (until t = " +
-                  fmt_num(speed->start_time.value + speed->ramp_time.value) + " s)");
+              "a speed change cannot start while the speed change " + speed->where.path +
+                  " goes on (until t = " + fmt_num(speed->start_time.value + speed->ramp_time.value) + " s)");
     }
     prev = &p;
     if (p.type.value == "turn" && !p.angle_deg.given) endless = &p;
@@ -142,8 +140,7 @@ void check_tow(const TowSpec& t, Diagnostics& d) {
   check_manoeuvre_order(t, d);
   check_increasing(t.force, "times", d);
   const bool force_mode = t.mode.value == "force";
-  if (force_mode && !t.force_given)
-    d.error(t.where.loc, "tow.force", "missing required key (with mode: force)");
+  if (force_mode && !t.force_given) d.error(t.where.loc, "tow.force", "missing required key (with mode: force)");
   if (!force_mode && first != nullptr && d.size() == before && evaluable(t)) check_course(t, *first, d);
 }
 

@@ -66,8 +66,8 @@ void check_raos(const VesselSpec& v, Diagnostics& d) {
     periods.push_back(r.period), headings.push_back(r.heading), dofs[static_cast<std::size_t>(r.dof)] = true;
     if (!seen.emplace(std::make_tuple(r.dof, r.period, r.heading), &r).second)
       d.error(r.where.loc, r.where.path,
-              std::string("duplicate row for ") + kDofNames[r.dof] + " at period " + fmt_num(r.period) +
-                  ", heading " + fmt_num(r.heading));
+              std::string("duplicate row for ") + kDofNames[r.dof] + " at period " + fmt_num(r.period) + ", heading " +
+                  fmt_num(r.heading));
   }
   periods = distinct(periods), headings = distinct(headings);
   for (int k = 0; k < 6; ++k) {
@@ -76,8 +76,8 @@ void check_raos(const VesselSpec& v, Diagnostics& d) {
       for (double h : headings)
         if (!seen.count(std::make_tuple(k, p, h))) {
           d.error(v.raos_where.loc, v.raos_where.path,
-                  std::string("no row for ") + kDofNames[k] + " at period " + fmt_num(p) + ", heading " +
-                      fmt_num(h) + " (each dof given needs every period x heading of the table)");
+                  std::string("no row for ") + kDofNames[k] + " at period " + fmt_num(p) + ", heading " + fmt_num(h) +
+                      " (each dof given needs every period x heading of the table)");
           return;
         }
   }
@@ -91,8 +91,10 @@ RaoTable build_raos(const VesselSpec& v) {
   t.amplitude.assign(6 * t.periods.size() * t.headings.size(), 0.0);  // a dof not given is zero
   t.phase_deg.assign(t.amplitude.size(), 0.0);
   for (const auto& r : rows) {
-    const auto p = static_cast<std::size_t>(std::lower_bound(t.periods.begin(), t.periods.end(), r.period) - t.periods.begin());
-    const auto h = static_cast<std::size_t>(std::lower_bound(t.headings.begin(), t.headings.end(), r.heading) - t.headings.begin());
+    const auto p = static_cast<std::size_t>(std::lower_bound(t.periods.begin(), t.periods.end(), r.period) -
+                                            t.periods.begin());
+    const auto h = static_cast<std::size_t>(std::lower_bound(t.headings.begin(), t.headings.end(), r.heading) -
+                                            t.headings.begin());
     t.amplitude[t.index(r.dof, h, p)] = r.amplitude;
     t.phase_deg[t.index(r.dof, h, p)] = r.phase;
   }
@@ -128,8 +130,7 @@ void check_waves(const ScenarioSpec& s, Diagnostics& d) {
     d.error(v.where.loc, vp, "give exactly one of 'raos' or 'motions'");
     return;
   }
-  if (s.tow.mode.value != "motion")
-    d.error(v.where.loc, vp, "the vessel's wave motion needs tow.mode: motion");
+  if (s.tow.mode.value != "motion") d.error(v.where.loc, vp, "the vessel's wave motion needs tow.mode: motion");
   if (v.raos_given) {
     if (!w.present) d.error(v.raos_where.loc, v.raos_where.path, "RAOs need a waves: section");
     check_raos(v, d);
@@ -146,8 +147,8 @@ void attach_waves(const ScenarioSpec& s, Model& m) {
     const Vec3 dir(std::cos(chi), std::sin(chi), 0);
     // Finite depth: water_depth, else the seabed's below the tow's start, else deep water.
     const double depth = w.water_depth.given ? w.water_depth.value
-                         : m.seabed        ? m.seabed->depth_at(m.tow.start.x())
-                                           : std::numeric_limits<double>::infinity();
+                         : m.seabed          ? m.seabed->depth_at(m.tow.start.x())
+                                             : std::numeric_limits<double>::infinity();
     WaveField built = w.regular ? make_regular_wave(w.height.value, w.period.value, dir, depth, m.fluid.g)
                                 : make_irregular_sea(w.hs.value, w.tp.value,
                                                      w.type.value == "pierson_moskowitz" ? 1.0 : w.gamma.value,

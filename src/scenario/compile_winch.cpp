@@ -27,20 +27,22 @@ void check_speeds(const WinchSpec& w, Diagnostics& d) {
     if (w.rate_given) {
       const double v = rows[i].values[1];
       if (w.max_speed.given && std::abs(v) > w.max_speed.value * (1 + 1e-12))
-        report_at(rows[i].where, d, "pay-out speed " + fmt_num(v) + " m/s exceeds winch.max_speed (" +
-                                        fmt_num(w.max_speed.value) + " m/s)");
+        report_at(rows[i].where, d,
+                  "pay-out speed " + fmt_num(v) + " m/s exceeds winch.max_speed (" + fmt_num(w.max_speed.value) +
+                      " m/s)");
       if (!last && dt > 0 && w.max_acceleration.given) {
         const double a = (rows[i + 1].values[1] - v) / dt;
         if (std::abs(a) > w.max_acceleration.value * (1 + 1e-12))
-          report_at(rows[i + 1].where, d, "pay-out acceleration " + fmt_num(a) +
-                                              " m/s^2 exceeds winch.max_acceleration (" +
-                                              fmt_num(w.max_acceleration.value) + " m/s^2)");
+          report_at(rows[i + 1].where, d,
+                    "pay-out acceleration " + fmt_num(a) + " m/s^2 exceeds winch.max_acceleration (" +
+                        fmt_num(w.max_acceleration.value) + " m/s^2)");
       }
     } else if (!last && dt > 0 && w.max_speed.given) {
       const double v = (rows[i + 1].values[1] - rows[i].values[1]) / dt;
       if (std::abs(v) > w.max_speed.value * (1 + 1e-12))
-        report_at(rows[i + 1].where, d, "pay-out speed " + fmt_num(v) + " m/s exceeds winch.max_speed (" +
-                                            fmt_num(w.max_speed.value) + " m/s)");
+        report_at(rows[i + 1].where, d,
+                  "pay-out speed " + fmt_num(v) + " m/s exceeds winch.max_speed (" + fmt_num(w.max_speed.value) +
+                      " m/s)");
     }
   }
 }
@@ -107,13 +109,14 @@ void check_winch(const ScenarioSpec& s, Diagnostics& d) {
   // An elastic cable: the winch pays out into an elastic top element (its
   // unstretched length L_1 is the winch's coordinate). A rigid top section
   // over elastic ones is not supported (its l_1 would be both).
-  const bool top_elastic =
-      s.cable.axial_stiffness.given || (!s.cable.sections.empty() && s.cable.sections.front().axial_stiffness.given);
+  const bool top_elastic = s.cable.axial_stiffness.given ||
+                           (!s.cable.sections.empty() && s.cable.sections.front().axial_stiffness.given);
   if (!top_elastic)
     for (const SectionSpec& sec : s.cable.sections)
       if (sec.axial_stiffness.given)
-        report_at(w.where, d, "the top section must be elastic when another section is (axial_stiffness at " +
-                                  sec.axial_stiffness.where.path + ")");
+        report_at(w.where, d,
+                  "the top section must be elastic when another section is (axial_stiffness at " +
+                      sec.axial_stiffness.where.path + ")");
   if (w.tension.given && s.tow.mode.value == "force")
     report_at(w.tension.where, d, "a tension-controlled winch needs tow.mode: motion (tow.mode is force)");
   if (s.initial.kind.value == "steady" && w.rate_given && !w.rate.empty() && w.rate.front().values[1] != 0 &&
@@ -159,12 +162,14 @@ bool check_winch_model(const WinchSpec& w, const Model& m, Diagnostics& d) {
   if (w.length_given && !w.length.empty()) {
     const double at0 = winch_kinematics(win, 0.0).length;
     if (std::abs(at0 - L0) > 1e-9 * L0)
-      report_at(w.length_where, d, "the length at t = 0 (" + fmt_num(at0) +
-                                       " m) must be the cable's deployed length (" + fmt_num(L0) + " m)");
+      report_at(w.length_where, d,
+                "the length at t = 0 (" + fmt_num(at0) + " m) must be the cable's deployed length (" + fmt_num(L0) +
+                    " m)");
     for (const RowSpec& r : w.length)
       if (r.values[1] < win.min_length * (1 - 1e-12) || r.values[1] > win.max_length * (1 + 1e-12))
-        report_at(r.where, d, "length " + fmt_num(r.values[1]) + " m is outside [" + fmt_num(win.min_length) +
-                                  ", " + fmt_num(win.max_length) + "] m (min_length, max_length; docs/scenario.md)");
+        report_at(r.where, d,
+                  "length " + fmt_num(r.values[1]) + " m is outside [" + fmt_num(win.min_length) + ", " +
+                      fmt_num(win.max_length) + "] m (min_length, max_length; docs/scenario.md)");
   }
   if (w.max_length.given && L0 > w.max_length.value * (1 + 1e-12))
     report_at(w.max_length.where, d, "the cable's deployed length (" + fmt_num(L0) + " m) exceeds the drum's capacity");
@@ -176,8 +181,9 @@ bool check_winch_model(const WinchSpec& w, const Model& m, Diagnostics& d) {
   const int n_top = m.cable.sections.empty() ? m.cable.n() : m.cable.sections.front().elements;
   for (const Attachment& a : m.cable.attachments)
     if (a.joint >= 1 && a.joint < n_top)
-      report_at(w.where, d, "attachments on the top section (at " + fmt_num(a.at) +
-                                " m) are not supported with a winch: the winch pays out and hauls in that section");
+      report_at(w.where, d,
+                "attachments on the top section (at " + fmt_num(a.at) +
+                    " m) are not supported with a winch: the winch pays out and hauls in that section");
   return d.size() == before;
 }
 

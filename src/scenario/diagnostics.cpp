@@ -8,8 +8,7 @@
 namespace towsim::io {
 
 std::string Diagnostic::str() const {
-  return loc.file + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.col) + ": " + path +
-         ": " + message;
+  return loc.file + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.col) + ": " + path + ": " + message;
 }
 
 void Diagnostics::error(const SourceLoc& loc, const std::string& path, const std::string& message) {
@@ -20,8 +19,7 @@ std::string Diagnostics::str() const {
   // Files in order of first appearance, the --set options last.
   std::map<std::string, std::size_t> rank;
   rank.emplace(primary_, 0);
-  for (const auto& d : list_)
-    rank.emplace(d.loc.file, d.loc.file == "--set" ? list_.size() + 1 : rank.size());
+  for (const auto& d : list_) rank.emplace(d.loc.file, d.loc.file == "--set" ? list_.size() + 1 : rank.size());
   std::vector<const Diagnostic*> sorted;
   for (const auto& d : list_) sorted.push_back(&d);
   std::stable_sort(sorted.begin(), sorted.end(), [&](const Diagnostic* a, const Diagnostic* b) {

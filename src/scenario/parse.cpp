@@ -30,8 +30,7 @@ void parse_initial(const YNode* n, InitialSpec& init, Diagnostics& d) {
     init.kind.given = init.direction.given;
     return;
   }
-  d.error(n->loc, "initial",
-          "expected hanging, steady or {direction: [x, y, z]} (got " + n->describe() + ")");
+  d.error(n->loc, "initial", "expected hanging, steady or {direction: [x, y, z]} (got " + n->describe() + ")");
 }
 
 }  // namespace
@@ -92,8 +91,7 @@ void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d) {
       row.read(knots ? "velocity_kn" : "velocity", vel, row.present());
       row.finish();
       const Vec3 u = to_mps(vel.value);
-      if (depth.given && vel.given)
-        env.current.push_back(RowSpec{{depth.value, u.x(), u.y(), u.z()}, depth.where});
+      if (depth.given && vel.given) env.current.push_back(RowSpec{{depth.value, u.x(), u.y(), u.z()}, depth.where});
     }
     if (d.size() != errors_before) env.current.clear();  // no order checks on a partial table
     return;
@@ -207,7 +205,8 @@ void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {
   r.read("breaking_load", cable.breaking_load);
   r.read("axial_stiffness", cable.axial_stiffness);
   r.read("axial_damping", cable.axial_damping);
-  if (const YNode* n = r.get("sections")) cable.sections_where = r.where(*n, "sections");  // after the single form's keys
+  if (const YNode* n = r.get("sections"))
+    cable.sections_where = r.where(*n, "sections");  // after the single form's keys
   // Sections top to bottom; an item {body: {...}} is an in-line body.
   r.list("sections", [&](MapReader& item, std::size_t) {
     cable.item_where.push_back(item.where());

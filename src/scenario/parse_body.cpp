@@ -29,8 +29,7 @@ void parse_deflection(MapReader& r, SurfaceSpec& s, Diagnostics& d) {
   s.deflection_where = r.where(*n, "deflection_deg");
   if (n->is_scalar()) {
     double deg = 0;
-    if (convert(*n, s.deflection_where.path, d, deg))
-      s.deflection.push_back(RowSpec{{0.0, deg}, s.deflection_where});
+    if (convert(*n, s.deflection_where.path, d, deg)) s.deflection.push_back(RowSpec{{0.0, deg}, s.deflection_where});
     return;
   }
   if (!read_table(*n, s.deflection_where.path, 2, d, s.deflection)) s.deflection.clear();

@@ -42,8 +42,7 @@ bool parse_track_header(const std::string& line, const SourceLoc& at, const std:
     const std::string& name = fields[f].first;  // no structured binding: clang 14 cannot capture one
     const auto col = fields[f].second;
     const SourceLoc here{at.file, at.line, col};
-    const auto it = std::find_if(kTrackColumns.begin(), kTrackColumns.end(),
-                                 [&](const char* c) { return name == c; });
+    const auto it = std::find_if(kTrackColumns.begin(), kTrackColumns.end(), [&](const char* c) { return name == c; });
     if (it == kTrackColumns.end()) {
       d.error(here, path, "unknown column '" + name + "' in the track header (expected time, x, y, z)");
       ok = false;
@@ -59,8 +58,8 @@ bool parse_track_header(const std::string& line, const SourceLoc& at, const std:
   }
   for (std::size_t c = 0; c < order.size() && ok; ++c)
     if (order[c] == kUnset) {
-      d.error(at, path, std::string("the track header has no column '") + kTrackColumns[c] +
-                            "' (expected time, x, y, z)");
+      d.error(at, path,
+              std::string("the track header has no column '") + kTrackColumns[c] + "' (expected time, x, y, z)");
       ok = false;
     }
   return ok;

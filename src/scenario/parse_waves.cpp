@@ -47,7 +47,8 @@ bool rao_row(const std::vector<std::pair<std::string, int>>& f, const SourceLoc&
     v[i] = *x;
   }
   std::string dof = f[2].first;
-  std::transform(dof.begin(), dof.end(), dof.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(dof.begin(), dof.end(), dof.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   const auto it = std::find(kDofs.begin(), kDofs.end(), dof);
   if (it == kDofs.end()) {
     d.error(SourceLoc{at.file, at.line, f[2].second}, path,
@@ -90,7 +91,6 @@ void read_csv(const std::string& file, const Where& where, const std::string& wh
   if (rows == 0) d.error(SourceLoc{file, std::max(lineno, 1), 1}, where.path, "the " + what + " file has no data rows");
 }
 
-
 }  // namespace
 
 void parse_waves(MapReader& r, WavesSpec& w, Diagnostics& d) {
@@ -102,8 +102,7 @@ void parse_waves(MapReader& r, WavesSpec& w, Diagnostics& d) {
   r.read("ramp_time", w.ramp_time);
   r.choice("stretching", w.stretching, {"none", "wheeler"});
   if ((reg == nullptr) == (spec == nullptr)) {
-    d.error(w.where.loc, w.where.path.empty() ? "waves" : w.where.path,
-            "give exactly one of 'regular' or 'spectrum'");
+    d.error(w.where.loc, w.where.path.empty() ? "waves" : w.where.path, "give exactly one of 'regular' or 'spectrum'");
     return;
   }
   w.regular = reg != nullptr;
@@ -138,8 +137,10 @@ void parse_vessel(MapReader& r, VesselSpec& v, const std::string& base_dir, Diag
       for (std::size_t i = 0; i < n->items.size(); ++i) {
         const YNode& row = n->items[i];
         const std::string rp = join_path(path, std::to_string(i));
-        if (!row.is_seq() || !std::all_of(row.items.begin(), row.items.end(), [](const YNode& c) { return c.is_scalar(); })) {
-          d.error(row.loc, rp, "expected a row [period, heading_deg, dof, amplitude, phase_deg] (got " + row.describe() + ")");
+        if (!row.is_seq() ||
+            !std::all_of(row.items.begin(), row.items.end(), [](const YNode& c) { return c.is_scalar(); })) {
+          d.error(row.loc, rp,
+                  "expected a row [period, heading_deg, dof, amplitude, phase_deg] (got " + row.describe() + ")");
           continue;
         }
         std::vector<std::pair<std::string, int>> f;

@@ -22,15 +22,13 @@ bool read_numbers(const YNode& n, const std::string& path, std::size_t count, Di
   }
   out.assign(count, 0.0);
   bool ok = true;
-  for (std::size_t i = 0; i < count; ++i)
-    ok = convert(n.items[i], join_path(path, std::to_string(i)), d, out[i]) && ok;
+  for (std::size_t i = 0; i < count; ++i) ok = convert(n.items[i], join_path(path, std::to_string(i)), d, out[i]) && ok;
   return ok;
 }
 
 /// Read a square matrix given as `dim` diagonal numbers or as dim rows of dim numbers.
 template <int Dim>
-bool read_square(const YNode& n, const std::string& path, Diagnostics& d,
-                 Eigen::Matrix<double, Dim, Dim>& out) {
+bool read_square(const YNode& n, const std::string& path, Diagnostics& d, Eigen::Matrix<double, Dim, Dim>& out) {
   const std::string dims = std::to_string(Dim);
   if (!n.is_seq() || n.items.size() != static_cast<std::size_t>(Dim)) {
     d.error(n.loc, path, expected("a list of " + dims + " numbers or " + dims + " rows of " + dims, n));
@@ -143,8 +141,7 @@ bool read_table(const YNode& n, const std::string& path, std::size_t width, Diag
   return ok;
 }
 
-bool check_choice(const std::string& got, const std::vector<std::string>& choices, const Where& w,
-                  Diagnostics& d) {
+bool check_choice(const std::string& got, const std::vector<std::string>& choices, const Where& w, Diagnostics& d) {
   for (const auto& c : choices)
     if (c == got) return true;
   std::string list;
@@ -156,17 +153,14 @@ bool check_choice(const std::string& got, const std::vector<std::string>& choice
   return false;
 }
 
-MapReader::MapReader(const YNode* node, std::string path, Diagnostics& d)
-    : node_(node), path_(std::move(path)), d_(d) {
+MapReader::MapReader(const YNode* node, std::string path, Diagnostics& d) : node_(node), path_(std::move(path)), d_(d) {
   if (node_ != nullptr && !node_->is_map()) {
     d_.error(node_->loc, path_.empty() ? "(root)" : path_, expected("a mapping of keys", *node_));
     node_ = nullptr;
   }
 }
 
-Where MapReader::where() const {
-  return Where{node_ != nullptr ? node_->loc : SourceLoc{}, path_};
-}
+Where MapReader::where() const { return Where{node_ != nullptr ? node_->loc : SourceLoc{}, path_}; }
 
 const YNode* MapReader::get(const std::string& key, bool required) {
   bool seen = false;
@@ -211,15 +205,14 @@ const YNode* MapReader::alias(const std::string& key) {
   return v == nullptr || v->is_null() ? nullptr : v;
 }
 
-void MapReader::choice(const std::string& key, Field<std::string>& f,
-                       const std::vector<std::string>& choices, bool required) {
+void MapReader::choice(const std::string& key, Field<std::string>& f, const std::vector<std::string>& choices,
+                       bool required) {
   Field<std::string> tmp = f;
   read(key, tmp, required);
   if (tmp.given && check_choice(tmp.value, choices, tmp.where, d_)) f = tmp;
 }
 
-void MapReader::list(const std::string& key,
-                     const std::function<void(MapReader&, std::size_t)>& each) {
+void MapReader::list(const std::string& key, const std::function<void(MapReader&, std::size_t)>& each) {
   const YNode* v = get(key);
   if (v == nullptr) return;
   if (!v->is_seq()) {

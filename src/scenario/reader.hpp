@@ -35,8 +35,7 @@ bool convert(const YNode& n, const std::string& path, Diagnostics& d, Mat3& out)
 bool convert(const YNode& n, const std::string& path, Diagnostics& d, Mat6& out);
 
 /// Read a table: a list of rows of exactly `width` numbers each.
-bool read_table(const YNode& n, const std::string& path, std::size_t width, Diagnostics& d,
-                std::vector<RowSpec>& rows);
+bool read_table(const YNode& n, const std::string& path, std::size_t width, Diagnostics& d, std::vector<RowSpec>& rows);
 
 /// Reads the keys of one mapping, remembers which keys are known, and reports
 /// the others as unknown in finish().
@@ -100,7 +99,6 @@ class MapReader {
 inline double knots_to_mps(double kn) { return kn * 1852.0 / 3600.0; }
 
 /// Report `got` unless it is one of `choices` (with a "did you mean" hint).
-bool check_choice(const std::string& got, const std::vector<std::string>& choices, const Where& w,
-                  Diagnostics& d);
+bool check_choice(const std::string& got, const std::vector<std::string>& choices, const Where& w, Diagnostics& d);
 
 }  // namespace towsim::io

@@ -31,9 +31,8 @@ LoadedScenario load_scenario_file(const std::string& path, const std::vector<std
   return s;
 }
 
-LoadedScenario load_scenario_text(const std::string& text, const std::string& file,
-                                  const std::string& name, const std::string& base_dir,
-                                  const std::vector<std::string>& sets) {
+LoadedScenario load_scenario_text(const std::string& text, const std::string& file, const std::string& name,
+                                  const std::string& base_dir, const std::vector<std::string>& sets) {
   LoadedScenario s;
   s.diags.set_primary(file);
   s.tree = parse_yaml(text, file, s.diags);

@@ -49,8 +49,7 @@ struct TooDeep {
   YAML::Mark mark;
 };
 
-YNode convert(const YAML::Node& n, const Origin& o, const SourceLoc& fallback, std::size_t& budget,
-              int depth = 0) {
+YNode convert(const YAML::Node& n, const Origin& o, const SourceLoc& fallback, std::size_t& budget, int depth = 0) {
   if (budget == 0) throw TooManyValues{n.Mark()};
   if (depth > kMaxDepth) throw TooDeep{n.Mark()};
   --budget;
@@ -100,8 +99,7 @@ std::string tab_hint(const std::string& text, int err_line, const Origin& o) {
 }
 
 /// Parse text with the given origin; syntax errors go to diags.
-YNode parse_with_origin(const std::string& text, const Origin& o, Diagnostics& diags,
-                        const std::string& err_path) {
+YNode parse_with_origin(const std::string& text, const Origin& o, Diagnostics& diags, const std::string& err_path) {
   try {
     const YAML::Node n = YAML::Load(text);
     const SourceLoc start{o.file, o.line_override > 0 ? o.line_override : 1, 1 + o.col_offset};
@@ -148,8 +146,7 @@ long parse_index(const std::string& s) {
 
 /// Walk one step of a --set path from `cur`, creating a mapping entry when
 /// missing. Returns the child, or nullptr after reporting an error.
-YNode* step(YNode* cur, const std::string& part, const std::string& path, const SourceLoc& at,
-            Diagnostics& diags) {
+YNode* step(YNode* cur, const std::string& part, const std::string& path, const SourceLoc& at, Diagnostics& diags) {
   // Nothing there yet: a list when the key is an index (body.spheres.0.radius
   // on a body without spheres starts the list), else a mapping.
   if (cur->is_null()) cur->kind = parse_index(part) >= 0 ? YNode::Kind::Sequence : YNode::Kind::Map;
@@ -189,16 +186,18 @@ const YNode* YNode::find(const std::string& k) const {
   return nullptr;
 }
 
-YNode* YNode::find(const std::string& k) {
-  return const_cast<YNode*>(static_cast<const YNode&>(*this).find(k));
-}
+YNode* YNode::find(const std::string& k) { return const_cast<YNode*>(static_cast<const YNode&>(*this).find(k)); }
 
 std::string YNode::describe() const {
   switch (kind) {
-    case Kind::Scalar: return "'" + scalar + "'";
-    case Kind::Sequence: return "a list of " + std::to_string(items.size());
-    case Kind::Map: return "a mapping";
-    default: return "nothing";
+    case Kind::Scalar:
+      return "'" + scalar + "'";
+    case Kind::Sequence:
+      return "a list of " + std::to_string(items.size());
+    case Kind::Map:
+      return "a mapping";
+    default:
+      return "nothing";
   }
 }
 
@@ -209,8 +208,7 @@ YNode parse_yaml(const std::string& text, const std::string& file, Diagnostics& 
 YNode load_yaml_file(const std::string& path, Diagnostics& diags) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    diags.error(SourceLoc{path, 0, 0}, "(file)",
-                std::string("cannot open the file (") + std::strerror(errno) + ")");
+    diags.error(SourceLoc{path, 0, 0}, "(file)", std::string("cannot open the file (") + std::strerror(errno) + ")");
     return YNode{};
   }
   std::ostringstream ss;
@@ -270,7 +268,8 @@ nlohmann::ordered_json to_json(const YNode& node) {
       for (const auto& it : node.items) obj[it.key] = to_json(it);
       return obj;
     }
-    default: return nullptr;
+    default:
+      return nullptr;
   }
 }
 

@@ -4,16 +4,16 @@
 #include <algorithm>
 #include <boost/numeric/odeint.hpp>
 #include <chrono>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "towsim/dynamics/implicit.hpp"
-#include "towsim/integrators/rosenbrock.hpp"
 #include "towsim/hydro/loads.hpp"
+#include "towsim/integrators/rosenbrock.hpp"
 #include "towsim/integrators/system.hpp"
-#include "towsim/sim/winch_events.hpp"
 #include "towsim/sim/statics.hpp"
+#include "towsim/sim/winch_events.hpp"
 #include "towsim/waves/vessel.hpp"
 
 namespace towsim {
@@ -61,11 +61,12 @@ std::string check_rk4_step(const Model& model, const Workspace& ws, double t, Ru
   const bool refuse = h > 1.5 * lim;
   std::ostringstream os;
   os << (refuse ? "refused: " : "") << "rk4 time_step " << h << " s is above " << (refuse ? "1.5" : "0.9")
-     << " times the estimated stability limit " << lim << " s at t = " << t << " s (element " << k << ", tension "
-     << T << " N): " << (refuse ? "the run would diverge or be wrong" : "forces may be wrong")
+     << " times the estimated stability limit " << lim << " s at t = " << t << " s (element " << k << ", tension " << T
+     << " N): " << (refuse ? "the run would diverge or be wrong" : "forces may be wrong")
      << "; use simulation.time_step <= " << 0.9 * lim << " or simulation.integrator: rosenbrock";
   if (refuse) return os.str();
-  if (stats.warnings.empty() || stats.warnings.back().rfind("rk4 time_step", 0) != 0) stats.warnings.push_back(os.str());
+  if (stats.warnings.empty() || stats.warnings.back().rfind("rk4 time_step", 0) != 0)
+    stats.warnings.push_back(os.str());
   return {};
 }
 
@@ -78,8 +79,8 @@ void check_stall(const Model& model, const Workspace& ws, double t, RunStats& st
       const LiftingSurface& ls = body.surfaces[j];
       const SurfaceFlow f = surface_flow(model.fluid, ls, current_deflection(body, j, ws.body[b], t), t, ws.body[b]);
       if (f.speed < 1e-6 || std::abs(f.alpha) <= ls.stall_angle) continue;
-      const std::string who =
-          (body.inline_body ? "body " + body.name + "'s" : std::string("the body's")) + " surface " + std::to_string(j);
+      const std::string who = (body.inline_body ? "body " + body.name + "'s" : std::string("the body's")) +
+                              " surface " + std::to_string(j);
       if (std::any_of(stats.warnings.begin(), stats.warnings.end(),
                       [&](const std::string& w) { return w.rfind(who + " stalled", 0) == 0; }))
         continue;
@@ -160,8 +161,13 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
   out.seabed_friction = ws.seabed_friction;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyWork& bw = ws.body[b];
-    out.bodies.push_back({bw.O, bw.vO, roll_pitch_yaw(s.bodies[b].q) * kRad2Deg, bw.w, ws.acc.link_force[b],
-                          ws.acc.lower_link_force[b], {}});
+    out.bodies.push_back({bw.O,
+                          bw.vO,
+                          roll_pitch_yaw(s.bodies[b].q) * kRad2Deg,
+                          bw.w,
+                          ws.acc.link_force[b],
+                          ws.acc.lower_link_force[b],
+                          {}});
     // Depth controllers: deflection, its rate and the depth error.
     std::size_t c = 0;
     for (const LiftingSurface& ls : model.bodies[b].surfaces) {
@@ -270,9 +276,8 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
 /// way); `accepted(y, t)` runs after each accepted step (projection).
 /// Returns an error text or empty.
 template <class TryStep, class Accepted>
-std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step, Accepted&& accepted,
-                             StateVector& y, double& t, double land, double stop, double& h, RunStats& stats,
-                             bool& event) {
+std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step, Accepted&& accepted, StateVector& y,
+                             double& t, double land, double stop, double& h, RunStats& stats, bool& event) {
   const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
   while (t < stop - 1e-12 * std::max(1.0, stop)) {
     const double h_try = std::min({h, model.sim.max_step, land - t});
@@ -282,8 +287,7 @@ std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step
       h = dt;
       if (h < h_min) {
         std::ostringstream os;
-        os << "step size collapsed below " << h_min << " s (tolerance " << model.sim.tolerance
-           << " cannot be met)";
+        os << "step size collapsed below " << h_min << " s (tolerance " << model.sim.tolerance << " cannot be met)";
         return os.str();
       }
       continue;
@@ -306,8 +310,8 @@ std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step
 /// law is evaluated inside each trial step's window; accepted steps are
 /// projected.
 template <class Controlled>
-std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, StateVector& y, double& t,
-                           double target, double& h, RunStats& stats, bool& event) {
+std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, StateVector& y, double& t, double target,
+                           double& h, RunStats& stats, bool& event) {
   auto try_step = [&](StateVector& yy, double& tt, double& dt) {
     sys.set_window(tt, tt + dt);
     return ctrl.try_step(std::ref(sys), yy, tt, dt) != odeint::fail;  // tt, dt updated
@@ -350,10 +354,10 @@ double force_scale(const Model& model) {
 /// system and the material identities of its nodes.
 struct Chain {
   const Model* model = nullptr;
-  std::unique_ptr<Model> owned;   // the derived model, when there is one
+  std::unique_ptr<Model> owned;  // the derived model, when there is one
   std::unique_ptr<System> sys;
-  std::vector<long> node_id;      // per output node row, stable across events [-]
-  long next_id = 0;               // the next new node's identity [-]
+  std::vector<long> node_id;  // per output node row, stable across events [-]
+  long next_id = 0;           // the next new node's identity [-]
 };
 
 /// Split or remove the winch's top element of the state y at t; y becomes
@@ -363,7 +367,8 @@ void winch_event_at(Chain& c, StateVector& y, double t, RunStats& stats) {
   std::unique_ptr<Model> m;
   PhysicalState s2;
   switch (winch_event(*c.model, s)) {
-    case WinchEvent::None: return;
+    case WinchEvent::None:
+      return;
     case WinchEvent::Split:
       m = std::make_unique<Model>(split_model(*c.model));
       s2 = split_state(*c.model, s);
@@ -442,7 +447,8 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   auto make_ros = [&]() {
     if (ros) keep_ros_errors(*ros, stats);
     if (model.sim.integrator != Integrator::Rosenbrock) return;
-    if (!chain.sys->has_stage_solve()) check = "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)";
+    if (!chain.sys->has_stage_solve())
+      check = "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)";
     ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model));
   };
   make_ros();
@@ -458,7 +464,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   // output times waits until they are written from the old chain.
   const bool dense = model.sim.integrator == Integrator::Rosenbrock;
   bool pending_event = false;
-  StateVector y_out;  // dense output state
+  StateVector y_out;   // dense output state
   double written = t;  // time of the last sample written [s]
   for (long k = 1; k <= n_out && check.empty(); ++k) {
     if (stop_flag && *stop_flag) {
@@ -499,10 +505,18 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       System& sys = *chain.sys;
       bool event = false;
       switch (model.sim.integrator) {
-        case Integrator::RK4: err = advance_fixed(m, sys, rk4, y, t, target, stats, event); break;
-        case Integrator::DOPRI5: err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event); break;
-        case Integrator::CashKarp54: err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event); break;
-        case Integrator::Rosenbrock: err = advance_rosenbrock(m, sys, *ros, y, t, land, target, h, stats, event); break;
+        case Integrator::RK4:
+          err = advance_fixed(m, sys, rk4, y, t, target, stats, event);
+          break;
+        case Integrator::DOPRI5:
+          err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event);
+          break;
+        case Integrator::CashKarp54:
+          err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event);
+          break;
+        case Integrator::Rosenbrock:
+          err = advance_rosenbrock(m, sys, *ros, y, t, land, target, h, stats, event);
+          break;
       }
       // The state changes size: new chain, fresh steppers (sized on first
       // use), at the top of this loop once the outputs passed are written.

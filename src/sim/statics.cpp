@@ -19,13 +19,15 @@ namespace {
 constexpr double kTolerance = 1e-12;  // converged when every |alpha| < this [rad/s^2]
 constexpr double kFloor = 1e-9;       // ... or below this when round-off stops further progress
 constexpr int kMaxIterations = 60;
-constexpr int kMaxDenseOnlyIterations = 1000;  // ... when the dense solve works alone (a moving tow on the bottom:
-                                              // the contact springs make it ill-conditioned; 100 to 400 on 30 to 60 elements)
-constexpr double kRelativeFloor = 1e-12;  // ... or every element's moment left below this of its scale (round-off: ~1e-15)
-constexpr int kMaxSweeps = 200;        // sweeps of the O(n) solver before it gives up
-constexpr int kDenseLimit = 1200;      // largest dense (Levenberg-Marquardt) problem [unknowns]: J is N^2 doubles,
-                                       // each iteration 2N evaluations of O(n): ~1 s at this size
-constexpr int kPolishLimit = 200;      // ... and polishing a result converged to the floor only [unknowns]
+constexpr int kMaxDenseOnlyIterations =
+    1000;  // ... when the dense solve works alone (a moving tow on the bottom:
+           // the contact springs make it ill-conditioned; 100 to 400 on 30 to 60 elements)
+constexpr double kRelativeFloor =
+    1e-12;                         // ... or every element's moment left below this of its scale (round-off: ~1e-15)
+constexpr int kMaxSweeps = 200;    // sweeps of the O(n) solver before it gives up
+constexpr int kDenseLimit = 1200;  // largest dense (Levenberg-Marquardt) problem [unknowns]: J is N^2 doubles,
+                                   // each iteration 2N evaluations of O(n): ~1 s at this size
+constexpr int kPolishLimit = 200;  // ... and polishing a result converged to the floor only [unknowns]
 constexpr double kLocalTolerance = 1e-14;  // a part's own balance: |moment| below this times its scale
 
 /// True when the caller asked to stop.
@@ -63,8 +65,8 @@ struct SteadyProblem {
   Model model;
   Vec3 V;
   Workspace ws;
-  PhysicalState base;         // current iterate
-  std::vector<Vec3> t1, t2;   // tangent bases of the iterate's elements
+  PhysicalState base;        // current iterate
+  std::vector<Vec3> t1, t2;  // tangent bases of the iterate's elements
   int n;
   int nb;
   bool sweeps = true;  // solve by O(n) sweeps first (false: straight to the dense solve)
@@ -93,7 +95,8 @@ struct SteadyProblem {
     for (int b = 0; b < nb; ++b) {
       const Vec3 r = x.segment<3>(2 * n + 3 * b);
       const Quat& q0 = base.bodies[static_cast<std::size_t>(b)].q;
-      if (r.norm() > 0) s.bodies[static_cast<std::size_t>(b)].q = (Quat(Eigen::AngleAxisd(r.norm(), r.normalized())) * q0).normalized();
+      if (r.norm() > 0)
+        s.bodies[static_cast<std::size_t>(b)].q = (Quat(Eigen::AngleAxisd(r.norm(), r.normalized())) * q0).normalized();
     }
     return s;
   }
@@ -110,7 +113,9 @@ struct SteadyProblem {
       r[2 * k] = scale[k] * ws.acc.alpha[k].dot(t1[k]);
       r[2 * k + 1] = scale[k] * ws.acc.alpha[k].dot(t2[k]);
     }
-    for (int b = 0; b < nb; ++b) r.segment<3>(2 * n + 3 * b) = scale[static_cast<std::size_t>(n + b)] * ws.acc.alpha_b[static_cast<std::size_t>(b)];
+    for (int b = 0; b < nb; ++b)
+      r.segment<3>(2 * n + 3 * b) = scale[static_cast<std::size_t>(n + b)] *
+                                    ws.acc.alpha_b[static_cast<std::size_t>(b)];
     return r;
   }
 
@@ -291,7 +296,7 @@ bool lay_along_bottom(SteadyProblem& p) {
     compute_kinematics(m, s, p.ws);
     return sb.gap(p.ws.P[static_cast<std::size_t>(p.n - lying)]);
   };
-  int lo = 0, hi = p.n;  // gap(lo) < 0 <= gap(hi) once bracketed
+  int lo = 0, hi = p.n;              // gap(lo) < 0 <= gap(hi) once bracketed
   if (shoot(lo) >= 0) return false;  // the hanging cable clears the bottom: nothing lies on it
   if (shoot(hi) < 0) return false;
   while (hi - lo > 1) {
@@ -345,8 +350,10 @@ void sweep_from_bottom(SteadyProblem& p) {
   }
   // Laid along the bottom: the sweeps (which leave the contact out) would
   // lift it off; relaxation and the dense solve take over (solve_statics).
-  if (lay_along_bottom(p)) p.sweeps = false;
-  else lay_on_seabed(p);
+  if (lay_along_bottom(p))
+    p.sweeps = false;
+  else
+    lay_on_seabed(p);
   p.accept(Eigen::VectorXd::Zero(p.size()));
 }
 
@@ -438,8 +445,7 @@ Vec3 body_moment(const Body& body, const BodyWork& bw, const Vec3& f2) {
 /// Body attitude balancing its moments about Q, from q: Newton with
 /// minimum-norm steps (a sphere's rotation about its link line is neutral).
 /// On return bw holds the body at q; false when no balance was found.
-bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2, Quat& q,
-                BodyWork& bw) {
+bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2, Quat& q, BodyWork& bw) {
   BodyWork tmp = bw;
   auto rotated = [&q](const Vec3& x) {
     return x.norm() > 0 ? Quat((Quat(Eigen::AngleAxisd(x.norm(), x.normalized())) * q).normalized()) : q;
@@ -582,8 +588,8 @@ void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult&
   // evaluation that gave r.
   const double floor = residual_floor(p.model);  // kFloor, or the seabed springs' round-off
   const auto good = [&p, floor](const Eigen::VectorXd& res) {
-    return res.allFinite() && (p.max_alpha(res) < floor ||
-                               (p.relative_moment(res) < kRelativeFloor && p.max_body_alpha(res) < floor));
+    return res.allFinite() &&
+           (p.max_alpha(res) < floor || (p.relative_moment(res) < kRelativeFloor && p.max_body_alpha(res) < floor));
   };
   const bool dense = !out.interrupted && !(p.max_alpha(r) < kTolerance) &&
                      (N <= kPolishLimit || (!good(r) && N <= kDenseLimit));
@@ -591,8 +597,10 @@ void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult&
     const PhysicalState swept = p.base;
     p.accept_state(start);
     const Eigen::VectorXd r0 = p.residual(zero);
-    if (r.allFinite() && r.norm() < r0.norm()) p.accept_state(swept);
-    else r = r0;
+    if (r.allFinite() && r.norm() < r0.norm())
+      p.accept_state(swept);
+    else
+      r = r0;
   }
   Eigen::MatrixXd J(dense ? N : 0, dense ? N : 0);
   double mu = -1;  // Levenberg-Marquardt damping, set from J on first use
@@ -644,8 +652,8 @@ void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult&
     out.message = "statics interrupted by a signal after " + std::to_string(out.iterations) + " iterations";
   } else if (!out.converged) {
     std::ostringstream os;
-    os << "statics did not converge: largest angular acceleration left " << out.residual << " rad/s^2 (moment "
-       << rel << " of its scale) after " << out.iterations << " iterations";
+    os << "statics did not converge: largest angular acceleration left " << out.residual << " rad/s^2 (moment " << rel
+       << " of its scale) after " << out.iterations << " iterations";
     if (!why.empty()) os << " (" << why << ")";
     if (N > kDenseLimit) os << "; the dense fallback solver is limited to " << kDenseLimit / 2 << " elements";
     os << ". Try: a body.initial_attitude_deg near its flying attitude (yaw relative to the tow heading), fewer "
@@ -665,8 +673,8 @@ void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult&
 /// kMaxRelaxSteps steps, or on the stop flag. p.base: the result (tow
 /// point back at its start: a flat bottom is the same everywhere).
 void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
-  constexpr int kMaxRelaxSteps = 20000;  // accepted steps [-]
-  constexpr int kCheckEvery = 20;        // steps between residual checks [-]
+  constexpr int kMaxRelaxSteps = 20000;     // accepted steps [-]
+  constexpr int kCheckEvery = 20;           // steps between residual checks [-]
   constexpr double kRelaxTolerance = 1e-5;  // local error target of the steps [-]
   constexpr double kSharpSlip = 0.1;        // the relaxation's v_s' / U, at most [-]
   Model rm = p.model;
@@ -830,7 +838,8 @@ StaticsResult steady_state(const Model& model, const volatile int* stop_flag) {
   StaticsResult res = solve_statics(model, tow_law_kinematics(model.tow, 0.0).vel, stop_flag);  // mean tow velocity
   if (!res.converged && !res.interrupted && model.seabed && res.tow_velocity.norm() > 0)
     res.message += " (a tow moving with cable on the seabed is solved by relaxation and the dense solve, up to " +
-                   std::to_string(kDenseLimit / 2) + " elements: fewer elements, or start at rest or from a direction "
+                   std::to_string(kDenseLimit / 2) +
+                   " elements: fewer elements, or start at rest or from a direction "
                    "above the bottom)";
   res.state.r0 = k.pos;
   res.state.v0 = k.vel;

@@ -62,7 +62,8 @@ TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double dep
   }
   if (!std::isfinite(fa) || !std::isfinite(fb)) {
     r.statics = st;
-    r.message = st.interrupted ? "interrupted" : "the steady solve did not converge while searching (" + st.message + ")";
+    r.message = st.interrupted ? "interrupted"
+                               : "the steady solve did not converge while searching (" + st.message + ")";
     return r;
   }
   if (fa * fb > 0) {
@@ -88,8 +89,9 @@ TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double dep
     fc = solve(c, st);
     if (!std::isfinite(fc)) {
       r.statics = st;
-      r.message = st.interrupted ? "interrupted"
-                                 : "the steady solve did not converge at " + std::to_string(c) + " m (" + st.message + ")";
+      r.message = st.interrupted
+                      ? "interrupted"
+                      : "the steady solve did not converge at " + std::to_string(c) + " m (" + st.message + ")";
       return r;
     }
     if (std::abs(fc) < 1e-6) break;

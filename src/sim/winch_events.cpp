@@ -50,8 +50,8 @@ TopRemoval top_removal(const Model& model, const PhysicalState& s) {
   Workspace ws(model);
   t.E_old = energy(model, s, ws);
   const Element& el = ws.top;
-  t.removed_energy =
-      0.5 * ws.vG[0].dot(ws.Mt[0] * ws.vG[0]) + 0.5 * (el.inertia + el.added_inertia) * s.w[0].squaredNorm();
+  t.removed_energy = 0.5 * ws.vG[0].dot(ws.Mt[0] * ws.vG[0]) +
+                     0.5 * (el.inertia + el.added_inertia) * s.w[0].squaredNorm();
   const Vec3 d = ws.P[2] - ws.P[0];
   t.L = d.norm();
   t.e = d / t.L;
@@ -141,8 +141,8 @@ Removal remove_top(const Model& model, const PhysicalState& s, double t, double 
   // The next element now spans the sheave P_0 to its own bottom joint P_2.
   const double L = top.L;  // [m]
   const Vec3& e = top.e;
-  const Vec3& dv2 = top.dv2;             // P_2's velocity relative to the sheave [m/s]
-  const double r_star = dv2.dot(e);      // provisional pay-out speed [m/s]
+  const Vec3& dv2 = top.dv2;         // P_2's velocity relative to the sheave [m/s]
+  const double r_star = dv2.dot(e);  // provisional pay-out speed [m/s]
   const Vec3 w = e.cross(dv2 - r_star * e) / L;
 
   r.model = without_second(model);

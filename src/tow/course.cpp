@@ -8,9 +8,7 @@ namespace towsim {
 
 namespace {
 /// Distance run tau after the segment's start [m].
-double distance(const CourseState& c, double tau) {
-  return c.a == 0 ? c.U * tau : c.U * tau + 0.5 * c.a * tau * tau;
-}
+double distance(const CourseState& c, double tau) { return c.a == 0 ? c.U * tau : c.U * tau + 0.5 * c.a * tau * tau; }
 }  // namespace
 
 TowKinematics course_at(const CourseState& c, double t) {
@@ -29,7 +27,7 @@ TowKinematics course_at(const CourseState& c, double t) {
   const double phi = s / R;
   k.pos = c.p + R * (1 - std::cos(phi)) * c.n + R * std::sin(phi) * c.h;
   k.vel = U * (std::cos(phi) * c.h + std::sin(phi) * c.n);
-  k.acc = U * U / R * (std::cos(phi) * c.n - std::sin(phi) * c.h);  // centripetal
+  k.acc = U * U / R * (std::cos(phi) * c.n - std::sin(phi) * c.h);           // centripetal
   if (c.a != 0) k.acc += c.a * (std::cos(phi) * c.h + std::sin(phi) * c.n);  // tangential
   return k;
 }

@@ -182,8 +182,7 @@ std::vector<double> tow_breakpoints(const Tow& tow) {
         piece);
   // Ends of turns and speed changes (found by running the course).
   CourseState c;
-  walk(tow, CourseState::kNever, c,
-       [&](double te, Event, std::size_t, const CourseState&) { out.push_back(te); });
+  walk(tow, CourseState::kNever, c, [&](double te, Event, std::size_t, const CourseState&) { out.push_back(te); });
   if (tow.mode == Tow::Mode::Force) out.insert(out.end(), tow.force_time.begin(), tow.force_time.end());
   std::erase_if(out, [](double t) { return !(t > 0); });
   std::sort(out.begin(), out.end());

@@ -74,7 +74,10 @@ Vessel::Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<con
 
 Vessel::Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<const WaveField> waves,
                std::vector<double> time, std::vector<Vec6> motions)
-    : sheave_(tow_point), course0_(initial_course), waves_(std::move(waves)), time_(std::move(time)),
+    : sheave_(tow_point),
+      course0_(initial_course),
+      waves_(std::move(waves)),
+      time_(std::move(time)),
       rec_(std::move(motions)) {
   curv_ = natural_spline_curvatures(time_, rec_);
 }
@@ -96,8 +99,8 @@ VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
     } else if (t >= time_.back()) {
       m.x = rec_.back();
     } else {
-      const std::size_t i =
-          static_cast<std::size_t>(std::upper_bound(time_.begin(), time_.end(), t) - time_.begin()) - 1;
+      const std::size_t i = static_cast<std::size_t>(std::upper_bound(time_.begin(), time_.end(), t) - time_.begin()) -
+                            1;
       const double h = time_[i + 1] - time_[i], A = (time_[i + 1] - t) / h, B = 1 - A;
       const Vec6 &y0 = rec_[i], &y1 = rec_[i + 1], &M0 = curv_[i], &M1 = curv_[i + 1];
       m.x = A * y0 + B * y1 + ((A * A * A - A) * M0 + (B * B * B - B) * M1) * h * h / 6;

@@ -17,7 +17,7 @@ constexpr double kTwoPi = 2 * std::numbers::pi;
 /// JONSWAP peak factor's exponent r at x = (omega_p / omega)^4.
 double peak_exponent(double x) {
   if (x <= 0) return 0;
-  const double s = x >= 1 ? 0.07 : 0.09;  // sigma: 0.07 below the peak frequency, 0.09 above
+  const double s = x >= 1 ? 0.07 : 0.09;    // sigma: 0.07 below the peak frequency, 0.09 above
   const double d = std::pow(x, -0.25) - 1;  // omega / omega_p - 1
   return std::exp(-d * d / (2 * s * s));
 }
@@ -187,8 +187,10 @@ Vec3 WaveField::velocity(const Vec3& x, double t) const {
     const double si = spread ? c.dx * x.x() + c.dy * x.y() : s;
     const double th = c.omega * t - c.k * si - c.phase, aw = c.amplitude * c.omega;
     const double u = aw * C * std::cos(th);
-    if (spread) ux += u * c.dx, uy += u * c.dy;
-    else uh += u;
+    if (spread)
+      ux += u * c.dx, uy += u * c.dy;
+    else
+      uh += u;
     w -= aw * S * std::sin(th);
   }
   if (!spread) ux = uh * direction.x(), uy = uh * direction.y();
@@ -236,8 +238,9 @@ void spread_directions(WaveField& w, double s, std::uint64_t seed) {
   std::vector<double> cdf(kN + 1, 0.0);
   const double h = kTwoPi / kN;
   auto D = [s](double th) { return std::pow(std::cos(0.5 * th), 2 * s); };
-  for (int i = 1; i <= kN; ++i) cdf[static_cast<std::size_t>(i)] =
-      cdf[static_cast<std::size_t>(i - 1)] + 0.5 * h * (D(-std::numbers::pi + (i - 1) * h) + D(-std::numbers::pi + i * h));
+  for (int i = 1; i <= kN; ++i)
+    cdf[static_cast<std::size_t>(i)] = cdf[static_cast<std::size_t>(i - 1)] +
+                                       0.5 * h * (D(-std::numbers::pi + (i - 1) * h) + D(-std::numbers::pi + i * h));
   std::mt19937_64 gen(seed ^ 0x5eed5eed5eed5eedULL);
   // One draw per component in its order of construction (increasing frequency), then finish's sort.
   std::vector<std::size_t> order(w.components.size());

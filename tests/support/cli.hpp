@@ -12,13 +12,13 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
-#include <utility>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace towsim::testing {
@@ -237,8 +237,10 @@ struct TextCsv {
 inline std::vector<std::string> split_csv(const std::string& line) {
   std::vector<std::string> out(1);
   for (char c : line) {
-    if (c == ',') out.emplace_back();
-    else out.back() += c;
+    if (c == ',')
+      out.emplace_back();
+    else
+      out.back() += c;
   }
   return out;
 }

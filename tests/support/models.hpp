@@ -11,14 +11,14 @@ namespace towsim::testing {
 
 /// Cable parameters of a test model.
 struct CableSpec {
-  int n = 5;                  // elements
-  double length = 100;        // total [m]
+  int n = 5;                     // elements
+  double length = 100;           // total [m]
   double mass_per_length = 1.5;  // [kg/m]
-  double diameter = 0.019;    // [m]
-  double cd = 1.8;            // normal drag [-]
-  double tangential = 0.0;    // f (pode) or ct (skin) [-]
+  double diameter = 0.019;       // [m]
+  double cd = 1.8;               // normal drag [-]
+  double tangential = 0.0;       // f (pode) or ct (skin) [-]
   TangentialLaw law = TangentialLaw::Pode;
-  double ca = 1.0;            // normal added mass [-]
+  double ca = 1.0;  // normal added mass [-]
   AddedMassModel am = AddedMassModel::IdealFluid;
 };
 
@@ -65,7 +65,7 @@ inline void add_rich_body(Model& m) {
   b.spheres.push_back({Vec3(0.3, 0, 0), 0.1, 0.5, 0.5});
   b.cylinders.push_back({Vec3(-0.2, 0, 0), Vec3::UnitX(), 1.2, 0.15, 1.2, 0.01, 1.0});
   LiftingSurface fin{Vec3(-0.7, 0, 0.1), Vec3::UnitX(), Vec3::UnitZ(), 0.1, 2 * std::numbers::pi, 0.26, 0.01, 0.05,
-                     {0.0, 10.0}, {0.0, 0.1}};
+                     {0.0, 10.0},        {0.0, 0.1}};
   b.surfaces.push_back(fin);
   finalize_body(b, m.fluid);
 }

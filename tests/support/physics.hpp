@@ -73,9 +73,7 @@ inline TowLaw heave_piece(double amplitude, double period, double start_time) {
 }
 
 /// A turn piece: leaves the straight path at start_time on a circle of `radius`.
-inline TowLaw turn_piece(double radius, double start_time, bool port = true) {
-  return Turn{radius, start_time, port};
-}
+inline TowLaw turn_piece(double radius, double start_time, bool port = true) { return Turn{radius, start_time, port}; }
 
 /// Kinetic and potential energy [J].
 struct Energy {
@@ -153,7 +151,8 @@ inline Energy state_energy(const Model& m, const PhysicalState& s) {
   if (!m.bodies.empty()) {
     const Mat3 R = s.bodies[0].q.toRotationMatrix();
     const Vec3 rQ = R * m.bodies[0].link_point;
-    const Energy Eb = body_energy(m, R, smp.node_pos.back() - rQ, smp.node_vel.back() - s.bodies[0].w.cross(rQ), s.bodies[0].w);
+    const Energy Eb = body_energy(m, R, smp.node_pos.back() - rQ, smp.node_vel.back() - s.bodies[0].w.cross(rQ),
+                                  s.bodies[0].w);
     E.kinetic += Eb.kinetic;
     E.potential += Eb.potential;
   }

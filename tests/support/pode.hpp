@@ -6,8 +6,8 @@
 #pragma once
 
 #include <Eigen/Dense>
-#include <boost/numeric/odeint.hpp>
 #include <array>
+#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -88,8 +88,7 @@ inline double critical_angle(double w, double R) {
 /// Dormand-Prince 5(4) (dense output) at absolute and relative tolerance
 /// `tol`, returning the state at each arc length in `s_out` (increasing,
 /// within [0, L]).
-inline std::vector<PodePoint> integrate_pode(const PodeCable& p, const std::vector<double>& s_out,
-                                             double tol = 1e-13) {
+inline std::vector<PodePoint> integrate_pode(const PodeCable& p, const std::vector<double>& s_out, double tol = 1e-13) {
   namespace ode = boost::numeric::odeint;
   using State = std::array<double, 4>;  // T, phi, x, z
   auto sgn = [&](double x) { return p.v_s > 0 ? x / std::sqrt(x * x + p.v_s * p.v_s) : (x > 0) - (x < 0); };
@@ -158,8 +157,8 @@ inline ChainModes hanging_chain_modes(int n, double link_length, double link_mas
 }
 
 /// First zeros of the Bessel function J0 (Abramowitz & Stegun, table 9.5).
-inline constexpr double kBesselJ0Zeros[] = {2.404825557695773, 5.520078110286311, 8.653727912911012,
-                                            11.79153443901428, 14.93091770848779};
+inline constexpr double kBesselJ0Zeros[] = {2.404825557695773, 5.520078110286311, 8.653727912911012, 11.79153443901428,
+                                            14.93091770848779};
 
 /// Continuous hanging chain (uniform, inextensible, top fixed): the small
 /// lateral motion y(x, t) with tension T = m' g x (x measured up from the free

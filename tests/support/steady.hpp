@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "towsim/dynamics/state.hpp"
+#include "towsim/model/model.hpp"
 #include "towsim/scenario/examples.hpp"
 #include "towsim/scenario/scenario.hpp"
-#include "towsim/model/model.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim::validation {
@@ -112,13 +112,13 @@ inline LoadSum steady_loads(const Model& m, const CableCoefficients& cc, const P
     out.add(-0.5 * rho * cc.cd * cc.diameter * L * un.norm() * un, G - s.r0);
     if (m.cable.tangential_law == TangentialLaw::Pode) {
       const double vs = m.cable.sign_smoothing_speed;
-      out.add(-0.5 * rho * cc.cd * cc.tangential * cc.diameter * L * u.squaredNorm() * (ue / std::sqrt(ue * ue + vs * vs)) * e,
+      out.add(-0.5 * rho * cc.cd * cc.tangential * cc.diameter * L * u.squaredNorm() *
+                  (ue / std::sqrt(ue * ue + vs * vs)) * e,
               G - s.r0);
     } else {
       out.add(-0.5 * rho * pi * cc.diameter * L * cc.tangential * std::abs(ue) * ue * e, G - s.r0);
     }
-    if (m.cable.added_mass_model == AddedMassModel::IdealFluid)
-      out.add_couple(cc.ca * rho * A * L * ue * u.cross(e));
+    if (m.cable.added_mass_model == AddedMassModel::IdealFluid) out.add_couple(cc.ca * rho * A * L * ue * u.cross(e));
   }
   if (!m.bodies.empty()) {
     const Body& b = m.bodies[0];

@@ -12,8 +12,8 @@
 #include <Eigen/Dense>
 #include <cstdio>
 #include <cstring>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
@@ -351,7 +351,7 @@ TEST_P(VelocityJump, BothSystemsApplyTheDenseJump) {
     const PhysicalState before = sys->physical(y);
     const double size = sys->apply_tow_jump(y, 1.0);
     const Vec3 dv = Vec3(0, 0, 2 * std::numbers::pi * 0.5 / 4.0);  // heave: A 2 pi / T, upwards
-    EXPECT_NEAR(size, dv.norm(), 1e-7 * dv.norm());  // found by +-1e-9 s differences (see below)
+    EXPECT_NEAR(size, dv.norm(), 1e-7 * dv.norm());                // found by +-1e-9 s differences (see below)
     const PhysicalState after = sys->physical(y);
     std::vector<Vec3> applied;
     for (int k = 0; k < m.cable.n(); ++k) applied.push_back(after.w[k] - before.w[k]);

@@ -15,14 +15,12 @@
 #include <numbers>
 #include <random>
 
+#include "../support/fd.hpp"
 #include "towsim/dynamics/state.hpp"
 #include "towsim/hydro/loads.hpp"
-#include "../support/fd.hpp"
 
 namespace {
 
-using towsim::testing::fd_richardson;
-using towsim::testing::fd_with_bound;
 using towsim::Body;
 using towsim::CylinderLoad;
 using towsim::LiftingSurface;
@@ -35,6 +33,8 @@ using towsim::SphereLoad;
 using towsim::Vec3;
 using towsim::Vec6;
 using towsim::Workspace;
+using towsim::testing::fd_richardson;
+using towsim::testing::fd_with_bound;
 
 constexpr double pi = std::numbers::pi;
 
@@ -83,7 +83,6 @@ Loads6 body_loads(const Model& m, const Mat3& R, const Vec3& O, const Vec3& vO, 
 Mat3 rotation(double roll, double pitch, double yaw) {
   return towsim::quat_from_rpy(roll, pitch, yaw).toRotationMatrix();
 }
-
 
 }  // namespace
 
@@ -267,7 +266,7 @@ TEST(BodyModel, CylinderLoadsAtCentre) {
   m.bodies[0].cylinders.push_back(CylinderLoad{Vec3(0, 0.2, 0), Vec3::UnitX(), 1.2, 0.15, 1.2, 0.01, 1.0});
   towsim::finalize_body(m.bodies[0], m.fluid);
   const Loads6 l = body_loads(m, Mat3::Identity(), Vec3(0, 0, -5), Vec3(2, 0, 1), Vec3::Zero());
-  const double kn = 0.5 * 1000 * 1.2 * 0.15 * 1.2;       // 108
+  const double kn = 0.5 * 1000 * 1.2 * 0.15 * 1.2;        // 108
   const double kt = 0.5 * 1000 * pi * 0.15 * 1.2 * 0.01;  // 0.9 pi
   const Vec3 F(-kt * 4, 0, -kn * 1);
   EXPECT_LE((l.F - F).norm(), 1e-12 * 100);
@@ -534,7 +533,8 @@ TEST(BodyModel, InertiaAddedMassNoRotationUniformCurrent) {
   Mat6 Bm = Mat6::Zero();
   Bm.topLeftCorner<3, 3>() = R;
   Bm.bottomRightCorner<3, 3>() = R;
-  const double err = std::max((st.ws.body[0].hw - hw).norm(), (st.ws.body[0].Mw - Bm * (b.rigid_mass + b.fluid_mass) * Bm.transpose()).norm());
+  const double err = std::max((st.ws.body[0].hw - hw).norm(),
+                              (st.ws.body[0].Mw - Bm * (b.rigid_mass + b.fluid_mass) * Bm.transpose()).norm());
   report("Inertia, added mass, w = 0, uniform current", err, 1e-12);
   EXPECT_LE(err, 1e-12);
   EXPECT_GT(hw.norm(), 1.0);  // the Munk moment is really there

@@ -135,8 +135,7 @@ TEST(CliRunWarnings, ExtremeAttitudeIsReported) {
   const CliResult r = run_towsim("run --example paper-3d-turn --out " + quoted(dir) +
                                  " --set simulation.duration=1 --set 'body.initial_attitude_deg=[0, 50, 0]'");
   EXPECT_EQ(r.status, 0) << r.out;
-  EXPECT_NE(r.out.find("towsim: warning: the body's pitch reached 50 deg at t = 0 s (beyond 30 deg"),
-            std::string::npos)
+  EXPECT_NE(r.out.find("towsim: warning: the body's pitch reached 50 deg at t = 0 s (beyond 30 deg"), std::string::npos)
       << r.out;
 }
 

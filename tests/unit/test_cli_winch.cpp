@@ -20,11 +20,12 @@ using towsim::testing::slurp;
 // fish-depth-change up to 450 s: 600 -> 900 m (ten 30 m elements added).
 TEST(WinchRun, OutputsFollowTheChangingChain) {
   const fs::path out = fresh_dir("winch_run");
-  const CliResult r =
-      run_towsim("run --example fish-depth-change --set simulation.duration=450 --out " + quoted(out) + " --quiet");
+  const CliResult r = run_towsim("run --example fish-depth-change --set simulation.duration=450 --out " + quoted(out) +
+                                 " --quiet");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto ts = read_csv(out / "timeseries.csv");
-  const int len = ts.column("deployed_length"), speed = ts.column("payout_speed"), ratio = ts.column("winch_load_ratio");
+  const int len = ts.column("deployed_length"), speed = ts.column("payout_speed"),
+            ratio = ts.column("winch_load_ratio");
   ASSERT_GE(len, 0);
   ASSERT_GE(speed, 0);
   ASSERT_GE(ratio, 0);
@@ -72,8 +73,8 @@ TEST(WinchRun, StaticsTargetDepth) {
   EXPECT_NE(r.out.find("deployed length for a depth of 300 m: 796.52"), std::string::npos) << r.out;
   const auto summary = nlohmann::json::parse(slurp(out / "summary.json"));
   EXPECT_NEAR(summary["target_depth"]["reached_depth"].get<double>(), 300, 1e-6);
-  EXPECT_NEAR(summary["final"]["deployed_length"].get<double>(), summary["target_depth"]["deployed_length"].get<double>(),
-              1e-6);
+  EXPECT_NEAR(summary["final"]["deployed_length"].get<double>(),
+              summary["target_depth"]["deployed_length"].get<double>(), 1e-6);
   const CliResult bad = run_towsim("statics --example fish-depth-change --target-depth -3");
   EXPECT_EQ(bad.status, 2);
   EXPECT_EQ(bad.out, "towsim: statics: --target-depth must be > 0 (got -3)\n");

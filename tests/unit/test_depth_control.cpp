@@ -8,9 +8,9 @@
 
 #include "../support/scenario_files.hpp"
 #include "towsim/integrators/system.hpp"
+#include "towsim/model/depth_control.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/sim/simulate.hpp"
-#include "towsim/model/depth_control.hpp"
 
 using towsim::ControlRates;
 using towsim::ControlState;
@@ -49,10 +49,10 @@ TEST(DepthControlLaw, LinearRegionByHand) {
 TEST(DepthControlLaw, SaturationAntiWindupAndRateLimit) {
   const DepthControl c = controller();
   const ControlRates r = depth_control_rates(c, ControlState{0.0, -0.2}, 100.0, 0.0);  // e = -20 m
-  const double u = 0.02 * -20;  // -0.4 rad, beyond -0.25
+  const double u = 0.02 * -20;                                                         // -0.4 rad, beyond -0.25
   EXPECT_DOUBLE_EQ(r.command, -0.25);
   EXPECT_DOUBLE_EQ(r.dintegral, -20 + (-0.25 - u) / (0.001 * 20));
-  EXPECT_GT(r.dintegral, -20);  // anti-windup slows the integral's growth
+  EXPECT_GT(r.dintegral, -20);            // anti-windup slows the integral's growth
   EXPECT_DOUBLE_EQ(r.ddeflection, -0.1);  // (-0.25 + 0.2)/0.5 = -0.1: at the limit exactly
   const ControlRates far = depth_control_rates(c, ControlState{0.0, 0.2}, 100.0, 0.0);
   EXPECT_DOUBLE_EQ(far.ddeflection, -0.1);  // (-0.45)/0.5 = -0.9, limited
@@ -148,8 +148,9 @@ TEST_F(ScenarioFile, DepthControlRefusedWithThePaperFormulationAndSlowRk4Servo) 
       "       depth_control: {target_depth: 10, kp: 1, max_deflection_deg: 10, max_rate_deg_s: 5,"
       " servo_time_constant: 0.004}}\n";
   auto s = load(kCable + kSim + "  formulation: paper\n" + kBody + surf);
-  EXPECT_EQ(s.diags.str(),
-            at("8:16: simulation.formulation: the paper formulation has no depth controller (use formulation: default)"));
+  EXPECT_EQ(
+      s.diags.str(),
+      at("8:16: simulation.formulation: the paper formulation has no depth controller (use formulation: default)"));
   s = load(kCable + kSim + "  integrator: rk4\n" + kBody + surf);
   EXPECT_EQ(s.diags.str(), at("15:113: body.surfaces.0.depth_control.servo_time_constant: must be >= "
                               "simulation.time_step / 2 with integrator rk4 (got 0.004 s, time step 0.01 s: the "
@@ -166,10 +167,10 @@ TEST_F(ScenarioFile, DepthControlRefusedWithThePaperFormulationAndSlowRk4Servo) 
 // others; summary.json's `depth_control` entry from the same samples.
 TEST_F(ScenarioFile, DepthControlOutputs) {
   const auto s = load(kCable + kSim + kBody +
-                      "    - {center: [0, 0, 0], chord: [1, 0, 0], normal: [0, 1, 0], area: 0.5}\n"
-                      "    - {center: [0, 0, 0], chord: [1, 0, 0], normal: [0, 0, 1], area: 0.5,\n"
-                      "       depth_control: {target_depth: 101, kp: 2, max_deflection_deg: 10, max_rate_deg_s: 4,"
-                      " settling_band: 0.5}}\n",
+                          "    - {center: [0, 0, 0], chord: [1, 0, 0], normal: [0, 1, 0], area: 0.5}\n"
+                          "    - {center: [0, 0, 0], chord: [1, 0, 0], normal: [0, 0, 1], area: 0.5,\n"
+                          "       depth_control: {target_depth: 101, kp: 2, max_deflection_deg: 10, max_rate_deg_s: 4,"
+                          " settling_band: 0.5}}\n",
                       {"simulation.duration=0.5"});
   ASSERT_TRUE(s.ok()) << s.diags.str();
   const auto cols = towsim::io::timeseries_columns(*s.model);

@@ -37,17 +37,19 @@ TEST_F(ElasticKeys, OverdampedAxialModeShrinksTheRk4Bound) {
                                 "0.00144 s (it is 0.003 s); use integrator: rosenbrock (implicit in the axial "
                                 "mode) or a smaller step"));
   EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 1.0e5\n" + kSim +
-                   "  time_step: 0.0014\n  integrator: rk4\n").ok());
+                   "  time_step: 0.0014\n  integrator: rk4\n")
+                  .ok());
   // Light damping (zeta < 1) keeps the undamped bound.
   EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 2000\n" + kSim +
-                   "  time_step: 0.005\n  integrator: rk4\n").ok());
+                   "  time_step: 0.005\n  integrator: rk4\n")
+                  .ok());
   // The default integrator (rosenbrock) has no such bound.
-  EXPECT_TRUE(load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 1.0e5\n" + kSim + "  time_step: 0.003\n").ok());
+  EXPECT_TRUE(
+      load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 1.0e5\n" + kSim + "  time_step: 0.003\n").ok());
 }
 
 TEST_F(ElasticKeys, CableLevelAndSectionValuesReachTheElements) {
-  const auto s = load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 2000\n" + kSim +
-                      "  integrator: dopri5\n");
+  const auto s = load(kCable + "  axial_stiffness: 1.27e7\n  axial_damping: 2000\n" + kSim + "  integrator: dopri5\n");
   ASSERT_TRUE(s.ok()) << s.diags.str();
   for (const auto& el : s.model->cable.elements) {
     EXPECT_EQ(el.axial_stiffness, 1.27e7);

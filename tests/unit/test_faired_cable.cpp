@@ -86,8 +86,8 @@ TEST(FairedCable, TableSamplingSkinFrictionGivesTheSameLoads) {
   const double ct = 0.01, cd = 1.8;
   const Model bare = one_section(TangentialLaw::Skin, ct);
   Model faired = bare;
-  faired.cable.sections[0].tangential_loading =
-      sampled([&](double p) { return kPi * ct / cd * std::cos(p) * std::cos(p); });
+  faired.cable.sections[0].tangential_loading = sampled(
+      [&](double p) { return kPi * ct / cd * std::cos(p) * std::cos(p); });
   const double k = bare.cable.elements[0].drag_factor;
   const double bound_rel = std::pow(kStepDeg * kPi / 180, 2) / 8 * 2 * kPi * ct / cd;
   std::mt19937 rng(12);
@@ -114,8 +114,8 @@ TEST(FairedCable, TableLoadsByHand) {
   const Vec3 u = 2.0 * Vec3(std::cos(kPi / 6), std::sin(kPi / 6), 0);
   const double k = m.cable.elements[0].drag_factor;
   const Vec3 F = force(m, e, u) - Vec3(0, 0, -m.cable.elements[0].weight);
-  EXPECT_NEAR(F.y(), -k * 4 * 0.2, 1e-12 * k);  // normal: along -u_n = -y
-  EXPECT_NEAR(F.x(), -k * 4 * 0.05, 1e-12 * k); // tangential: u.e > 0, along -e
+  EXPECT_NEAR(F.y(), -k * 4 * 0.2, 1e-12 * k);   // normal: along -u_n = -y
+  EXPECT_NEAR(F.x(), -k * 4 * 0.05, 1e-12 * k);  // tangential: u.e > 0, along -e
   EXPECT_NEAR(F.z(), 0.0, 1e-12 * k);
 }
 
@@ -162,11 +162,12 @@ TEST_F(ScenarioFile, FairedTableErrors) {
                       "  normal_drag: {law: table, fn: [[0, -0.1], [95, 0.3], [45, 0.2]]}\n"
                       "  tangential_drag: {law: table}\n" +
                       kSim);
-  EXPECT_EQ(s.diags.str(),
-            at("6:34: cable.normal_drag.fn.0: fn must be >= 0 (got -0.1)") +
-                at("6:45: cable.normal_drag.fn.1: the angle between cable and flow must be within [0, 90] deg (got 95)") +
-                at("6:56: cable.normal_drag.fn.2: angles must be strictly increasing (got 45 after 95)") +
-                at("7:3: cable.tangential_drag.ft: missing required key"));
+  EXPECT_EQ(
+      s.diags.str(),
+      at("6:34: cable.normal_drag.fn.0: fn must be >= 0 (got -0.1)") +
+          at("6:45: cable.normal_drag.fn.1: the angle between cable and flow must be within [0, 90] deg (got 95)") +
+          at("6:56: cable.normal_drag.fn.2: angles must be strictly increasing (got 45 after 95)") +
+          at("7:3: cable.tangential_drag.ft: missing required key"));
 }
 
 TEST_F(ScenarioFile, FairedLawChoices) {

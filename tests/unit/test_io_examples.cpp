@@ -6,10 +6,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "towsim/scenario/examples.hpp"
-#include "towsim/output/output.hpp"
-#include "towsim/scenario/scenario.hpp"
 #include "../support/cli.hpp"
+#include "towsim/output/output.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/scenario/scenario.hpp"
 
 namespace fs = std::filesystem;
 using namespace towsim::io;

@@ -1,26 +1,25 @@
 // Scenario parsing and validation: exact error texts (FILE:LINE:COL: PATH: problem).
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <unistd.h>
+#include <cmath>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
-#include "towsim/scenario/scenario.hpp"
 #include "../support/scenario_files.hpp"
+#include "towsim/scenario/scenario.hpp"
 
 namespace fs = std::filesystem;
-using towsim::io::LoadedScenario;
 using towsim::io::load_scenario_file;
+using towsim::io::LoadedScenario;
 
 namespace {
 
 using ScenarioFile = towsim::testing::ScenarioFiles;
 using towsim::testing::kCable;
 using towsim::testing::kSim;
-
 
 }  // namespace
 
@@ -38,8 +37,7 @@ TEST_F(ScenarioFile, MinimalScenarioCompiles) {
 
 TEST_F(ScenarioFile, UnknownKeyHasHint) {
   const auto s = load(
-      "cable:\n  length: 100\n  elements: 5\n  mass_per_length: 1.5\n  diameter: 0.019\n  normal_darg: 1.8\n" +
-      kSim);
+      "cable:\n  length: 100\n  elements: 5\n  mass_per_length: 1.5\n  diameter: 0.019\n  normal_darg: 1.8\n" + kSim);
   EXPECT_FALSE(s.ok());
   EXPECT_EQ(s.diags.str(), at("6:3: cable.normal_darg: unknown key (did you mean 'normal_drag'?)"));
 }
@@ -198,7 +196,8 @@ TEST_F(ScenarioFile, SeveralErrorsAtOnce) {
                    "normal_drag, tangential_drag, added_mass, added_mass_model, sign_smoothing_speed, breaking_load, "
                    "axial_stiffness, axial_damping, sections, attachments)") +
                 at("8:13: simulation.duration: must be > 0 (got 0)") +
-                at("9:15: simulation.integrator: expected one of rk4, dopri5, cash_karp54, rosenbrock (got 'rk5'; did you mean "
+                at("9:15: simulation.integrator: expected one of rk4, dopri5, cash_karp54, rosenbrock (got 'rk5'; did "
+                   "you mean "
                    "'rk4'?)") +
                 "--set:1:22: simulation.time_step: must be > 0 (got 0)\n");
 }

@@ -6,14 +6,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <numbers>
 #include <random>
+#include <sstream>
 
 #include "../support/models.hpp"
 #include "../support/scenario_files.hpp"
-#include "towsim/scenario/examples.hpp"
 #include "towsim/output/sea_statistics.hpp"
+#include "towsim/scenario/examples.hpp"
 #include "towsim/waves/vessel.hpp"
 
 namespace {
@@ -53,13 +53,14 @@ TEST_F(ScenarioFile, SpectrumSpreading) {
 }
 
 TEST_F(ScenarioFile, WavesAndVesselCompile) {
-  const auto s = load(kCable + kSim + kTow +
-                      "waves:\n"
-                      "  regular: {height: 2, period: 8, heading_deg: 180}\n"
-                      "  water_depth: 60\n"
-                      "vessel:\n"
-                      "  tow_point: [-30, 0, 5]\n"
-                      "  raos: [[5, 0, heave, 1, 0], [5, 180, heave, 0.9, 10], [12, 0, heave, 1, 0], [12, 180, heave, 1, 5]]\n");
+  const auto s = load(
+      kCable + kSim + kTow +
+      "waves:\n"
+      "  regular: {height: 2, period: 8, heading_deg: 180}\n"
+      "  water_depth: 60\n"
+      "vessel:\n"
+      "  tow_point: [-30, 0, 5]\n"
+      "  raos: [[5, 0, heave, 1, 0], [5, 180, heave, 0.9, 10], [12, 0, heave, 1, 0], [12, 180, heave, 1, 5]]\n");
   ASSERT_TRUE(s.ok()) << s.diags.str();
   const auto& m = *s.model;
   ASSERT_TRUE(m.fluid.waves);
@@ -78,7 +79,8 @@ TEST_F(ScenarioFile, WavesAndVesselCompile) {
 }
 
 TEST_F(ScenarioFile, SpectrumCompilesWithDefaults) {
-  const auto s = load(kCable + kSim + "waves:\n  spectrum: {type: pierson_moskowitz, hs: 2, tp: 8}\n  statistics_start: 3\n");
+  const auto s = load(kCable + kSim +
+                      "waves:\n  spectrum: {type: pierson_moskowitz, hs: 2, tp: 8}\n  statistics_start: 3\n");
   ASSERT_TRUE(s.ok()) << s.diags.str();
   EXPECT_EQ(s.model->fluid.waves->components.size(), 200u);
   EXPECT_NEAR(4 * std::sqrt(s.model->fluid.waves->variance()), 2.0, 1e-12);
@@ -107,15 +109,18 @@ TEST_F(ScenarioFile, VesselErrors) {
   s = load(kCable + kSim + "waves:\n  regular: {height: 1, period: 8}\nvessel:\n  tow_point: [0, 0, 1]\n");
   EXPECT_EQ(s.diags.str(), at("11:3: vessel: give exactly one of 'raos' or 'motions'"));
   s = load(kCable + kSim + "waves:\n  regular: {height: 1, period: 8}\nvessel:\n  raos: [[5, 0, heav, 1, 0]]\n");
-  EXPECT_EQ(s.diags.str(), at("11:17: vessel.raos.0: unknown dof 'heav' (expected surge, sway, heave, roll, pitch or yaw)"));
-  s = load(kCable + kSim + "waves:\n  regular: {height: 1, period: 8}\nvessel:\n"
-                           "  raos: [[5, 0, heave, 1, 0], [9, 90, heave, 1, 0]]\n");
+  EXPECT_EQ(s.diags.str(),
+            at("11:17: vessel.raos.0: unknown dof 'heav' (expected surge, sway, heave, roll, pitch or yaw)"));
+  s = load(kCable + kSim +
+           "waves:\n  regular: {height: 1, period: 8}\nvessel:\n"
+           "  raos: [[5, 0, heave, 1, 0], [9, 90, heave, 1, 0]]\n");
   EXPECT_EQ(s.diags.str(), at("11:9: vessel.raos: no row for heave at period 5, heading 90 "
                               "(each dof given needs every period x heading of the table)"));
 }
 
 TEST_F(ScenarioFile, VesselRotations) {
-  const std::string head = kCable + kSim + "waves:\n  regular: {height: 1, period: 8}\nvessel:\n  raos: [[5, 180, heave, 1, 0]]\n";
+  const std::string head = kCable + kSim +
+                           "waves:\n  regular: {height: 1, period: 8}\nvessel:\n  raos: [[5, 180, heave, 1, 0]]\n";
   EXPECT_TRUE(load(head + "  rotations: exact\n").ok());
   const auto s = load(head + "  rotations: exakt\n");
   EXPECT_EQ(s.diags.str(),
@@ -130,8 +135,9 @@ TEST_F(ScenarioFile, RaoCsvFileAndItsErrors) {
   EXPECT_TRUE(s.model->tow.vessel);
   write("period,heading_deg,dof,amplitude,phase_deg\n5,180,heave,1\n", "raos.csv");
   s = load(head);
-  EXPECT_EQ(s.diags.str(), in("raos.csv", "2:1: vessel.raos: expected 5 values "
-                                          "period,heading_deg,dof,amplitude,phase_deg (got 4)"));
+  EXPECT_EQ(s.diags.str(), in("raos.csv",
+                              "2:1: vessel.raos: expected 5 values "
+                              "period,heading_deg,dof,amplitude,phase_deg (got 4)"));
   write("5,180,heave,x,0\n", "raos.csv");
   s = load(head);
   EXPECT_EQ(s.diags.str(), in("raos.csv", "1:13: vessel.raos: expected a number (got 'x')"));
@@ -212,7 +218,6 @@ TEST(SeaStatistics, SpectralEstimateParsevalAndPeak) {
   EXPECT_NEAR(wbest, w0, 2.5 * dw) << "the peak band holds the sine's frequency";
 }
 
-
 // spectra.csv's transfer functions against known gains: the wave elevation,
 // the tow point's heave and the body's depth are sums of sines at Fourier
 // frequencies (one per 5-bin band, so no leakage between bands), the heave
@@ -228,7 +233,7 @@ TEST(SeaStatistics, TransferFunctionsOfKnownGains) {
   const std::size_t N = 2000;  // N/2 = 1000 = 200 bands of 5
   const double dw = 2 * std::numbers::pi / (N * dt);
   const std::vector<int> bins = {43, 68, 103, 153, 208};  // centre bins 3 + 5 j of bands j = 8, 13, 20, 30, 41
-  auto G1 = [](double w) { return 0.8 / (1 + w * w); };  // tow heave per metre of wave [m/m]
+  auto G1 = [](double w) { return 0.8 / (1 + w * w); };   // tow heave per metre of wave [m/m]
   auto G2 = [](double w) { return 0.3 * std::exp(-w); };  // body depth per metre of wave [m/m]
   towsim::io::SeaStatistics stats;
   for (std::size_t n = 0; n < N; ++n) {
@@ -250,8 +255,9 @@ TEST(SeaStatistics, TransferFunctionsOfKnownGains) {
   std::ifstream in(path);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "omega,wave_elevation,tow_tension,link_force,body_depth,body_heave_per_wave,tow_heave,"
-                  "body_heave_per_tow_heave");
+  EXPECT_EQ(line,
+            "omega,wave_elevation,tow_tension,link_force,body_depth,body_heave_per_wave,tow_heave,"
+            "body_heave_per_tow_heave");
   int rows = 0, checked = 0, blank = 0;
   while (std::getline(in, line)) {
     std::vector<std::string> f;

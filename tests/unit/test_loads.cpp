@@ -16,13 +16,11 @@
 #include <numbers>
 #include <random>
 
-#include "towsim/hydro/loads.hpp"
 #include "../support/fd.hpp"
+#include "towsim/hydro/loads.hpp"
 
 namespace {
 
-using towsim::testing::fd_richardson;
-using towsim::testing::fd_with_bound;
 using towsim::AddedMassModel;
 using towsim::Element;
 using towsim::Fluid;
@@ -30,6 +28,8 @@ using towsim::Mat3;
 using towsim::Model;
 using towsim::TangentialLaw;
 using towsim::Vec3;
+using towsim::testing::fd_richardson;
+using towsim::testing::fd_with_bound;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kRel = 1e-12;  // hand calculations: a few roundings of O(1-100) values
@@ -66,7 +66,6 @@ Loads loads(const Model& m, const Element& el, const Vec3& e, const Vec3& edot, 
   towsim::element_loads(m, el, e, edot, vG, Vec3(0, 0, zG), 0.0, l.F, l.M);
   return l;
 }
-
 
 }  // namespace
 
@@ -175,8 +174,7 @@ TEST(Loads, PodeFrictionSmoothedSign) {
   EXPECT_EQ(loads(m, el, e, Vec3::Zero(), Vec3(0, 3, 0)).F.norm(), 0.0);
   // At u.e = v_s the smoothed sign is 1/sqrt(2).
   const Vec3 u_vs = Vec3(0, 3, 0) + vs * e;
-  EXPECT_LE((loads(m, el, e, Vec3::Zero(), u_vs).F + 0.738 * u_vs.squaredNorm() / std::sqrt(2.0) * e).norm(),
-            1e-12);
+  EXPECT_LE((loads(m, el, e, Vec3::Zero(), u_vs).F + 0.738 * u_vs.squaredNorm() / std::sqrt(2.0) * e).norm(), 1e-12);
   // smooth_sign itself.
   EXPECT_EQ(towsim::smooth_sign(0, vs), 0.0);
   EXPECT_NEAR(towsim::smooth_sign(vs, vs), 1 / std::sqrt(2.0), 1e-15);
@@ -259,8 +257,8 @@ TEST(Loads, UniformCurrentGalilean) {
       const Vec3 U(1.2, -0.4, 0.1);
       moving.fluid.current_depth = {30};
       moving.fluid.current_velocity = {U};
-      const Element el = towsim::make_element(4, 1.5, 0.02, 1.8, law == TangentialLaw::Pode ? 0.02 : 0.005, law,
-                                              1.0, still.fluid);
+      const Element el = towsim::make_element(4, 1.5, 0.02, 1.8, law == TangentialLaw::Pode ? 0.02 : 0.005, law, 1.0,
+                                              still.fluid);
       for (int i = 0; i < 20; ++i) {
         const Vec3 e = rnd().normalized();
         Vec3 w = rnd();
@@ -364,9 +362,7 @@ struct Trajectory {
     return Vec3(2 * t + 0.5 * std::sin(t), 1 - std::cos(0.8 * t), -20 - 3 * std::sin(0.5 * t));
   }
   static Vec3 v(double t) { return Vec3(2 + 0.5 * std::cos(t), 0.8 * std::sin(0.8 * t), -1.5 * std::cos(0.5 * t)); }
-  static Vec3 acc(double t) {
-    return Vec3(-0.5 * std::sin(t), 0.64 * std::cos(0.8 * t), 0.75 * std::sin(0.5 * t));
-  }
+  static Vec3 acc(double t) { return Vec3(-0.5 * std::sin(t), 0.64 * std::cos(0.8 * t), 0.75 * std::sin(0.5 * t)); }
 };
 }  // namespace
 

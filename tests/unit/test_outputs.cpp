@@ -5,14 +5,14 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
-#include <random>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <string>
 
 #include "../support/cli.hpp"
@@ -55,8 +55,10 @@ void expect_final_is_last_row(const TextCsv& ts, const nlohmann::json& sm) {
 TEST(RunOutputs, LaybackDeployedLengthFinalAndDepthsWithABody) {
   const fs::path dir = fresh_dir("out");
   // A cross current makes the layback three-dimensional (y != 0).
-  const auto [status, out] = towsim_cli("run --example paper-3d-turn --set simulation.duration=3 "
-                                        "--set 'environment.current=[0,0.3,0]' --out '" + dir.string() + "'");
+  const auto [status, out] = towsim_cli(
+      "run --example paper-3d-turn --set simulation.duration=3 "
+      "--set 'environment.current=[0,0.3,0]' --out '" +
+      dir.string() + "'");
   ASSERT_EQ(status, 0) << out;
   const TextCsv ts = read_text_csv(dir / "timeseries.csv");
   ASSERT_EQ(ts.rows.size(), 31u);
@@ -90,7 +92,8 @@ TEST(RunOutputs, LaybackDeployedLengthFinalAndDepthsWithABody) {
 
 TEST(RunOutputs, LaybackOfTheCableEndWithoutABodyAndTimesWithoutNoise) {
   const fs::path dir = fresh_dir("out");
-  const auto [status, out] = towsim_cli("run --example cable-tow --set simulation.duration=1 --out '" + dir.string() + "'");
+  const auto [status,
+              out] = towsim_cli("run --example cable-tow --set simulation.duration=1 --out '" + dir.string() + "'");
   ASSERT_EQ(status, 0) << out;
   const TextCsv ts = read_text_csv(dir / "timeseries.csv");
   ASSERT_EQ(ts.rows.size(), 11u);
@@ -174,9 +177,26 @@ TEST(NumberFormat, TwelveDigitsAreTheBytesOfToChars) {
       check(std::strtod(buf, nullptr));
     }
   }
-  for (double v : {0.0, 1.0, 10.0, 1e11, 1e12, 999999999999.5, 999999999999.4, 99999999999.95, 99999999999.949997,
-                   1e-4, 9.99999999999e-5, 9.999999999995e-5, 1e-9, 1.0 / 3, -2.0 / 3, 123456789012.0, 1e300,
-                   -1e-300, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()})
+  for (double v : {0.0,
+                   1.0,
+                   10.0,
+                   1e11,
+                   1e12,
+                   999999999999.5,
+                   999999999999.4,
+                   99999999999.95,
+                   99999999999.949997,
+                   1e-4,
+                   9.99999999999e-5,
+                   9.999999999995e-5,
+                   1e-9,
+                   1.0 / 3,
+                   -2.0 / 3,
+                   123456789012.0,
+                   1e300,
+                   -1e-300,
+                   std::numeric_limits<double>::infinity(),
+                   std::numeric_limits<double>::quiet_NaN()})
     check(v);
   EXPECT_EQ(mismatches, 0);
 }
@@ -193,8 +213,10 @@ TEST(RunOutputs, AReusedDirectoryKeepsNoStaleFileButKeepsOtherFiles) {
   EXPECT_TRUE(fs::exists(dir / "report.html"));
   EXPECT_TRUE(fs::exists(dir / "plots" / "body_angles.png"));
   // A run without nodes.csv: the old nodes.csv, plots/ and report.html go.
-  const auto [status, out] = towsim_cli("run --example cable-tow --set simulation.duration=0.5 "
-                                        "--set simulation.write_nodes=false --out '" + dir.string() + "'");
+  const auto [status, out] = towsim_cli(
+      "run --example cable-tow --set simulation.duration=0.5 "
+      "--set simulation.write_nodes=false --out '" +
+      dir.string() + "'");
   ASSERT_EQ(status, 0) << out;
   EXPECT_FALSE(fs::exists(dir / "nodes.csv"));
   EXPECT_FALSE(fs::exists(dir / "plots"));

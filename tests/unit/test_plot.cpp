@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "plot.hpp"
 #include "../support/cli.hpp"
+#include "plot.hpp"
 
 namespace fs = std::filesystem;
 using towsim::io::plot_names;
@@ -46,8 +46,8 @@ class PlotRun : public towsim::testing::TempDirTest {
          << 0.5 * y << ',' << ez;
       if (body)
         // Pitch passes -90 deg (reported as roll = yaw = 180) in the middle.
-        ts << ',' << ex << ',' << 0.5 * y << ',' << ez << ',' << (k == 5 ? 180 : 0) << ','
-           << (k == 5 ? -85 : -10.0 * k) << ',' << (k == 5 ? 180 : 0) << ",3,0,8";
+        ts << ',' << ex << ',' << 0.5 * y << ',' << ez << ',' << (k == 5 ? 180 : 0) << ',' << (k == 5 ? -85 : -10.0 * k)
+           << ',' << (k == 5 ? 180 : 0) << ",3,0,8";
       ts << ',' << std::hypot(50 + t, 100) << ',' << -ez << '\n';
       for (int j = 0; j <= 2; ++j)
         nd << t << ',' << j << ',' << x + j * (ex - x) / 2 << ',' << y * (1 - 0.25 * j) << ',' << j * ez / 2
@@ -80,13 +80,11 @@ class PlotRun : public towsim::testing::TempDirTest {
 }  // namespace
 
 TEST(PlotNames, DependOnBodyAndDimension) {
-  EXPECT_EQ(plot_names(false, false),
-            (std::vector<std::string>{"trajectories_xz", "tow_force", "end_depth", "depth_layback", "cable_shapes_xz",
-                                      "tension_map"}));
-  EXPECT_EQ(plot_names(true, true),
-            (std::vector<std::string>{"trajectories_xz", "tow_force", "paths_xy", "end_depth", "depth_layback",
-                                      "body_angles", "cable_shapes_xz", "cable_shapes_xy", "tension_map",
-                                      "link_force"}));
+  EXPECT_EQ(plot_names(false, false), (std::vector<std::string>{"trajectories_xz", "tow_force", "end_depth",
+                                                                "depth_layback", "cable_shapes_xz", "tension_map"}));
+  EXPECT_EQ(plot_names(true, true), (std::vector<std::string>{"trajectories_xz", "tow_force", "paths_xy", "end_depth",
+                                                              "depth_layback", "body_angles", "cable_shapes_xz",
+                                                              "cable_shapes_xy", "tension_map", "link_force"}));
   // A sea-state run (spectra.csv): the spectra figure last.
   EXPECT_EQ(plot_names(false, false, false, true).back(), "spectra");
   // One output time (towsim statics --out): shapes and tension only.

@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
-#include "towsim/scenario/scenario.hpp"
 #include "../support/cli.hpp"
 #include "../support/scenario_files.hpp"
+#include "towsim/scenario/scenario.hpp"
 
 namespace fs = std::filesystem;
-using towsim::io::LoadedScenario;
 using towsim::io::load_scenario_file;
+using towsim::io::LoadedScenario;
 
 namespace {
 
@@ -57,13 +57,12 @@ TEST_F(Refusal, WrongTypes) {
                       "  write_nodes: yes\n  integrator: [rk4]\n"
                       "body: [3]\n"
                       "initial: 12\n");
-  EXPECT_EQ(s.diags.str(),
-            at("2:12: environment.current: expected a list of 3 numbers (got a list of 2)") +
-                at("8:16: cable.normal_drag: expected a number (got a list of 2)") +
-                at("11:16: simulation.write_nodes: expected true or false (got 'yes')") +
-                at("12:15: simulation.integrator: expected a single value (got a list of 1)") +
-                at("13:7: body: expected a mapping of keys (got a list of 1)") +
-                at("14:10: initial: expected one of hanging, steady (got '12')"));
+  EXPECT_EQ(s.diags.str(), at("2:12: environment.current: expected a list of 3 numbers (got a list of 2)") +
+                               at("8:16: cable.normal_drag: expected a number (got a list of 2)") +
+                               at("11:16: simulation.write_nodes: expected true or false (got 'yes')") +
+                               at("12:15: simulation.integrator: expected a single value (got a list of 1)") +
+                               at("13:7: body: expected a mapping of keys (got a list of 1)") +
+                               at("14:10: initial: expected one of hanging, steady (got '12')"));
 }
 
 TEST_F(Refusal, RootNotAMappingOrEmpty) {
@@ -84,8 +83,7 @@ TEST_F(Refusal, MissingRequiredBodyAndPieceKeys) {
   const auto s = load(kCable + kSim + "body:\n  center_of_gravity: [0, 0, 0]\n  mass:\n" +
                       "tow:\n  motion:\n    - {speed: 2}\n");
   EXPECT_EQ(s.diags.str(), at("8:1: body.inertia: missing required key") +
-                               at("8:1: body.link_point: missing required key") +
-                               at("10:3: body.mass: missing value") +
+                               at("8:1: body.link_point: missing required key") + at("10:3: body.mass: missing value") +
                                at("13:7: tow.motion.0.type: missing required key") +
                                at("13:8: tow.motion.0.speed: unknown key (expected one of: type)"));
 }
@@ -112,7 +110,8 @@ TEST_F(Refusal, BodyMassesAndSizesMustBePositive) {
                       "  spheres:\n    - {center: [0, 0, 0], radius: 0}\n"
                       "  cylinders:\n    - {center: [0, 0, 0], axis: [1, 0, 0], length: -1, diameter: 0}\n"
                       "  surfaces:\n    - {center: [0, 0, 0], chord: [1, 0, 0], normal: [0, 0, 1], area: 0}\n");
-  EXPECT_EQ(s.diags.str(), at("9:9: body.mass: must be > 0 (got -3)") + at("12:11: body.volume: must be >= 0 (got -1)") +
+  EXPECT_EQ(s.diags.str(), at("9:9: body.mass: must be > 0 (got -3)") +
+                               at("12:11: body.volume: must be >= 0 (got -1)") +
                                at("14:35: body.spheres.0.radius: must be > 0 (got 0)") +
                                at("16:52: body.cylinders.0.length: must be > 0 (got -1)") +
                                at("16:66: body.cylinders.0.diameter: must be > 0 (got 0)") +
@@ -138,9 +137,10 @@ TEST_F(Refusal, NegativeDensityGravityAndCoefficients) {
 }
 
 TEST_F(Refusal, CurrentDepthsMustBeNonNegativeAndIncreasing) {
-  const auto s = load("environment:\n  current:\n    - {depth: -1, velocity: [1, 0, 0]}\n"
-                      "    - {depth: 5, velocity: [1, 0, 0]}\n    - {depth: 5, velocity: [0, 0, 0]}\n" +
-                      kCable + kSim);
+  const auto s = load(
+      "environment:\n  current:\n    - {depth: -1, velocity: [1, 0, 0]}\n"
+      "    - {depth: 5, velocity: [1, 0, 0]}\n    - {depth: 5, velocity: [0, 0, 0]}\n" +
+      kCable + kSim);
   EXPECT_EQ(s.diags.str(), at("3:15: environment.current.0.depth: depth must be >= 0 (got -1)") +
                                at("5:15: environment.current.2.depth: depths must be strictly increasing (got 5 "
                                   "after 5)"));
@@ -199,9 +199,9 @@ TEST_F(Refusal, TrackFileMissing) {
 TEST_F(Refusal, TrackFileNotARegularFile) {
   const auto s = load(kCable + kSim +
                       "tow:\n  motion:\n    - {type: track, file: /dev/zero}\n    - {type: track, file: .}\n");
-  EXPECT_EQ(s.diags.str(), at("10:27: tow.motion.0.file: the track file '/dev/zero' is not a regular file") +
-                               at("11:27: tow.motion.1.file: the track file '" + (dir_ / ".").string() +
-                                  "' is not a regular file"));
+  EXPECT_EQ(s.diags.str(),
+            at("10:27: tow.motion.0.file: the track file '/dev/zero' is not a regular file") +
+                at("11:27: tow.motion.1.file: the track file '" + (dir_ / ".").string() + "' is not a regular file"));
 }
 
 TEST_F(Refusal, TrackFileWithoutEnoughRows) {
@@ -335,17 +335,17 @@ TEST_F(Refusal, SeveralErrorsAcrossFilesInOrder) {
 
 TEST_F(Refusal, ProgramExits2AndWritesNothingForEachClass) {
   const std::vector<std::string> bad = {
-      kCable + kSim + "colour: red\n",                                                  // unknown key
-      "cable: 3\n" + kSim,                                                              // wrong type
-      kSim,                                                                             // missing key
-      "cable:\n  length: -1\n  elements: 5\n  mass_per_length: 1.5\n  diameter: 0.019\n" + kSim,  // range
-      kCable + kSim + "body:\n  mass: 3\n  inertia: [1, 1, 5]\n  link_point: [0, 0, 0]\n",    // inertia
-      kCable + kSim + "initial: {direction: [0, 0, 0]}\n",                              // zero direction
+      kCable + kSim + "colour: red\n",                                                                 // unknown key
+      "cable: 3\n" + kSim,                                                                             // wrong type
+      kSim,                                                                                            // missing key
+      "cable:\n  length: -1\n  elements: 5\n  mass_per_length: 1.5\n  diameter: 0.019\n" + kSim,       // range
+      kCable + kSim + "body:\n  mass: 3\n  inertia: [1, 1, 5]\n  link_point: [0, 0, 0]\n",             // inertia
+      kCable + kSim + "initial: {direction: [0, 0, 0]}\n",                                             // zero direction
       kCable + kSim + "tow:\n  motion:\n    - {type: track, points: [[1, 0, 0, 0], [0, 1, 0, 0]]}\n",  // track
-      kCable + kSim + "tow:\n  motion:\n    - {type: track, file: none.csv}\n",         // track file
-      kCable + kSim + "tow:\n  motion:\n    - {type: turn, radius: 5}\n",               // turn speed
-      "cable: [1, 2\n",                                                                  // YAML syntax
-      kCable + kSim + "tow: {mode: force, force: [1, 0, 0]}\ninitial: steady\n",           // between sections
+      kCable + kSim + "tow:\n  motion:\n    - {type: track, file: none.csv}\n",                        // track file
+      kCable + kSim + "tow:\n  motion:\n    - {type: turn, radius: 5}\n",                              // turn speed
+      "cable: [1, 2\n",                                                                                // YAML syntax
+      kCable + kSim + "tow: {mode: force, force: [1, 0, 0]}\ninitial: steady\n",  // between sections
   };
   for (std::size_t i = 0; i < bad.size(); ++i) {
     const std::string scen = write(bad[i], "bad" + std::to_string(i) + ".yaml");

@@ -93,8 +93,10 @@ TEST(Report, OfARunWithoutNodesDrawsTheChordAndSaysSo) {
   // write_nodes: false leaves no nodes.csv: the page still has its 3-D view
   // (tow point to cable end, from timeseries.csv), a note, the summary.
   const fs::path dir = fresh_dir("report");
-  const auto [st, so] = towsim_cli("run --example paper-3d-turn --set simulation.duration=5 "
-                                   "--set simulation.write_nodes=false --out '" + dir.string() + "'");
+  const auto [st, so] = towsim_cli(
+      "run --example paper-3d-turn --set simulation.duration=5 "
+      "--set simulation.write_nodes=false --out '" +
+      dir.string() + "'");
   ASSERT_EQ(st, 0) << so;
   ASSERT_FALSE(fs::exists(dir / "nodes.csv"));
   const auto [status, out] = towsim_cli("report '" + dir.string() + "'");
@@ -148,7 +150,8 @@ void expect_renders_in_chromium(const std::string& name, const std::string& run_
   const std::string flags =
       "--headless --disable-gpu --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader "
       "--host-resolver-rules='MAP * ~NOTFOUND' --no-first-run --disable-extensions "
-      "--user-data-dir='" + (dir / "profile").string() + "' --virtual-time-budget=10000 --window-size=1280,1600 ";
+      "--user-data-dir='" +
+      (dir / "profile").string() + "' --virtual-time-budget=10000 --window-size=1280,1600 ";
   const std::string url = "'file://" + fs::absolute(dir / "report.html").string() + "'";
   const auto [rc, dom] = shell(browser + " " + flags + "--dump-dom " + url + " 2>/dev/null");
   ASSERT_EQ(rc, 0) << dom.substr(0, 2000);

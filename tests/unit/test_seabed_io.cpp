@@ -213,5 +213,6 @@ TEST_F(Utilisation, FailureFlagExactlyAboveOne) {
   EXPECT_EQ(above["status"], "ok");  // the run goes on
   EXPECT_EQ(above["end_time"], 1.0);
   ASSERT_EQ(above["warnings"].size(), 2u);
-  EXPECT_EQ(above["warnings"][1].get<std::string>().rfind("utilisation above 1 (tension above the breaking load", 0), 0u);
+  EXPECT_EQ(above["warnings"][1].get<std::string>().rfind("utilisation above 1 (tension above the breaking load", 0),
+            0u);
 }

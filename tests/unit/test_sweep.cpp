@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "../support/scenario_files.hpp"
-#include "towsim/output/output.hpp"
 #include "sweep.hpp"
+#include "towsim/output/output.hpp"
 
 using namespace towsim::io;
 

@@ -220,7 +220,9 @@ struct TurnCase {
 // +y when heading +x) or to starboard (-y). The vertical motion carries on.
 TEST(TowLaw, TurnKeepsSpeedAndRadius) {
   const double V = 2.0, T = 10.0, R = 50.0, ts = 30.0;
-  const TurnCase cases[] = {{Vec3::UnitX(), true}, {Vec3::UnitX(), false}, {Vec3(1, 1, 0), true},
+  const TurnCase cases[] = {{Vec3::UnitX(), true},
+                            {Vec3::UnitX(), false},
+                            {Vec3(1, 1, 0), true},
                             {Vec3(-1, 2, 0), false}};
   double err_speed = 0, err_radius = 0;
   for (const TurnCase& c : cases) {
@@ -331,8 +333,8 @@ TEST(TowLaw, TrackThreePointHandCalculation) {
 // in each segment (so the position is cubic), and v = x', a = v' by FD.
 TEST(TowLaw, TrackIsNaturalCubicSpline) {
   const std::vector<double> ts = {0, 2, 3, 7, 8.5, 12};
-  const std::vector<Vec3> xs = {Vec3(0, 0, 0), Vec3(3, 1, -0.5), Vec3(5, 1.5, -1), Vec3(9, -2, 0.5),
-                                Vec3(11, -2.5, 0.2), Vec3(16, 0, 0)};
+  const std::vector<Vec3> xs = {Vec3(0, 0, 0),    Vec3(3, 1, -0.5),    Vec3(5, 1.5, -1),
+                                Vec3(9, -2, 0.5), Vec3(11, -2.5, 0.2), Vec3(16, 0, 0)};
   const Vec3 x0(100, 200, -5);
   const Tow tow = motion({track(ts, xs)}, x0);
   double err_pts = 0, err_c2 = 0, err_lin = 0, jerk = 0;
@@ -461,8 +463,8 @@ TEST(TowLaw, ForceTableInterpolatesAndHolds) {
 // table: only times > 0, sorted, without duplicates.
 TEST(TowLaw, Breakpoints) {
   Tow tow = motion({ramp(Vec3::UnitX(), 2, 10), heave(1, 5, 7), turn(30, 40, true),
-                    track({-1, 3, 10, 25}, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}),
-                    heave(1, 5, 0), ramp(Vec3::UnitY(), 1, 0)});
+                    track({-1, 3, 10, 25}, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}), heave(1, 5, 0),
+                    ramp(Vec3::UnitY(), 1, 0)});
   EXPECT_EQ(towsim::tow_breakpoints(tow), (std::vector<double>{7, 10, 25, 40}));
   // A force table's rows count only in force mode.
   tow.force_time = {0, 5, 12};

@@ -40,9 +40,7 @@ Tow motion(std::vector<towsim::TowLaw> pieces) {
   tow.pieces = std::move(pieces);
   return tow;
 }
-Turn turn(double R, double t0, bool port, double angle_deg) {
-  return Turn{R, t0, port, angle_deg * kPi / 180};
-}
+Turn turn(double R, double t0, bool port, double angle_deg) { return Turn{R, t0, port, angle_deg * kPi / 180}; }
 
 // A 90-degree port turn at constant speed: on the analytic arc (distance R
 // from its centre, at the angle V (t - t0) / R), it ends at t0 + (pi/2) R / V
@@ -51,7 +49,7 @@ TEST(Manoeuvres, NinetyDegreeTurnEndsOnTheArcWithTheVelocityRotated) {
   const double V = 2.0, R = 50.0, t0 = 20.0;
   const Vec3 d = Vec3(3, 4, 0).normalized();  // initial heading
   const Tow tow = motion({Ramp{d, V, 0}, turn(R, t0, true, 90)});
-  const Vec3 n(-d.y(), d.x(), 0);             // port: the centre is to the left
+  const Vec3 n(-d.y(), d.x(), 0);  // port: the centre is to the left
   const Vec3 p0 = V * t0 * d;
   const Vec3 centre = p0 + R * n;
   const double t_end = t0 + kPi / 2 * R / V;
@@ -181,8 +179,8 @@ TEST(Manoeuvres, ZigZagDerivativesMatchFiniteDifferences) {
   for (double b : breaks) {
     if (b == 5.0) continue;
     const TowKinematics l = towsim::tow_kinematics(tow, b - 1e-9), r = towsim::tow_kinematics(tow, b + 1e-9);
-    EXPECT_LE((r.pos - l.pos).norm(), 1e-8) << "position jump at " << b;    // 2e-9 s x 3 m/s
-    EXPECT_LE((r.vel - l.vel).norm(), 1e-8) << "velocity jump at " << b;    // 2e-9 s x |a| + round-off
+    EXPECT_LE((r.pos - l.pos).norm(), 1e-8) << "position jump at " << b;  // 2e-9 s x 3 m/s
+    EXPECT_LE((r.vel - l.vel).norm(), 1e-8) << "velocity jump at " << b;  // 2e-9 s x |a| + round-off
   }
 }
 

@@ -141,7 +141,8 @@ TEST(Vessel, ExactRotationOfTheSheaveOffset) {
   for (double t0 : {0.7, 3.1, 5.9}) {
     const VesselMotion m = exact->motion(tow_law_kinematics(tow, t0), t0);
     const Mat3 R = (Eigen::AngleAxisd(m.x[5], Vec3::UnitZ()) * Eigen::AngleAxisd(-m.x[4], Vec3::UnitY()) *
-                    Eigen::AngleAxisd(m.x[3], Vec3::UnitX())).toRotationMatrix();
+                    Eigen::AngleAxisd(m.x[3], Vec3::UnitX()))
+                       .toRotationMatrix();
     const Vec3 expect = m.x.head<3>() + R * rs;
     EXPECT_LE((tow_kinematics(tow, t0).pos - expect).norm(), 1e-12) << "t = " << t0;
     differs = std::max(differs, (tow_kinematics(tow_small, t0).pos - expect).norm());
@@ -162,8 +163,8 @@ TEST(Vessel, PhaseIsALagBehindTheCrest) {
   auto w = regular(2.0, T, 180);
   auto v = std::make_shared<const Vessel>(Vec3::Zero(), 0.0, w, table(kHeave, 1.0, 90.0));
   const Tow tow = tow_at(0.0, v);
-  EXPECT_NEAR(tow_kinematics(tow, 0.0).pos.z(), 0.0, 1e-12);       // crest at t = 0: heave 0
-  EXPECT_NEAR(tow_kinematics(tow, T / 4).pos.z(), 1.0, 1e-12);     // its maximum a quarter period later
+  EXPECT_NEAR(tow_kinematics(tow, 0.0).pos.z(), 0.0, 1e-12);    // crest at t = 0: heave 0
+  EXPECT_NEAR(tow_kinematics(tow, T / 4).pos.z(), 1.0, 1e-12);  // its maximum a quarter period later
 }
 
 // Port-starboard mirror: with a table on [0, 180], a wave from 270 deg (travelling
@@ -185,8 +186,7 @@ TEST(Vessel, OneSidedTableIsMirrored) {
 // moving at 2 m/s on a straight course, and in a steady turn (the course
 // rate is then constant, the case the small-angle/course-rate form is exact).
 TEST(Vessel, TowPointRatesAreDerivativesOfPosition) {
-  auto w = std::make_shared<const WaveField>(
-      make_irregular_sea(3.0, 9.0, 3.3, 40, 3, Vec3(-1, 0, 0), kInf, kG));
+  auto w = std::make_shared<const WaveField>(make_irregular_sea(3.0, 9.0, 3.3, 40, 3, Vec3(-1, 0, 0), kInf, kG));
   RaoTable t = table(kHeave, 1.0, 20.0);
   for (int d : {kSurge, kSway, kRoll, kPitch, kYaw})
     for (std::size_t h = 0; h < t.headings.size(); ++h)
@@ -263,7 +263,8 @@ TEST(Vessel, EncounterFrequencyFromZeroCrossings) {
     const Tow tow = tow_at(U, v);
     const double we = std::abs(w - k * U * std::cos(heading * kPi / 180));
     const double Te = heave_period(tow, 600, 0.01);
-    std::printf("[measured] heading %3.0f: encounter period %.6f s, 2 pi / omega_e %.6f s\n", heading, Te, 2 * kPi / we);
+    std::printf("[measured] heading %3.0f: encounter period %.6f s, 2 pi / omega_e %.6f s\n", heading, Te,
+                2 * kPi / we);
     EXPECT_NEAR(Te, 2 * kPi / we, 1e-4 * Te);
   }
 }

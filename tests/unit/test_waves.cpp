@@ -168,8 +168,8 @@ TEST(Waves, SpectralDensityNormalisation) {
   for (double gamma : {1.0, 3.3, 7.0}) {
     double m0 = 0;
     const double dw = 1e-4;
-    for (double w = 0.05; w < 40; w += dw) m0 += 0.5 * dw * (towsim::spectral_density(3, 9, gamma, w) +
-                                                            towsim::spectral_density(3, 9, gamma, w + dw));
+    for (double w = 0.05; w < 40; w += dw)
+      m0 += 0.5 * dw * (towsim::spectral_density(3, 9, gamma, w) + towsim::spectral_density(3, 9, gamma, w + dw));
     EXPECT_NEAR(m0, 9.0 / 16, 1e-5 * 9.0 / 16) << "gamma " << gamma;
   }
   const double wp = 2 * kPi / 9;
@@ -208,7 +208,8 @@ TEST(Waves, JonswapRecordHasHsAndTp) {
   std::vector<double> ws, P;
   for (double om = 0.3; om < 1.5; om += dw) {
     double re = 0, im = 0;
-    for (int i = 0; i < n; ++i) re += (eta[i] - mean) * std::cos(om * i * dt), im += (eta[i] - mean) * std::sin(om * i * dt);
+    for (int i = 0; i < n; ++i)
+      re += (eta[i] - mean) * std::cos(om * i * dt), im += (eta[i] - mean) * std::sin(om * i * dt);
     ws.push_back(om);
     P.push_back(re * re + im * im);
   }

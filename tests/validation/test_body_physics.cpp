@@ -81,7 +81,8 @@ TEST_P(HangingBody, StaysAtRest) {
   const double eL = (s.bodies[0].link_force - Vec3(0, 0, Wb)).norm() / Wb;
   const double eR = (s.tow_force - Vec3(0, 0, Wb + Wc)).norm() / (Wb + Wc);
   std::cout << "[measured] hanging body " << testing::run_case_name(c) << ": max speed " << vmax << " m/s, link force "
-            << s.bodies[0].link_force.transpose() << " vs " << Wb << " (rel " << eL << "), tow force rel err " << eR << "\n";
+            << s.bodies[0].link_force.transpose() << " vs " << Wb << " (rel " << eL << "), tow force rel err " << eR
+            << "\n";
   EXPECT_LT(vmax, bound);
   // Forces: round-off of a sum of a few terms of size ~W (RK4), or the
   // tolerance-level motion above times the masses (DOPRI5).
@@ -367,10 +368,10 @@ TEST_P(SteadyTowedBody, LinkAndTowForcesBalanceTheLoads) {
   const double eR = (s.tow_force - FR).norm() / FR.norm();
   const double eDir = (dir + FL.normalized()).norm();
   std::cout << "[measured] towed body " << testing::run_case_name(c) << ": max|v-V|=" << dv << " m/s (decayed x"
-            << decay << " over the last 30 s), link force " << s.bodies[0].link_force.transpose() << " vs " << FL.transpose()
-            << " (rel " << eL << "), tow force " << s.tow_force.transpose() << " vs " << FR.transpose() << " (rel "
-            << eR << "), pose misalignment " << eDir << ", |dF_R| last 30 s " << (s.tow_force - sp.tow_force).norm()
-            << "\n";
+            << decay << " over the last 30 s), link force " << s.bodies[0].link_force.transpose() << " vs "
+            << FL.transpose() << " (rel " << eL << "), tow force " << s.tow_force.transpose() << " vs "
+            << FR.transpose() << " (rel " << eR << "), pose misalignment " << eDir << ", |dF_R| last 30 s "
+            << (s.tow_force - sp.tow_force).norm() << "\n";
   // Settled: the slowest transient (the whole line swinging fore and aft,
   // damped by drag linearised about V) decays ~7.7x per 30 s (0.07 /s);
   // after 300 s the residual speeds are ~3e-9 m/s. The forces then balance
@@ -391,8 +392,8 @@ INSTANTIATE_TEST_SUITE_P(StillWater, SteadyTowedBody, ::testing::ValuesIn(testin
 // 11. Newton's law for the body. A body with an offset CG, an offset sphere
 // load and a user 6x6 added mass, towed so that it moves briskly.
 // Its loads are written out here (weight at G, buoyancy, drag at the sphere
-// centre C; docs/theory.md §4); it is released tilted and towed into a turn. Total momentum of body + fluid about a fixed
-// point X:
+// centre C; docs/theory.md §4); it is released tilted and towed into a turn. Total momentum of body + fluid about a
+// fixed point X:
 //   p = m v_G + p_A,  h_X = (G - X) x m v_G + I_G w + h_A,
 // fluid impulse (Kirchhoff): sphere  p_s = ma v_C, moment (C - X) x p_s;
 // user matrix: [p_u; h_u] = R-blocks of M_A nu (about O_t), moment
@@ -449,7 +450,7 @@ TEST_P(BodyNewton, LinkForceFromFiniteDifferencedMotion) {
   Model m = testing::cable_model(light_cable(4, 20));
   add_lively_body(m, bs, /*user_added_mass=*/true);
   m.tow.pieces.push_back(testing::ramp_piece(Vec3(1, 0.3, 0), 1.5, 4.0));
-  m.tow.pieces.push_back(testing::turn_piece(8.0, 5.0));   // no velocity jumps: only acceleration kinks
+  m.tow.pieces.push_back(testing::turn_piece(8.0, 5.0));        // no velocity jumps: only acceleration kinks
   m.bodies[0].initial_attitude = quat_from_rpy(0.3, 0.2, 0.0);  // released off its equilibrium: it swings
   m.sim.duration = 12;
   m.sim.time_step = 2e-3;
@@ -557,7 +558,8 @@ TEST_P(BodyNewton, LinkForceFromInstantaneousAccelerations) {
     const Mat3 I = R * m.bodies[0].inertia_cg * R.transpose();
     const Vec3 FA = -ma * aC;
     const Vec3 rF = bs.mass * aG - (acc->link_force[0] + l.W + l.B + l.D + FA);
-    const Vec3 rM = I * al + w.cross(I * w) - ((l.Q - l.G).cross(acc->link_force[0]) + (l.C - l.G).cross(l.B + l.D + FA));
+    const Vec3 rM = I * al + w.cross(I * w) -
+                    ((l.Q - l.G).cross(acc->link_force[0]) + (l.C - l.G).cross(l.B + l.D + FA));
     const double Fs = std::max({acc->link_force[0].norm(), bs.mass * aG.norm(), bs.mass * kG});
     eF = std::max(eF, rF.norm() / Fs);
     eM = std::max(eM, rM.norm() / (Fs * 0.1));  // moments: forces times the body's size (~0.1 m)

@@ -35,15 +35,15 @@ class KktReference {
   Vec3 alpha_body(std::size_t b) const { return x_.segment<3>(body_[b] + 3); }
   /// Force through a joint on the part below it (by the joint's index in order).
   Vec3 force(std::size_t j) const { return lambda_.segment<3>(3 * j); }
-  std::size_t tow_joint = 0;               // the tow point's joint
-  std::vector<std::size_t> joint_of_node;  // joint below each cable joint k (k = 0..n) giving f_k
+  std::size_t tow_joint = 0;                        // the tow point's joint
+  std::vector<std::size_t> joint_of_node;           // joint below each cable joint k (k = 0..n) giving f_k
   std::vector<std::size_t> upper_link, lower_link;  // per body
 
  private:
   /// A point on a part: its part's offset, position r from the reference
   /// point, and centripetal acceleration w x (w x r).
   struct Point {
-    int part = -1;       // offset of the part's unknowns, -1 = the imposed tow point
+    int part = -1;  // offset of the part's unknowns, -1 = the imposed tow point
     int dof = 6;
     Vec3 r = Vec3::Zero();
     Vec3 c = Vec3::Zero();
@@ -105,8 +105,7 @@ class KktReference {
     if (p.part < 0) return;
     const auto c = col_base + static_cast<std::size_t>(p.part);
     A.block<3, 3>(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(c)) += sign * Mat3::Identity();
-    if (p.dof == 6)
-      A.block<3, 3>(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(c + 3)) -= sign * skew(p.r);
+    if (p.dof == 6) A.block<3, 3>(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(c + 3)) -= sign * skew(p.r);
   }
 
   void solve() {

@@ -45,18 +45,30 @@ std::string linear_plant_yaml() {
     std::snprintf(b, sizeof b, "%.17g", v);
     return std::string(b);
   };
-  return "environment: {water_density: " + num(kRho) + ", gravity: 0, current: [" + num(-kU) + ", 0, 0]}\n"
-         "cable: {length: 10, elements: 1, mass_per_length: " + num(kCableMass / 10) +
+  return "environment: {water_density: " + num(kRho) + ", gravity: 0, current: [" + num(-kU) +
+         ", 0, 0]}\n"
+         "cable: {length: 10, elements: 1, mass_per_length: " +
+         num(kCableMass / 10) +
          ", diameter: 0.01, normal_drag: 0, added_mass: 0}\n"
-         "body:\n  mass: " + num(kBodyMass) + "\n  inertia: [10, 10, 10]\n  link_point: [0, 0, 0]\n"
-         "  spheres: [{center: [0, 0, 0], radius: " + num(kRadius) + ", drag: " + num(kCdS) + ", added_mass: 0}]\n"
-         "  thrusters: [{point: [0, 0, 0], direction: [1, 0, 0], force: " + num(drag) + "}]\n"
-         "  surfaces:\n    - {center: [0, 0, 0], chord: [1, 0, 0], normal: [0, 0, 1], area: " + num(kArea) +
-         ", lift_slope: " + num(kSlope) + ", drag0: 0, induced_drag: 0,\n"
-         "       depth_control: {target_depth: " + num(kTarget) + ", kp: " + num(kKp) + ", ki: " + num(kKi) +
-         ", kd: " + num(kKd) + ", max_deflection_deg: 30, max_rate_deg_s: 100, servo_time_constant: " + num(kTau) +
+         "body:\n  mass: " +
+         num(kBodyMass) +
+         "\n  inertia: [10, 10, 10]\n  link_point: [0, 0, 0]\n"
+         "  spheres: [{center: [0, 0, 0], radius: " +
+         num(kRadius) + ", drag: " + num(kCdS) +
+         ", added_mass: 0}]\n"
+         "  thrusters: [{point: [0, 0, 0], direction: [1, 0, 0], force: " +
+         num(drag) +
+         "}]\n"
+         "  surfaces:\n    - {center: [0, 0, 0], chord: [1, 0, 0], normal: [0, 0, 1], area: " +
+         num(kArea) + ", lift_slope: " + num(kSlope) +
+         ", drag0: 0, induced_drag: 0,\n"
+         "       depth_control: {target_depth: " +
+         num(kTarget) + ", kp: " + num(kKp) + ", ki: " + num(kKi) + ", kd: " + num(kKd) +
+         ", max_deflection_deg: 30, max_rate_deg_s: 100, servo_time_constant: " + num(kTau) +
          "}}\n"
-         "tow: {mode: force, start: [0, 0, " + num(-(kStart - 10)) + "], force: [0, 0, 0]}\n"
+         "tow: {mode: force, start: [0, 0, " +
+         num(-(kStart - 10)) +
+         "], force: [0, 0, 0]}\n"
          "simulation: {duration: 40, time_step: 0.01, output_interval: 0.25}\n";
 }
 
@@ -79,11 +91,11 @@ TEST(DepthControlLoop, FollowsTheLinearisedClosedLoop) {
   const double lift = q * kArea * kSlope;                                            // [N/rad]
   const double beta = lift / kU + 0.5 * kRho * kCdS * kPi * kRadius * kRadius * kU;  // [N s/m]
   const double kp = kKp * kDeg, ki = kKi * kDeg, kd = kKd * kDeg;
-  Eigen::Matrix4d A;  // x = (d, w, I, delta)
-  A << 0, -1, 0, 0,                                  //
-      0, -beta / M, 0, lift / M,                     //
-      1, 0, 0, 0,                                    //
-      kp / kTau, -kd / kTau, ki / kTau, -1 / kTau;   //
+  Eigen::Matrix4d A;                                // x = (d, w, I, delta)
+  A << 0, -1, 0, 0,                                 //
+      0, -beta / M, 0, lift / M,                    //
+      1, 0, 0, 0,                                   //
+      kp / kTau, -kd / kTau, ki / kTau, -1 / kTau;  //
   const Eigen::Vector4d x_eq(kTarget, 0, 0, 0), x0(kStart, 0, 0, 0);
   const Eigen::EigenSolver<Eigen::Matrix4d> es(A);
   ASSERT_TRUE((es.eigenvalues().real().array() < 0).all());  // the loop is stable
@@ -98,7 +110,8 @@ TEST(DepthControlLoop, FollowsTheLinearisedClosedLoop) {
   // Neglected terms are second order in alpha ~ delta, w/U: at most
   // ~(0.02 rad)^2 relative here (delta peaks near 1 deg), i.e. ~1e-4 m on a
   // 0.2 m step; the integrator (the default rosenbrock at tolerance 1e-5,
-  // measured 6.8e-6 m in all; RK4 at h = 0.01 s before) adds far less. 1e-3 of the step (2e-4 m) and 1e-3 deg bound both.
+  // measured 6.8e-6 m in all; RK4 at h = 0.01 s before) adds far less. 1e-3 of the step (2e-4 m) and 1e-3 deg bound
+  // both.
   const double step = kTarget - kStart;
   double worst_d = 0, worst_delta = 0, peak_delta = 0;
   for (const towsim::Sample& s : sink.samples) {
@@ -109,8 +122,8 @@ TEST(DepthControlLoop, FollowsTheLinearisedClosedLoop) {
     peak_delta = std::max(peak_delta, std::abs(x[3] / kDeg));
     EXPECT_NEAR(b.controls.at(0).depth_error, -b.pos.z() - kTarget, 1e-12);
   }
-  std::cout << "[measured] linearised loop: max |d - d_lin| = " << worst_d << " m, max |delta - delta_lin| = " << worst_delta
-            << " deg (peak delta " << peak_delta << " deg)\n";
+  std::cout << "[measured] linearised loop: max |d - d_lin| = " << worst_d
+            << " m, max |delta - delta_lin| = " << worst_delta << " deg (peak delta " << peak_delta << " deg)\n";
   EXPECT_LT(worst_d, 1e-3 * step);
   EXPECT_LT(worst_delta, 1e-3);
   EXPECT_GT(peak_delta, 0.3);  // the loop was exercised

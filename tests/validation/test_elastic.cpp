@@ -11,19 +11,19 @@
 #include <random>
 #include <vector>
 
+#include "../support/models.hpp"
+#include "../support/physics.hpp"
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/hydro/loads.hpp"
 #include "towsim/integrators/system.hpp"
 #include "towsim/sim/simulate.hpp"
 #include "towsim/sim/statics.hpp"
-#include "../support/models.hpp"
-#include "../support/physics.hpp"
 
 namespace towsim {
 namespace {
 
-using testing::CableSpec;
 using testing::cable_model;
+using testing::CableSpec;
 
 /// Make every element of m elastic with axial stiffness EA [N] and damping c [N s].
 void make_elastic(Model& m, double EA, double c = 0) {
@@ -176,8 +176,8 @@ double chain_energy(const Model& m, const PhysicalState& s) {
       const Vec3 w = s.bodies[b].w, rQ = R * body.link_point;
       const Vec3 O = P - rQ, vO = v - w.cross(rQ);
       const Vec3 rG = R * body.cg;
-      E += 0.5 * body.mass * (vO + w.cross(rG)).squaredNorm() +
-           0.5 * w.dot(R * body.inertia_cg * R.transpose() * w) + body.mass * g * (O + rG).z();
+      E += 0.5 * body.mass * (vO + w.cross(rG)).squaredNorm() + 0.5 * w.dot(R * body.inertia_cg * R.transpose() * w) +
+           body.mass * g * (O + rG).z();
       if (body.inline_body) {
         const Vec3 r2 = R * body.lower_link_point;
         P = O + r2;
@@ -232,7 +232,8 @@ TEST(ElasticEnergy, MixedChainInVacuumConservesEnergyAtFourthOrder) {
   m.bodies.back().joint = 3;
   m.bodies.back().name = "depressor";
   finalize_body(m.bodies.back(), m.fluid);
-  for (int i = 0; i < 2; ++i) m.cable.elements.push_back(make_element(4.0, 1.0, 0.01, 1.2, 0.0, m.cable.tangential_law, 1.0, m.fluid));
+  for (int i = 0; i < 2; ++i)
+    m.cable.elements.push_back(make_element(4.0, 1.0, 0.01, 1.2, 0.0, m.cable.tangential_law, 1.0, m.fluid));
   for (int i = 0; i < 3; ++i) {
     Element el = make_element(3.0, 0.8, 0.01, 1.2, 0.0, m.cable.tangential_law, 1.0, m.fluid);
     el.axial_stiffness = 2e4;
@@ -374,11 +375,11 @@ TEST(ElasticWave, TowPointStartingUpSendsTheImpedanceStepAtTheWaveSpeed) {
   StateVector y = sys->initial(s, 0.0);
   ASSERT_GT(sys->apply_tow_jump(y, 0.0), 0.0);
   boost::numeric::odeint::runge_kutta4<StateVector> rk4;
-  const int probe = static_cast<int>(0.8 * c.n);        // element at 80 % of the length
-  const double x_probe = (probe + 0.5) * L0;            // its centre [m]
+  const int probe = static_cast<int>(0.8 * c.n);  // element at 80 % of the length
+  const double x_probe = (probe + 0.5) * L0;      // its centre [m]
   double t = 0, t_cross = -1, plateau = 0;
   int plateau_n = 0;
-  const double t_end = 1.5 * c.length / wave;           // before the reflection returns to the top
+  const double t_end = 1.5 * c.length / wave;  // before the reflection returns to the top
   while (t < t_end) {
     sys->set_window(t, t + h);
     rk4.do_step(std::ref(*sys), y, t, h);
@@ -427,8 +428,8 @@ TEST(ElasticWave, Rk4AxialStepBoundIsSharp) {
   };
   const double below = growth(0.95 * hstar), above = growth(1.05 * hstar);
   std::printf("perturbation after 50 steps: x%.3g at 0.95 h*, x%.3g at 1.05 h*\n", below, above);
-  EXPECT_LT(below, 2.0);   // no growth (the mode's energy is conserved or damped)
-  EXPECT_GT(above, 1e4);   // unmistakable growth
+  EXPECT_LT(below, 2.0);  // no growth (the mode's energy is conserved or damped)
+  EXPECT_GT(above, 1e4);  // unmistakable growth
   EXPECT_NEAR(rk4_axial_step_limit(m.cable.elements[0]), 0.98 * hstar, 0.01 * hstar);  // the refusal's margin
 }
 
@@ -496,7 +497,7 @@ TEST(ElasticSlack, EpisodeSpanFollowsTheWinchTopLength) {
   const SlackEvent& ev = r.events().front();
   EXPECT_EQ(ev.first_element, 2);
   EXPECT_EQ(ev.last_element, 2);
-  EXPECT_DOUBLE_EQ(ev.from, L1);         // exact: sums of the lengths given
+  EXPECT_DOUBLE_EQ(ev.from, L1);  // exact: sums of the lengths given
   EXPECT_DOUBLE_EQ(ev.to, L1 + 10.0);
   // Without a winch length: the model's.
   SlackRecord plain;
@@ -532,9 +533,10 @@ TEST(ElasticSlack, HardHeaveFoldsNoElement) {
     for (double T : s.tension) Tmin = std::min(Tmin, T);
     for (double e : s.strain) shortest = std::min(shortest, 1 + e);
   }
-  std::printf("hard heave: %ld slack episodes, shortest element %.3f of its length, min joint tension %.3g N, peak "
-              "%.1f N\n",
-              st.slack.episodes, shortest, Tmin, st.slack.max_tension);
+  std::printf(
+      "hard heave: %ld slack episodes, shortest element %.3f of its length, min joint tension %.3g N, peak "
+      "%.1f N\n",
+      st.slack.episodes, shortest, Tmin, st.slack.max_tension);
   EXPECT_GE(Tmin, 0.0);
   EXPECT_GT(shortest, 0.05);  // the run's own failure threshold (kMinLength); measured 0.077
 }

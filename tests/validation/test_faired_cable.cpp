@@ -57,21 +57,22 @@ double critical_angle(double w, double R) {
 }  // namespace
 
 TEST(FairedCableSteady, CriticalAngleAndTopTension) {
-  const std::string yaml =
-      "cable:\n  length: " + std::to_string(kLength) + "\n  elements: 20\n  mass_per_length: " +
-      std::to_string(kMass) + "\n  diameter: " + std::to_string(kD) +
-      "\n  added_mass: 0\n"  // no Munk moment: the closed form has none
-      "  normal_drag: {law: table, cd: " + std::to_string(kCd) + ", fn: " + kFn.yaml() +
-      "}\n  tangential_drag: {law: table, ft: " + kFt.yaml() +
-      "}\ntow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: " + std::to_string(kV) +
-      ", ramp_time: 0}\ninitial: steady\nsimulation:\n  duration: 1\n";
+  const std::string yaml = "cable:\n  length: " + std::to_string(kLength) +
+                           "\n  elements: 20\n  mass_per_length: " + std::to_string(kMass) +
+                           "\n  diameter: " + std::to_string(kD) +
+                           "\n  added_mass: 0\n"  // no Munk moment: the closed form has none
+                           "  normal_drag: {law: table, cd: " +
+                           std::to_string(kCd) + ", fn: " + kFn.yaml() +
+                           "}\n  tangential_drag: {law: table, ft: " + kFt.yaml() +
+                           "}\ntow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: " + std::to_string(kV) +
+                           ", ramp_time: 0}\ninitial: steady\nsimulation:\n  duration: 1\n";
   const auto s = towsim::io::load_scenario_text(yaml, "faired.yaml", "faired", ".");
   ASSERT_TRUE(s.ok()) << s.diags.str();
   const towsim::StaticsResult r = towsim::steady_state(*s.model);
   ASSERT_TRUE(r.converged) << r.message;
 
   const double w = (kMass - kRho * kPi * kD * kD / 4) * kG;  // apparent weight [N/m]
-  const double R = 0.5 * kRho * kCd * kD * kV * kV;           // [N/m]
+  const double R = 0.5 * kRho * kCd * kD * kV * kV;          // [N/m]
   const double phi_c = critical_angle(w, R);
   ASSERT_GT(phi_c, 0.3);  // a faired cable tows steeper than bare (28.9 deg here, bare 18.7)
   ASSERT_LT(phi_c, 1.0);
@@ -98,11 +99,11 @@ TEST(FairedCableSteady, CriticalAngleAndTopTension) {
 // the classic critical angle sin^2(phi)/cos(phi) = w/R (closed form:
 // cos(phi) = (-w/R + sqrt((w/R)^2 + 4)) / 2): the default laws are untouched.
 TEST(FairedCableSteady, DefaultLawGivesTheClassicCriticalAngle) {
-  const std::string yaml =
-      "cable:\n  length: 200\n  elements: 20\n  mass_per_length: " + std::to_string(kMass) +
-      "\n  diameter: " + std::to_string(kD) + "\n  added_mass: 0\n  normal_drag: " + std::to_string(kCd) +
-      "\ntow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: " + std::to_string(kV) +
-      ", ramp_time: 0}\ninitial: steady\nsimulation:\n  duration: 1\n";
+  const std::string yaml = "cable:\n  length: 200\n  elements: 20\n  mass_per_length: " + std::to_string(kMass) +
+                           "\n  diameter: " + std::to_string(kD) +
+                           "\n  added_mass: 0\n  normal_drag: " + std::to_string(kCd) +
+                           "\ntow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: " + std::to_string(kV) +
+                           ", ramp_time: 0}\ninitial: steady\nsimulation:\n  duration: 1\n";
   const auto s = towsim::io::load_scenario_text(yaml, "bare.yaml", "bare", ".");
   ASSERT_TRUE(s.ok()) << s.diags.str();
   const towsim::StaticsResult r = towsim::steady_state(*s.model);

@@ -77,8 +77,9 @@ TEST_P(RosenbrockOrder, ErrorFallsEightfoldWhenStepHalves) {
   EXPECT_LT(fa / fb, 10.5);
 }
 
-INSTANTIATE_TEST_SUITE_P(TowedCable, RosenbrockOrder, ::testing::Values(0.04, 0.02),
-                         [](const auto& info) { return "h" + std::to_string(static_cast<int>(info.param * 1000)) + "ms"; });
+INSTANTIATE_TEST_SUITE_P(TowedCable, RosenbrockOrder, ::testing::Values(0.04, 0.02), [](const auto& info) {
+  return "h" + std::to_string(static_cast<int>(info.param * 1000)) + "ms";
+});
 
 // ---------------------------------------------------------------------------
 // 1b. Dense output: outputs between step ends come from the method's
@@ -94,7 +95,7 @@ INSTANTIATE_TEST_SUITE_P(TowedCable, RosenbrockOrder, ::testing::Values(0.04, 0.
 // error is the method's global error) beyond a quarter.
 // ---------------------------------------------------------------------------
 struct DenseErrors {
-  double end = 0, dense = 0;  // max tow force error [N]: at step ends, at dense outputs
+  double end = 0, dense = 0;          // max tow force error [N]: at step ends, at dense outputs
   double end_pos = 0, dense_pos = 0;  // max node position error [m]
 };
 
@@ -221,8 +222,8 @@ TEST(RosenbrockForceMode, CentreOfMassFollowsTheParabola) {
     err = std::max(err, (centre(s) - (c0 + 0.5 * a * s.t * s.t)).norm());
     swung = swung || (s.node_pos.back() - s.node_pos.front()).normalized().dot(-Vec3::UnitZ()) < 0.9;
   }
-  std::cout << "[measured] rosenbrock, imposed tow force: max |c - c_exact| over 2 s = " << err << " m ("
-            << st.steps << " steps)\n";
+  std::cout << "[measured] rosenbrock, imposed tow force: max |c - c_exact| over 2 s = " << err << " m (" << st.steps
+            << " steps)\n";
   EXPECT_TRUE(swung);
   // Local errors of 1e-8 relative to 1 + |y| over ~100 steps, on a fall of
   // ~20 m: bound 1e-5 m. Measured 1.0e-7 m (6761 steps).

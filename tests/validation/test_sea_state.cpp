@@ -114,7 +114,8 @@ TEST(SeaState, CableInIrregularSeaRuns) {
   ASSERT_EQ(st.status, "ok") << st.message;
   EXPECT_LT(st.max_element_drift, 1e-6);
   double tmin = 1e300, tmax = 0;
-  for (const auto& x : sink.samples) tmin = std::min(tmin, x.tow_force.norm()), tmax = std::max(tmax, x.tow_force.norm());
+  for (const auto& x : sink.samples)
+    tmin = std::min(tmin, x.tow_force.norm()), tmax = std::max(tmax, x.tow_force.norm());
   EXPECT_GT(tmax - tmin, 0.1 * tmax) << "waves must modulate the tow tension";
 }
 

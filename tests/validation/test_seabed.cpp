@@ -64,7 +64,7 @@ Drift drift_from_steady(Model m, const StaticsResult& r, const Vec3& U) {
 TEST(SeabedLaw, SlopedTableGeometry) {
   Seabed sb;
   sb.x = {0, 100};
-  sb.depth = {100, 50};  // z_b = -100 + 0.5 x between the rows
+  sb.depth = {100, 50};                          // z_b = -100 + 0.5 x between the rows
   const Vec3 n = Vec3(-0.5, 0, 1).normalized();  // gradient of z - 0.5 x, normalised
   EXPECT_LT((sb.normal(40) - n).norm(), 1e-15);
   EXPECT_EQ(sb.normal(-10), Vec3::UnitZ());  // held flat beyond the table
@@ -217,8 +217,8 @@ TEST_P(SeabedLying, DynamicRunStaysOnTheBottom) {
     std::size_t jmax = 0;
     for (std::size_t j = 0; j < s.node_vel.size(); ++j)
       if (s.node_vel[j].norm() > vmax) vmax = s.node_vel[j].norm(), jmax = j;
-    EXPECT_LT(vmax, 1e-4) << "t = " << s.t << " node " << jmax << " v " << s.node_vel[jmax].transpose()
-                          << " p " << s.node_pos[jmax].transpose();  // at rest: the statics is the dynamics' equilibrium
+    EXPECT_LT(vmax, 1e-4) << "t = " << s.t << " node " << jmax << " v " << s.node_vel[jmax].transpose() << " p "
+                          << s.node_pos[jmax].transpose();  // at rest: the statics is the dynamics' equilibrium
   }
 }
 
@@ -272,18 +272,19 @@ TEST(SeabedInline, RestingBodySinksByItsLoadOverItsStiffness) {
   b.name = "clump";
   finalize_body(b, m.fluid);
   for (int i = 0; i < 4; ++i)  // lower section: 20 m lying
-    m.cable.elements.push_back(make_element(L, cs.mass_per_length, cs.diameter, cs.cd, cs.tangential,
-                                            m.cable.tangential_law, cs.ca, m.fluid));
+    m.cable.elements.push_back(
+        make_element(L, cs.mass_per_length, cs.diameter, cs.cd, cs.tangential, m.cable.tangential_law, cs.ca, m.fluid));
   const double w = apparent_weight(cs), Wb = (300 - kRho * 0.05) * kG;
   const StaticsResult r = solve_statics(m, Vec3::Zero());
   ASSERT_TRUE(r.converged) << r.message;
   const double delta_b = -depth - r.sample.bodies[0].pos.z();
-  const double pull = k * L * delta_b - w * L;  // the cable's net upward pull at O: its springs there less its shares [N]
+  const double pull = k * L * delta_b -
+                      w * L;  // the cable's net upward pull at O: its springs there less its shares [N]
   const double T = r.tow_force.norm(), T_discrete = w * (std::floor(depth / L) * L + 0.5 * L);
-  std::printf("in-line clump on the bottom: k (1 + L) delta_b = %.6f N, W_b + w L = %.6f N (relative %.2e); hull "
-              "contact k delta_b = %.3f N = W_b - %.3f N (the cable's net pull); T = %.4f N, discrete %.4f N\n",
-              k * (1 + L) * delta_b, Wb + w * L, (k * (1 + L) * delta_b - Wb - w * L) / Wb, k * delta_b, pull, T,
-              T_discrete);
+  std::printf(
+      "in-line clump on the bottom: k (1 + L) delta_b = %.6f N, W_b + w L = %.6f N (relative %.2e); hull "
+      "contact k delta_b = %.3f N = W_b - %.3f N (the cable's net pull); T = %.4f N, discrete %.4f N\n",
+      k * (1 + L) * delta_b, Wb + w * L, (k * (1 + L) * delta_b - Wb - w * L) / Wb, k * delta_b, pull, T, T_discrete);
   // 1e-6 W_b: the residual's force noise (as the end clump above).
   EXPECT_NEAR(k * (1 + L) * delta_b, Wb + w * L, 1e-6 * Wb);
   EXPECT_NEAR(k * delta_b, Wb - pull, 1e-6 * Wb);
@@ -323,9 +324,10 @@ TEST(SeabedInline, DraggedBodyIsASteadyStateOfTheDynamics) {
   EXPECT_TRUE(r.message.empty()) << r.message;
   const Drift d = drift_from_steady(m, r, Vec3(U, 0, 0));
   const double dx = d.x, dT = d.force;
-  std::printf("dragged in-line clump: %d iterations, residual %.2e; 10 s of dynamics: drift %.2e m, tow force "
-              "change %.2e\n",
-              r.iterations, r.residual, dx, dT);
+  std::printf(
+      "dragged in-line clump: %d iterations, residual %.2e; 10 s of dynamics: drift %.2e m, tow force "
+      "change %.2e\n",
+      r.iterations, r.residual, dx, dT);
   EXPECT_LT(dx, 1e-3);
   EXPECT_LT(dT, 1e-3);
 }
@@ -540,9 +542,10 @@ TEST(SeabedDragged, SteadyTowHasTheClosedForms) {
       worst = std::max(worst, std::abs(step - mu * s * w * L) / (mu * s * w * L));
     }
     const double T = r.tow_force.norm(), Tc = w * (110 - delta) + mu * s * w * r.sample.contact_length;
-    std::printf("dragged U = %.2f: %d iterations, %d lying steps within %.1e of mu s w L; T = %.3f N, closed form "
-                "%.3f N (%+.2e w L)\n",
-                U, r.iterations, lying, worst, T, Tc, (T - Tc) / (w * L));
+    std::printf(
+        "dragged U = %.2f: %d iterations, %d lying steps within %.1e of mu s w L; T = %.3f N, closed form "
+        "%.3f N (%+.2e w L)\n",
+        U, r.iterations, lying, worst, T, Tc, (T - Tc) / (w * L));
     EXPECT_GE(lying, 5) << U;
     EXPECT_LT(worst, 1e-6) << U;
     // Top tension: the contact length counts the touchdown joint's whole
@@ -568,9 +571,10 @@ TEST(SeabedDragged, SteadyStateStaysSteadyInTheDynamics) {
     ASSERT_TRUE(r.converged) << "U = " << U << ": " << r.message;
     const Drift d = drift_from_steady(m, r, Vec3(U, 0, 0));
     const double dx = d.x, dv = d.v, dT = d.force;
-    std::printf("dragged at %.2f m/s, 10 s of dynamics from the statics: max joint drift %.2e m, max |v - U| %.2e "
-                "m/s, max tow force change %.2e\n",
-                U, dx, dv, dT);
+    std::printf(
+        "dragged at %.2f m/s, 10 s of dynamics from the statics: max joint drift %.2e m, max |v - U| %.2e "
+        "m/s, max tow force change %.2e\n",
+        U, dx, dv, dT);
     EXPECT_LT(dx, 1e-3) << U;
     EXPECT_LT(dv, 1e-3) << U;
     EXPECT_LT(dT, 1e-3) << U;
@@ -609,11 +613,12 @@ TEST(SeabedSlope, RestingCableHangsOnItsTensionAlongTheSlope) {
     worst = std::max(worst, std::abs(std::abs(step) - w * L * std::sin(beta)) / (w * L * std::sin(beta)));
   }
   const double T = r.tow_force.norm(), Tc = w * (r.sample.tow_pos.z() - r.sample.node_pos.back().z());
-  std::printf("slope at rest: %d iterations, %d lying steps within %.1e of w L sin(beta); T = %.3f N, w (z_0 - "
-              "z_end) = %.3f N (%+.2e w L)\n",
-              r.iterations, lying, worst, T, Tc, (T - Tc) / (w * L));
+  std::printf(
+      "slope at rest: %d iterations, %d lying steps within %.1e of w L sin(beta); T = %.3f N, w (z_0 - "
+      "z_end) = %.3f N (%+.2e w L)\n",
+      r.iterations, lying, worst, T, Tc, (T - Tc) / (w * L));
   EXPECT_GE(lying, 5);
-  EXPECT_LT(worst, 1e-6);  // residual floor's force noise, far below
+  EXPECT_LT(worst, 1e-6);     // residual floor's force noise, far below
   EXPECT_NEAR(T, Tc, w * L);  // the discrete chain's kinks at the touchdown: O(w L)
   // The dynamics from it (rosenbrock, tolerance 1e-8, 10 s): every joint
   // within 1 mm of its place, speeds below 1 mm/s.
@@ -641,7 +646,7 @@ TEST(SeabedSled, TowingForceIsFrictionPlusDrag) {
   Body& b = m.bodies.back();
   b.mass = mass;
   b.inertia_cg = Vec3(10, 170, 170).asDiagonal();
-  b.link_point = Vec3(0.5 * length, 0, 0);                        // the runner's nose, on its axis
+  b.link_point = Vec3(0.5 * length, 0, 0);  // the runner's nose, on its axis
   b.cylinders.push_back({Vec3::Zero(), Vec3::UnitX(), length, 2 * radius, 1.2, ct, 1.0});
   finalize_body(b, m.fluid);
   // Tow point 1 m above the runner's axis; cable streaming straight back.
@@ -656,13 +661,13 @@ TEST(SeabedSled, TowingForceIsFrictionPlusDrag) {
   const Sample& s = samples.back();
   const Vec3 FL = s.bodies[0].link_force;  // on the sled from the cable [N]
   const double volume = std::numbers::pi * radius * radius * length;
-  const double W = (mass - kRho * volume) * kG;                       // apparent weight [N]
-  const double N = W - FL.z();                                        // the bottom's normal load [N]
-  const double smooth = U / std::hypot(U, kSeabedSlipSpeed);          // the law's smoothing at slip U
+  const double W = (mass - kRho * volume) * kG;               // apparent weight [N]
+  const double N = W - FL.z();                                // the bottom's normal load [N]
+  const double smooth = U / std::hypot(U, kSeabedSlipSpeed);  // the law's smoothing at slip U
   const double drag = 0.5 * kRho * std::numbers::pi * 2 * radius * length * ct * U * U;  // axial skin friction [N]
   std::printf("sled: F_L,x = %.6f N, mu N s + drag = %.6f N (drag %.4f N), relative difference %.2e\n", FL.x(),
               mu * N * smooth + drag, drag, (FL.x() - mu * N * smooth - drag) / (mu * N));
-  EXPECT_NEAR(s.bodies[0].vel.x(), U, 1e-3 * U);                      // steady
+  EXPECT_NEAR(s.bodies[0].vel.x(), U, 1e-3 * U);  // steady
   // Steady to 0.1 % of the friction (the body's residual acceleration times
   // its mass is below that after 55 s at speed).
   EXPECT_NEAR(FL.x(), mu * N * smooth + drag, 1e-3 * mu * N) << "N = " << N << ", drag = " << drag;

@@ -73,7 +73,7 @@ TEST_F(Sections, IdenticalSectionsEqualOneSection) {
 TEST_F(Sections, SectionChangeFollowsTheContinuousCableOfEachSection) {
   constexpr double kV = 1.5, kRho = 1025, kG = 9.81, kL1 = 100, kL2 = 100, kD1 = 0.019, kD2 = 0.004;
   const double A1 = M_PI * kD1 * kD1 / 4, A2 = M_PI * kD2 * kD2 / 4;
-  const double w1 = (1.5 - kRho * A1) * kG, w2 = (1.5 - kRho * A2) * kG;  // apparent weight [N/m]
+  const double w1 = (1.5 - kRho * A1) * kG, w2 = (1.5 - kRho * A2) * kG;                      // apparent weight [N/m]
   const double R1 = 0.5 * kRho * 1.5 * kD1 * kV * kV, R2 = 0.5 * kRho * 1.5 * kD2 * kV * kV;  // [N/m]
   // Critical angle of the lower section: cos = (R/w) sin^2 -> a quadratic in cos.
   const double a2 = R2 / w2;
@@ -89,8 +89,8 @@ TEST_F(Sections, SectionChangeFollowsTheContinuousCableOfEachSection) {
     State y{w2 * kL2 * std::sin(phi_c2), phi_c2};
     if (s > 0)
       boost::numeric::odeint::integrate_adaptive(
-          boost::numeric::odeint::make_controlled<boost::numeric::odeint::runge_kutta_dopri5<State>>(1e-13, 1e-13),
-          rhs, y, 0.0, s, s / 100);
+          boost::numeric::odeint::make_controlled<boost::numeric::odeint::runge_kutta_dopri5<State>>(1e-13, 1e-13), rhs,
+          y, 0.0, s, s / 100);
     return y[1];
   };
   double prev = 0;
@@ -112,8 +112,8 @@ TEST_F(Sections, SectionChangeFollowsTheContinuousCableOfEachSection) {
       const double s_mid = kL1 - (k + 0.5) * kL1 / n;  // from the junction up
       err = std::max(err, std::abs(phi - phi_at(s_mid)));
     }
-    std::printf("[measured] sections n=%d: upper angle error %.3e rad, lower section off phi_c2 by %.3e rad\n", n,
-                err, lower);
+    std::printf("[measured] sections n=%d: upper angle error %.3e rad, lower section off phi_c2 by %.3e rad\n", n, err,
+                lower);
     // The lower elements trail at the critical angle: the solve stops at
     // angular accelerations below 1e-9 rad/s^2, far below 1e-8 rad of angle.
     EXPECT_LT(lower, 1e-8);

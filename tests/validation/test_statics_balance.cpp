@@ -47,18 +47,18 @@ std::vector<BalanceCase> balance_cases() {
   out.push_back({"paper51", p51, validation::paper51_cable(), Vec3(2.0, 0, 0)});
   Model p52 = validation::example_model("paper-3d-turn");
   out.push_back({"paper52", p52, validation::paper52_cable(), Vec3(1.57, 0, 0)});
-  out.push_back(sphere_case("sphere_pode_ideal", TangentialLaw::Pode, 0.03, AddedMassModel::IdealFluid, 20,
-                            Vec3(1.0, 0.3, 0.0)));
-  out.push_back(sphere_case("sphere_skin_morison", TangentialLaw::Skin, 0.01, AddedMassModel::Morison, 20,
-                            Vec3(1.0, 0, 0)));
+  out.push_back(
+      sphere_case("sphere_pode_ideal", TangentialLaw::Pode, 0.03, AddedMassModel::IdealFluid, 20, Vec3(1.0, 0.3, 0.0)));
+  out.push_back(
+      sphere_case("sphere_skin_morison", TangentialLaw::Skin, 0.01, AddedMassModel::Morison, 20, Vec3(1.0, 0, 0)));
   // Cross current (uniform) on the paper 5.1 model: a three-dimensional configuration.
   BalanceCase cross{"paper51_cross_current", p51, validation::paper51_cable(), Vec3(2.0, 0, 0)};
   cross.model.fluid.current_depth = {0};
   cross.model.fluid.current_velocity = {Vec3(0, 0.5, 0)};
   out.push_back(cross);
   // Depth-profile current (table) on the cable + sphere, ideal fluid, 3D.
-  BalanceCase prof = sphere_case("sphere_profile_current", TangentialLaw::Pode, 0.02, AddedMassModel::IdealFluid,
-                                 20, Vec3(1.5, 0, 0));
+  BalanceCase prof = sphere_case("sphere_profile_current", TangentialLaw::Pode, 0.02, AddedMassModel::IdealFluid, 20,
+                                 Vec3(1.5, 0, 0));
   prof.model.fluid.current_depth = {0, 20, 60};
   prof.model.fluid.current_velocity = {Vec3(-0.5, 0.4, 0), Vec3(-0.2, 0.1, 0), Vec3(0, 0, 0)};
   out.push_back(prof);
@@ -130,8 +130,11 @@ TEST_P(StaticsStillWaterVsCurrent, SameEquilibrium) {
 }
 
 INSTANTIATE_TEST_SUITE_P(StaticsPaper, StaticsStillWaterVsCurrent,
-                         ::testing::Values(InvarianceCase{"paper-planar-a", 2.0}, InvarianceCase{"paper-3d-turn", 1.57}),
-                         [](const auto& info) { return info.param.example == "paper-planar-a" ? "paper51" : "paper52"; });
+                         ::testing::Values(InvarianceCase{"paper-planar-a", 2.0},
+                                           InvarianceCase{"paper-3d-turn", 1.57}),
+                         [](const auto& info) {
+                           return info.param.example == "paper-planar-a" ? "paper51" : "paper52";
+                         });
 
 // ---------------------------------------------------------------------------
 // Galilean invariance, dynamics: (a) towed at V in still water, (b) tow point
@@ -189,7 +192,8 @@ TEST_P(StaticsDynamicInvariance, TowedInStillWaterEqualsHeldInCurrent) {
     const Sample &a = sa.samples[i], &b = sb.samples[i];
     for (std::size_t k = 0; k < a.node_pos.size(); ++k) {
       dP = std::max(dP, ((a.node_pos[k] - a.tow_pos) - (b.node_pos[k] - b.tow_pos)).norm() / Ltot);
-      moved = std::max(moved, ((a.node_pos[k] - a.tow_pos) - (sa.samples[0].node_pos[k] - sa.samples[0].tow_pos)).norm());
+      moved = std::max(moved,
+                       ((a.node_pos[k] - a.tow_pos) - (sa.samples[0].node_pos[k] - sa.samples[0].tow_pos)).norm());
     }
     dF = std::max(dF, (a.tow_force - b.tow_force).norm());
     Fmax = std::max(Fmax, a.tow_force.norm());
@@ -198,8 +202,7 @@ TEST_P(StaticsDynamicInvariance, TowedInStillWaterEqualsHeldInCurrent) {
   std::cout << "[measured] still water vs current run " << c.example << " "
             << (c.formulation == Formulation::Paper ? "paper" : "default") << "/"
             << (c.integrator == Integrator::RK4 ? "rk4" : "dopri5") << ": max|dP|/L=" << dP
-            << ", max|dF_R|/max|F_R|=" << dF << " (cable moved up to " << moved << " m, max|F_R|=" << Fmax
-            << " N)\n";
+            << ", max|dF_R|/max|F_R|=" << dF << " (cable moved up to " << moved << " m, max|F_R|=" << Fmax << " N)\n";
   EXPECT_GT(moved, 0.5);  // the comparison is not trivial: the heave moves the cable
   if (c.integrator == Integrator::RK4) {
     // Same steps: round-off only (measured ~1e-15).
@@ -215,18 +218,19 @@ TEST_P(StaticsDynamicInvariance, TowedInStillWaterEqualsHeldInCurrent) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(StaticsPaper, StaticsDynamicInvariance,
-                         ::testing::Values(DynamicInvarianceCase{"paper-planar-a", 2.0, Integrator::RK4, Formulation::Default},
-                                           DynamicInvarianceCase{"paper-planar-a", 2.0, Integrator::DOPRI5, Formulation::Default},
-                                           DynamicInvarianceCase{"paper-planar-a", 2.0, Integrator::RK4, Formulation::Paper},
-                                           DynamicInvarianceCase{"paper-3d-turn", 1.57, Integrator::RK4, Formulation::Default},
-                                           DynamicInvarianceCase{"paper-3d-turn", 1.57, Integrator::DOPRI5, Formulation::Default}),
-                         [](const auto& info) {
-                           const auto& p = info.param;
-                           return std::string(p.example == "paper-planar-a" ? "paper51" : "paper52") + "_" +
-                                  (p.formulation == Formulation::Paper ? "paper" : "default") + "_" +
-                                  (p.integrator == Integrator::RK4 ? "rk4" : "dopri5");
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    StaticsPaper, StaticsDynamicInvariance,
+    ::testing::Values(DynamicInvarianceCase{"paper-planar-a", 2.0, Integrator::RK4, Formulation::Default},
+                      DynamicInvarianceCase{"paper-planar-a", 2.0, Integrator::DOPRI5, Formulation::Default},
+                      DynamicInvarianceCase{"paper-planar-a", 2.0, Integrator::RK4, Formulation::Paper},
+                      DynamicInvarianceCase{"paper-3d-turn", 1.57, Integrator::RK4, Formulation::Default},
+                      DynamicInvarianceCase{"paper-3d-turn", 1.57, Integrator::DOPRI5, Formulation::Default}),
+    [](const auto& info) {
+      const auto& p = info.param;
+      return std::string(p.example == "paper-planar-a" ? "paper51" : "paper52") + "_" +
+             (p.formulation == Formulation::Paper ? "paper" : "default") + "_" +
+             (p.integrator == Integrator::RK4 ? "rk4" : "dopri5");
+    });
 
 // ---------------------------------------------------------------------------
 // Depth-profile current: statics converges (the balance above covers its
@@ -235,7 +239,7 @@ INSTANTIATE_TEST_SUITE_P(StaticsPaper, StaticsDynamicInvariance,
 // ---------------------------------------------------------------------------
 // Settling: the transient from hanging decays exponentially (drag linearised
 // about the steady flow damps every mode); 600 s leave ~2e-8 here.
-constexpr double kSettleTime = 600;       // [s]
+constexpr double kSettleTime = 600;        // [s]
 constexpr double kSettleTolerance = 1e-6;  // relative, positions / L and tow force (measured 1.7e-8)
 
 TEST(StaticsProfileCurrent, RunsAndSettlesToStatics) {
@@ -260,8 +264,8 @@ TEST(StaticsProfileCurrent, RunsAndSettlesToStatics) {
     dP = std::max(dP, ((last.node_pos[k] - last.tow_pos) - (P[k] - P[0])).norm() / m.cable.total_length());
   const double dF = (last.tow_force - st.tow_force).norm() / st.tow_force.norm();
   std::cout << "[measured] profile current: statics in " << st.iterations << " iterations (residual " << st.residual
-            << "), run from hanging after " << kSettleTime << " s: max|dP|/L=" << dP << ", |dF_R|/|F_R|=" << dF
-            << " (" << rs.steps << " steps)\n";
+            << "), run from hanging after " << kSettleTime << " s: max|dP|/L=" << dP << ", |dF_R|/|F_R|=" << dF << " ("
+            << rs.steps << " steps)\n";
   EXPECT_LT(dP, kSettleTolerance);
   EXPECT_LT(dF, kSettleTolerance);
 }
@@ -289,20 +293,23 @@ TEST_P(StaticsObliqueTow, ConvergesWithBody) {
   std::cout << "[measured] oblique tow " << c.example << " V=" << V.transpose() << ": converged " << r.converged
             << ", residual " << r.residual << " rad/s^2 after " << r.iterations << " iterations\n";
   ASSERT_TRUE(r.converged) << r.message;
-  const validation::LoadSum L = validation::steady_loads(
-      m, c.example == "paper-planar-a" ? validation::paper51_cable() : validation::paper52_cable(), r.state, V);
+  const validation::LoadSum L = validation::steady_loads(m,
+                                                         c.example == "paper-planar-a" ? validation::paper51_cable()
+                                                                                       : validation::paper52_cable(),
+                                                         r.state, V);
   EXPECT_LT((r.tow_force + L.force).norm() / L.force_scale, 1e-12);  // as StaticsBalance
 }
 
-INSTANTIATE_TEST_SUITE_P(StaticsPaper, StaticsObliqueTow,
-                         ::testing::Values(ObliqueCase{"paper-planar-a", 2.0, 0.05}, ObliqueCase{"paper-planar-a", 2.0, 0.2},
-                                           ObliqueCase{"paper-planar-a", 2.0, 0.5}, ObliqueCase{"paper-planar-a", 2.0, 1.0},
-                                           ObliqueCase{"paper-3d-turn", 1.57, 0.05}, ObliqueCase{"paper-3d-turn", 1.57, 0.2},
-                                           ObliqueCase{"paper-3d-turn", 1.57, 0.5}, ObliqueCase{"paper-3d-turn", 1.57, 1.0}),
-                         [](const auto& info) {
-                           return std::string(info.param.example == "paper-planar-a" ? "paper51" : "paper52") + "_vy" +
-                                  std::to_string(static_cast<int>(std::lround(info.param.Vy * 100)));
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    StaticsPaper, StaticsObliqueTow,
+    ::testing::Values(ObliqueCase{"paper-planar-a", 2.0, 0.05}, ObliqueCase{"paper-planar-a", 2.0, 0.2},
+                      ObliqueCase{"paper-planar-a", 2.0, 0.5}, ObliqueCase{"paper-planar-a", 2.0, 1.0},
+                      ObliqueCase{"paper-3d-turn", 1.57, 0.05}, ObliqueCase{"paper-3d-turn", 1.57, 0.2},
+                      ObliqueCase{"paper-3d-turn", 1.57, 0.5}, ObliqueCase{"paper-3d-turn", 1.57, 1.0}),
+    [](const auto& info) {
+      return std::string(info.param.example == "paper-planar-a" ? "paper51" : "paper52") + "_vy" +
+             std::to_string(static_cast<int>(std::lround(info.param.Vy * 100)));
+    });
 
 }  // namespace
 }  // namespace towsim

@@ -25,8 +25,8 @@ constexpr double kCurrent = 0.5;  // current speed [m/s], a quarter of the 4-kno
 
 struct HeadingCase {
   std::string example;
-  bool body;      // keep the example's bodies
-  int headings;   // tow headings spread over 360 degrees
+  bool body;     // keep the example's bodies
+  int headings;  // tow headings spread over 360 degrees
 };
 void PrintTo(const HeadingCase& c, std::ostream* os) { *os << c.example << (c.body ? " with body" : " cable only"); }
 
@@ -84,10 +84,10 @@ TEST_P(StaticsHeadings, ConvergeForEveryHeadingAndCurrent) {
       }
     }
   }
-  std::cout << std::setprecision(3) << "[measured] statics headings " << c.example << (c.body ? " + body" : "")
-            << ": " << 3 * c.headings << " cases converged, worst residual " << worst_residual
-            << " rad/s^2, at most " << max_iterations << " iterations; rotated copies: |dF_R|/|F_R| " << worst_force
-            << ", |de| " << worst_shape << ", |dR_body| " << worst_attitude << "\n";
+  std::cout << std::setprecision(3) << "[measured] statics headings " << c.example << (c.body ? " + body" : "") << ": "
+            << 3 * c.headings << " cases converged, worst residual " << worst_residual << " rad/s^2, at most "
+            << max_iterations << " iterations; rotated copies: |dF_R|/|F_R| " << worst_force << ", |de| " << worst_shape
+            << ", |dR_body| " << worst_attitude << "\n";
   // 1e-7: the equilibria are converged to angular accelerations < 1e-9 rad/s^2
   // (the statics' criterion); the angles they leave undetermined scale as
   // alpha I / (stiffness of the equilibrium) ~ 1e-9 * (m L^2) / (T L) with

@@ -62,8 +62,8 @@ PodeCable theory_of(const PodeCase& c, bool with_munk, double rho = 1025, double
   p.v_s = 1e-3;  // towsim's default sign smoothing speed (exactness; irrelevant here)
   if (c.body_mass > 0) {
     const double r = c.body_radius;
-    p.end_x = 0.5 * rho * c.body_cd * kPi * r * r * c.V * c.V;          // sphere drag
-    p.end_z = (c.body_mass - rho * 4.0 / 3.0 * kPi * r * r * r) * g;     // apparent weight
+    p.end_x = 0.5 * rho * c.body_cd * kPi * r * r * c.V * c.V;        // sphere drag
+    p.end_z = (c.body_mass - rho * 4.0 / 3.0 * kPi * r * r * r) * g;  // apparent weight
   }
   return p;
 }
@@ -227,8 +227,8 @@ TEST(StaticsPodeResolution, SecondOrderOnlyOnceTheEndBendIsResolved) {
   const double bend = std::hypot(theory.end_x, theory.end_z) / theory.R;
   std::ostringstream os;
   os << std::setprecision(4) << "[measured] Pode " << c.name << ": theory T=" << th.tension
-            << " N, angle=" << th.angle * 180 / kPi << " deg, depth=" << th.depth << " m, offset=" << th.offset
-            << " m; end bend length T0/R=" << bend << " m\n   n   L/n [m]  err_T       p      err_depth   p\n";
+     << " N, angle=" << th.angle * 180 / kPi << " deg, depth=" << th.depth << " m, offset=" << th.offset
+     << " m; end bend length T0/R=" << bend << " m\n   n   L/n [m]  err_T       p      err_depth   p\n";
   std::vector<std::array<double, 4>> err;
   const std::vector<int> ns = {10, 20, 40, 80, 160, 320};
   for (std::size_t i = 0; i < ns.size(); ++i) {
@@ -237,10 +237,10 @@ TEST(StaticsPodeResolution, SecondOrderOnlyOnceTheEndBendIsResolved) {
     ASSERT_TRUE(r.converged) << r.message;
     err.push_back(errors(chain_quantities(m, r), th));
     os << std::setw(4) << ns[i] << "   " << std::setw(6) << c.length / ns[i] << "   " << std::scientific
-              << std::setprecision(3) << err[i][0] << "  " << std::fixed << std::setprecision(2)
-              << (i ? validation::observed_order(err[i - 1][0], err[i][0]) : 0.0) << "   " << std::scientific
-              << std::setprecision(3) << err[i][2] << "  " << std::fixed << std::setprecision(2)
-              << (i ? validation::observed_order(err[i - 1][2], err[i][2]) : 0.0) << "\n";
+       << std::setprecision(3) << err[i][0] << "  " << std::fixed << std::setprecision(2)
+       << (i ? validation::observed_order(err[i - 1][0], err[i][0]) : 0.0) << "   " << std::scientific
+       << std::setprecision(3) << err[i][2] << "  " << std::fixed << std::setprecision(2)
+       << (i ? validation::observed_order(err[i - 1][2], err[i][2]) : 0.0) << "\n";
   }
   std::cout << os.str();
   // Unresolved (L/n = 7.5 m > T0/R): still several percent off.
@@ -349,8 +349,8 @@ TEST_P(StaticsCriticalAngle, FreeCableTrailsAtCriticalAngle) {
   std::cout << "[measured] critical angle f=" << c.f << (cc.am == AddedMassModel::Morison ? " Morison" : " ideal")
             << ": phi_c=" << phi_c * 180 / kPi << " deg; elements: top " << phi[0] * 180 / kPi << ", middle "
             << phi[n / 2] * 180 / kPi << ", bottom " << phi[n - 1] * 180 / kPi << " deg; max|phi-phi_c|=" << dmax
-            << " rad; tow tension " << r.tow_force.norm() << " N vs L(w sin phi_c + f R)=" << T_top << " (rel "
-            << eT << ")\n";
+            << " rad; tow tension " << r.tow_force.norm() << " N vs L(w sin phi_c + f R)=" << T_top << " (rel " << eT
+            << ")\n";
   if (cc.am == AddedMassModel::Morison) {
     // Exact at any n: only the statics residual (|alpha| < 1e-10 rad/s^2)
     // and round-off remain; 1e-9 rad / 1e-9 relative.
@@ -371,8 +371,8 @@ TEST_P(StaticsCriticalAngle, FreeCableTrailsAtCriticalAngle) {
       pb -= g / dg;
     }
     std::cout << "   ideal fluid: bottom element predicted " << pb * 180 / kPi << " deg, measured "
-              << phi[n - 1] * 180 / kPi << " deg (diff " << std::abs(phi[n - 1] - pb) << " rad); |phi_top - phi_c|="
-              << std::abs(phi[0] - phi_c) << " rad\n";
+              << phi[n - 1] * 180 / kPi << " deg (diff " << std::abs(phi[n - 1] - pb)
+              << " rad); |phi_top - phi_c|=" << std::abs(phi[0] - phi_c) << " rad\n";
     EXPECT_NEAR(phi[n - 1], pb, 1e-9);
     // Up the cable the tilt dies out within a few elements (measured: the
     // top element at phi_c to ~1e-12 rad; 1e-9 allowed), and the tow tension

@@ -47,8 +47,7 @@ Drift drift(const std::vector<Sample>& ss, double length) {
   const Sample& s0 = ss.front();
   for (const Sample& s : ss) {
     for (std::size_t k = 0; k < s.node_pos.size(); ++k)
-      d.position = std::max(d.position,
-                            ((s.node_pos[k] - s.tow_pos) - (s0.node_pos[k] - s0.tow_pos)).norm() / length);
+      d.position = std::max(d.position, ((s.node_pos[k] - s.tow_pos) - (s0.node_pos[k] - s0.tow_pos)).norm() / length);
     d.force = std::max(d.force, (s.tow_force - s0.tow_force).norm() / s0.tow_force.norm());
   }
   return d;
@@ -79,8 +78,8 @@ TEST_P(StaticsSteadyRun, StartedSteadyStaysStill) {
   const StaticsResult st = solve_statics(m, Vec3(c.V, 0, 0));
   const double dF0 = (s0.tow_force - st.tow_force).norm() / st.tow_force.norm();
   std::cout << "[measured] steady start " << case_name(c) << ": over 60 s max|dP|/L=" << d.position
-            << ", max|dF_R|/|F_R|=" << d.force << "; F_R(0)=" << s0.tow_force.transpose()
-            << " N vs statics (rel " << dF0 << "), " << rs.steps << " steps\n";
+            << ", max|dF_R|/|F_R|=" << d.force << "; F_R(0)=" << s0.tow_force.transpose() << " N vs statics (rel "
+            << dF0 << "), " << rs.steps << " steps\n";
   // 1e-6 relative (docs/validation.md §5): the statics equilibrium leaves |alpha| < 1e-10
   // rad/s^2, a drift of 1/2 alpha t^2 ~ 2e-7 rad over 60 s at worst, and a
   // fixed point of the equations is one of RK4 and DOPRI5 too. Measured far
@@ -142,8 +141,8 @@ TEST_P(StaticsSettling, RunFromHangingSettlesToStatics) {
     dPb = ((s.bodies[0].pos - s.tow_pos) - (O - P[0])).norm() / Ltot;
   }
   std::cout << "[measured] settling " << c.example << " at " << c.V << " m/s: after " << c.settle_time
-            << " s max|dP|/L=" << dP << ", body |dO|/L=" << dPb << ", |dF_R|/|F_R|=" << dF << " ("
-            << rs.steps << " steps, " << rs.rhs_evaluations << " evaluations)\n";
+            << " s max|dP|/L=" << dP << ", body |dO|/L=" << dPb << ", |dF_R|/|F_R|=" << dF << " (" << rs.steps
+            << " steps, " << rs.rhs_evaluations << " evaluations)\n";
   // 1e-7 relative: the transient decays exponentially (measured time
   // constants ~19 s for 5.1 and ~32 s for 5.2, after a first swing-up of
   // ~100-250 s; docs/validation.md), so the settling times leave ~1e-9; the
@@ -155,8 +154,11 @@ TEST_P(StaticsSettling, RunFromHangingSettlesToStatics) {
 }
 
 INSTANTIATE_TEST_SUITE_P(StaticsPaper, StaticsSettling,
-                         ::testing::Values(SettleCase{"paper-planar-a", 2.0, 400}, SettleCase{"paper-3d-turn", 1.57, 800}),
-                         [](const auto& info) { return info.param.example == "paper-planar-a" ? "paper51" : "paper52"; });
+                         ::testing::Values(SettleCase{"paper-planar-a", 2.0, 400},
+                                           SettleCase{"paper-3d-turn", 1.57, 800}),
+                         [](const auto& info) {
+                           return info.param.example == "paper-planar-a" ? "paper51" : "paper52";
+                         });
 
 }  // namespace
 }  // namespace towsim

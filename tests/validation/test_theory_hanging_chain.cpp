@@ -24,8 +24,8 @@ constexpr double kLength = 10.0;        // total chain length [m]
 constexpr double kMassPerLength = 1.0;  // [kg/m]
 
 struct ModeCase {
-  int n;        // links
-  int mode;     // 1 = slowest
+  int n;     // links
+  int mode;  // 1 = slowest
   Formulation formulation;
 };
 void PrintTo(const ModeCase& c, std::ostream* os) { *os << "n=" << c.n << " mode " << c.mode; }
@@ -95,8 +95,8 @@ TEST_P(TheoryHangingChain, SimulatedFrequencyMatchesLinearisedChain) {
   const double err = std::abs(T_sim - T_lin) / T_lin;
   std::ostringstream os;
   os << std::setprecision(10) << "[measured] hanging chain n=" << c.n << " mode " << c.mode << " "
-            << (c.formulation == Formulation::Paper ? "paper" : "default") << ": w_lin=" << w_lin
-            << " rad/s, T_lin=" << T_lin << " s, T_sim=" << T_sim << " s, rel err " << std::setprecision(3) << err << "\n";
+     << (c.formulation == Formulation::Paper ? "paper" : "default") << ": w_lin=" << w_lin << " rad/s, T_lin=" << T_lin
+     << " s, T_sim=" << T_sim << " s, rel err " << std::setprecision(3) << err << "\n";
   std::cout << os.str();
   // 1e-7 relative: the amplitude's (nonlinear) frequency shift is
   // O(eps^2) = 4e-8 (measured: the error scales as eps^2, 8.6e-7 at eps =
@@ -131,10 +131,9 @@ TEST(TheoryHangingChainLimit, LinearisedChainConvergesToBesselFrequencies) {
   if (out) *out << "# n rel_err_mode1 rel_err_mode2 rel_err_mode3 (linearised chain vs continuous, Bessel J0)\n";
   std::ostringstream os;
   os << std::setprecision(6) << "[measured] hanging chain vs continuous: w_k = (j0k/2) sqrt(g/L) = "
-            << validation::continuous_chain_omega(1, kLength, kG) << ", "
-            << validation::continuous_chain_omega(2, kLength, kG) << ", "
-            << validation::continuous_chain_omega(3, kLength, kG) << " rad/s\n"
-            << "   n    w1          err1        p     w2          err2        p     w3          err3        p\n";
+     << validation::continuous_chain_omega(1, kLength, kG) << ", " << validation::continuous_chain_omega(2, kLength, kG)
+     << ", " << validation::continuous_chain_omega(3, kLength, kG) << " rad/s\n"
+     << "   n    w1          err1        p     w2          err2        p     w3          err3        p\n";
   for (std::size_t i = 0; i < ns.size(); ++i) {
     const int n = ns[i];
     const auto modes = validation::hanging_chain_modes(n, kLength / n, kMassPerLength * kLength / n, kG);
@@ -144,7 +143,7 @@ TEST(TheoryHangingChainLimit, LinearisedChainConvergesToBesselFrequencies) {
       const double wc = validation::continuous_chain_omega(k, kLength, kG);
       e[k - 1] = std::abs(modes.omega[k - 1] - wc) / wc;
       os << "  " << std::fixed << std::setprecision(6) << modes.omega[k - 1] << "  " << std::scientific
-                << std::setprecision(3) << e[k - 1] << "  " << std::fixed << std::setprecision(2);
+         << std::setprecision(3) << e[k - 1] << "  " << std::fixed << std::setprecision(2);
       if (i > 0) {
         os << std::setw(4) << validation::observed_order(err.back()[k - 1], e[k - 1]);
       } else {

@@ -8,13 +8,13 @@
 #include <numbers>
 #include <random>
 
+#include "../support/models.hpp"
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/scenario/examples.hpp"
 #include "towsim/scenario/scenario.hpp"
-#include "towsim/sim/statics.hpp"
 #include "towsim/sim/simulate.hpp"
+#include "towsim/sim/statics.hpp"
 #include "towsim/sim/winch_events.hpp"
-#include "../support/models.hpp"
 
 namespace towsim {
 namespace {
@@ -165,7 +165,8 @@ void lowering(double c, bool length_table = false, Integrator integ = Integrator
     const double speed = length_table && (s.t < 10 || s.t >= 40) ? 0.0 : c;  // samples after each jump
     EXPECT_DOUBLE_EQ(s.payout_speed, speed) << "t = " << s.t;
     if (speed != c) {
-      const double W = (mpl - rho * std::numbers::pi * D * D / 4) * g * L + (200.0 - rho * 4.0 / 3 * std::numbers::pi * 0.027) * g;
+      const double W = (mpl - rho * std::numbers::pi * D * D / 4) * g * L +
+                       (200.0 - rho * 4.0 / 3 * std::numbers::pi * 0.027) * g;
       EXPECT_NEAR(s.tow_force.z(), W, 1e-9 * W) << "t = " << s.t;
       continue;
     }
@@ -276,8 +277,7 @@ TEST(Winch, RemovalImpulseEnergy) {
   const double E = kinetic_energy(m, s, w1);
   EXPECT_GT(r.energy_lost, 0);
   EXPECT_LT(r.energy_lost, 0.05 * E);
-  std::printf("removal: energy lost %.4g J of %.4g J (removed element %.3g J)\n", r.energy_lost, E,
-              r.removed_energy);
+  std::printf("removal: energy lost %.4g J of %.4g J (removed element %.3g J)\n", r.energy_lost, E, r.removed_energy);
 }
 
 // Tension control on a load hanging in vacuum: cable and body fall as one

@@ -11,12 +11,12 @@
 #include <numbers>
 #include <random>
 
+#include "../support/models.hpp"
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/scenario/examples.hpp"
 #include "towsim/scenario/scenario.hpp"
 #include "towsim/sim/simulate.hpp"
 #include "towsim/sim/winch_events.hpp"
-#include "../support/models.hpp"
 
 namespace towsim {
 namespace {
@@ -269,8 +269,8 @@ TEST(ElasticWinch, TensionControlHoldsTheTopElementsTension) {
     worst_v = std::max(worst_v, std::abs(s.payout_speed - v) / v);
     worst_T = std::max(worst_T, std::abs(s.tow_force.norm() - (Tset + Md * f(L))) / Tset);
   }
-  std::printf("tension control: pay-out speed within %.2e, sheave tension within %.2e of the rigid-body law\n",
-              worst_v, worst_T);
+  std::printf("tension control: pay-out speed within %.2e, sheave tension within %.2e of the rigid-body law\n", worst_v,
+              worst_T);
   // What is left: the stretch's slow change (strain ~ 5e-4 varying with
   // the tension as L grows) and the damped ringing; 1e-3 bounds both.
   EXPECT_LT(worst_v, 1e-3);

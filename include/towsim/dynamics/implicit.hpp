@@ -19,16 +19,16 @@ namespace towsim {
 /// part (an elastic element's stretch, a seabed spring at a joint) adds its
 /// own entries here and its own terms in `implicit_stage_solve`.
 struct LocalJacobian {
-  std::vector<Mat3> element_damping;     // C_k = -dF_k/dv(G_k), drag at G_k [kg/s, R_g]
-  std::vector<double> element_stiffness; // K_k, rocking stiffness of element k about its top joint
-                                         // (geometric: axial force times length) [N m/rad]
-  std::vector<Mat3> joint_damping;       // attachments and seabed at joint k: -dF_a/dv(P_k) [kg/s, R_g]
-  std::vector<Mat3> joint_stiffness;     // seabed spring at joint k: -dF_s/dx(P_k) [N/m, R_g]
-  std::vector<Mat3> bodyq_damping;       // seabed at body b's link point Q (end body's P_n, or an
-  std::vector<Mat3> bodyq_stiffness;     //   in-line body's upper link): [kg/s], [N/m], R_g
-  std::vector<Mat6> body_damping;        // -d(F; M about O_t)/d(v_O; omega_B) [SI, R_g]
-  std::vector<Mat3> body_stiffness;      // rotation of the body about its link point Q, loads held
-                                         // in space: moment per radian [N m/rad, R_g]
+  std::vector<Mat3> element_damping;      // C_k = -dF_k/dv(G_k), drag at G_k [kg/s, R_g]
+  std::vector<double> element_stiffness;  // K_k, rocking stiffness of element k about its top joint
+                                          // (geometric: axial force times length) [N m/rad]
+  std::vector<Mat3> joint_damping;        // attachments and seabed at joint k: -dF_a/dv(P_k) [kg/s, R_g]
+  std::vector<Mat3> joint_stiffness;      // seabed spring at joint k: -dF_s/dx(P_k) [N/m, R_g]
+  std::vector<Mat3> bodyq_damping;        // seabed at body b's link point Q (end body's P_n, or an
+  std::vector<Mat3> bodyq_stiffness;      //   in-line body's upper link): [kg/s], [N/m], R_g
+  std::vector<Mat6> body_damping;         // -d(F; M about O_t)/d(v_O; omega_B) [SI, R_g]
+  std::vector<Mat3> body_stiffness;       // rotation of the body about its link point Q, loads held
+                                          // in space: moment per radian [N m/rad, R_g]
   // Seabed at body b's own hull points: -d(F; M about O_t)/d(v_O; omega_B) and
   // -d(F; M about O_t)/d(x_O; theta) [SI, R_g] (body_contact_local_jacobian).
   std::vector<Mat6> body_contact_damping;
@@ -38,8 +38,8 @@ struct LocalJacobian {
 /// Per-part hook, element: drag damping at G and rocking stiffness, from the
 /// loads of the last evaluation. F: the element's loads at G [N]; f_bottom:
 /// the force through its bottom joint onto the part below [N, R_g].
-void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG,
-                            const Vec3& xG, double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K);
+void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG, const Vec3& xG,
+                            double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K);
 
 /// Per-part hook, body: damping C (6x6 on v_O, omega_B) and rotational
 /// stiffness K about the link point Q, by central differences of its loads
@@ -53,8 +53,7 @@ Mat3 attachment_local_damping(const Model& model, const Attachment& a, const Vec
 /// `length` [m] in contact (0: none) and bears the contact force f [N, R_g]:
 /// C += c l n n^T + the friction's slope mu |F_n| d(u_t/q)/du_t, K += k l n n^T
 /// (n: the bottom normal; the friction's dependence on the penetration is left out).
-void seabed_local_terms(const Seabed& sb, const Vec3& p, const Vec3& v, double length, const Vec3& f, Mat3& C,
-                        Mat3& K);
+void seabed_local_terms(const Seabed& sb, const Vec3& p, const Vec3& v, double length, const Vec3& f, Mat3& C, Mat3& K);
 
 /// Per-part hook, a body's own seabed contact (its hull points, hull_points):
 /// each point p in contact adds its seabed_local_terms (C_p, K_p) through
@@ -70,31 +69,31 @@ struct ImplicitWorkspace {
   explicit ImplicitWorkspace(const Model& model);
   LocalJacobian jac;
   // Right-hand side of one stage solve, as loads (built from the increments):
-  std::vector<Vec3> F, Mom;   // per element: force at G [N] and couple [N m], R_g
-  std::vector<Vec3> Fa;       // per joint (attachments) [N, R_g]
-  std::vector<Vec3> Fb, Mb;   // per body: force and moment about O_t [N], [N m], R_g
-  std::vector<Vec3> FQ;       // per body: seabed force at its link point Q [N, R_g]
-  std::vector<Vec3> Fd;       // per elastic element: spring and axial damper force on d_k [N, R_g]
+  std::vector<Vec3> F, Mom;  // per element: force at G [N] and couple [N m], R_g
+  std::vector<Vec3> Fa;      // per joint (attachments) [N, R_g]
+  std::vector<Vec3> Fb, Mb;  // per body: force and moment about O_t [N], [N m], R_g
+  std::vector<Vec3> FQ;      // per body: seabed force at its link point Q [N, R_g]
+  std::vector<Vec3> Fd;      // per elastic element: spring and axial damper force on d_k [N, R_g]
   // Recursion with modified inertias (zero velocities: no centripetal terms).
-  std::vector<Mat3> K;        // f_k = K_k a_k + b_k [kg] (k = 0..n)
-  std::vector<Vec3> b;        // [N]
+  std::vector<Mat3> K;  // f_k = K_k a_k + b_k [kg] (k = 0..n)
+  std::vector<Vec3> b;  // [N]
   // Factorisation (implicit_factor: depends on hg and the Jacobian point only):
-  std::vector<Eigen::Matrix<double, 3, 2>> T;      // tangent basis [-]
-  std::vector<Eigen::Matrix2d> Phi;                // inverse rotational block [1/(kg m^2)]
-  std::vector<Eigen::Matrix<double, 3, 2>> H;      // G T Phi [1/m]
-  std::vector<Mat3> TH;                            // T H^T = T Phi (G T)^T: beta's slope on the top
-                                                   // joint's acceleration, beta = q - TH a [1/m]
-  std::vector<Mat3> bPhi, bC, bKQ;                 // per body: as BodyWork, modified inertia
-  std::vector<Mat3> EAinv, EG;                     // per elastic element: as ElasticWork, modified
-                                                   // (A^-1 [1/kg], G [kg])
-  std::vector<Vec3> Er;                            // per elastic element: d-equation's right side [N]
-  double hg = -1;                                  // h gamma of the factorisation [s]; < 0: none
+  std::vector<Eigen::Matrix<double, 3, 2>> T;  // tangent basis [-]
+  std::vector<Eigen::Matrix2d> Phi;            // inverse rotational block [1/(kg m^2)]
+  std::vector<Eigen::Matrix<double, 3, 2>> H;  // G T Phi [1/m]
+  std::vector<Mat3> TH;                        // T H^T = T Phi (G T)^T: beta's slope on the top
+                                               // joint's acceleration, beta = q - TH a [1/m]
+  std::vector<Mat3> bPhi, bC, bKQ;             // per body: as BodyWork, modified inertia
+  std::vector<Mat3> EAinv, EG;                 // per elastic element: as ElasticWork, modified
+                                               // (A^-1 [1/kg], G [kg])
+  std::vector<Vec3> Er;                        // per elastic element: d-equation's right side [N]
+  double hg = -1;                              // h gamma of the factorisation [s]; < 0: none
   // Right-hand-side sweeps (implicit_stage_solve):
-  std::vector<Eigen::Vector2d> Tr0;                // T^T r_0 [N m]
-  std::vector<Vec3> q;                             // T Phi T^T r_0, beta at zero joint acceleration [rad/s]
-  std::vector<Vec3> brhs, bbQ;                     // per body [N m], [N]
-  std::vector<Vec3> dvP;                           // velocity increments of the joints [m/s]
-  std::vector<Vec3> dxP;                           // position increments of the joints [m]
+  std::vector<Eigen::Vector2d> Tr0;  // T^T r_0 [N m]
+  std::vector<Vec3> q;               // T Phi T^T r_0, beta at zero joint acceleration [rad/s]
+  std::vector<Vec3> brhs, bbQ;       // per body [N m], [N]
+  std::vector<Vec3> dvP;             // velocity increments of the joints [m/s]
+  std::vector<Vec3> dxP;             // position increments of the joints [m]
   // Solution: tow point (Force mode) and angular increments (z below).
   Vec3 a0 = Vec3::Zero();     // [m/s] (0 in Motion mode)
   std::vector<Vec3> alpha;    // per element, normal to e_k [rad/s]
@@ -108,26 +107,25 @@ struct ImplicitWorkspace {
 /// Velocity-side inputs of one stage solve (increments r_v of the velocities
 /// and the rotation vectors of the position increments r_x, all R_g).
 struct StageRhs {
-  Vec3 dv0 = Vec3::Zero();        // tow point velocity increment (Force mode) [m/s]
-  Vec3 dx0 = Vec3::Zero();        // tow point position increment (Force mode) [m]
-  std::vector<Vec3> dw;           // per element: omega increment [rad/s]
-  std::vector<Vec3> rot;          // per element: e_k x (increment of e_k) [rad]
-  std::vector<Vec3> dwb;          // per body: omega_B increment [rad/s]
-  std::vector<Vec3> rotb;         // per body: rotation vector of the attitude increment [rad]
-  std::vector<double> dl, dlr;    // per element: increments of l_k [m] and l_k' [m/s] (elastic; else 0)
+  Vec3 dv0 = Vec3::Zero();             // tow point velocity increment (Force mode) [m/s]
+  Vec3 dx0 = Vec3::Zero();             // tow point position increment (Force mode) [m]
+  std::vector<Vec3> dw;                // per element: omega increment [rad/s]
+  std::vector<Vec3> rot;               // per element: e_k x (increment of e_k) [rad]
+  std::vector<Vec3> dwb;               // per body: omega_B increment [rad/s]
+  std::vector<Vec3> rotb;              // per body: rotation vector of the attitude increment [rad]
+  std::vector<double> dl, dlr;         // per element: increments of l_k [m] and l_k' [m/s] (elastic; else 0)
   double winch_dl = 0, winch_dlr = 0;  // tension-controlled winch: increments of l_1 [m] and l_1' [m/s]
   // Winch over an elastic top element: the increments of L_1, L_1' times
   // l_1/L_1, as its spring and damper see them (T depends on l_1 - lam L_1).
-  double top_dL = 0;              // [m]
-  double top_dLr = 0;             // [m/s]
+  double top_dL = 0;   // [m]
+  double top_dLr = 0;  // [m/s]
 };
 
 /// Factorise M + hg C + hg^2 K in O(n): the backward pass of the recursion
 /// (articulated inertias K_k, rotation blocks Phi) with modified inertias.
 /// `ws` holds the evaluation at the state s the Jacobian iw.jac belongs to
 /// (kinematics, inertias). Valid for every stage solve with the same hg.
-void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
-                     ImplicitWorkspace& iw);
+void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg, ImplicitWorkspace& iw);
 
 /// Solve (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K r_x in O(n)
 /// (r_x: the rotations rot(r_x), and the joints' displacements for springs at joints)
@@ -137,7 +135,7 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
 /// velocities is then r_v + z. A tension-controlled winch with the tow point
 /// held adds its pay-out l_1' as a prismatic joint at the top with inertia
 /// M_d + hg c (drum, damping c): its increment in iw.z_winch.
-void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
-                          const StageRhs& r, ImplicitWorkspace& iw);
+void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg, const StageRhs& r,
+                          ImplicitWorkspace& iw);
 
 }  // namespace towsim

@@ -16,9 +16,9 @@ namespace towsim {
 /// Coordinates of the paper's formulation, with their charts.
 struct PaperState {
   Vec3 r0 = Vec3::Zero(), v0 = Vec3::Zero();  // tow point [m], [m/s], R_g
-  Eigen::VectorXd q, qd;  // [theta_1, psi_1, ..., theta_n, psi_n, (yaw, pitch, roll)] [rad], [rad/s]
-  std::vector<Mat3> chart;           // element pole frames: local -> R_g (pole = third column)
-  Mat3 body_chart = Mat3::Identity();// body reference frame: R = body_chart Rz Ry Rx
+  Eigen::VectorXd q, qd;               // [theta_1, psi_1, ..., theta_n, psi_n, (yaw, pitch, roll)] [rad], [rad/s]
+  std::vector<Mat3> chart;             // element pole frames: local -> R_g (pole = third column)
+  Mat3 body_chart = Mat3::Identity();  // body reference frame: R = body_chart Rz Ry Rx
 };
 
 /// Dense workspace for the paper's formulation.

@@ -11,18 +11,18 @@ namespace towsim {
 
 /// Attitude and angular velocity of one rigid body of the chain.
 struct BodyState {
-  Quat q = Quat::Identity();  // attitude: body axes -> R_g
-  Vec3 w = Vec3::Zero();      // angular velocity omega_B [rad/s, R_g]
+  Quat q = Quat::Identity();             // attitude: body axes -> R_g
+  Vec3 w = Vec3::Zero();                 // angular velocity omega_B [rad/s, R_g]
   std::vector<ControlState> controls{};  // per surface with a depth controller, in surface order
 };
 
 /// Configuration and velocities in physical (chart-free) variables.
 /// Every formulation maps its own coordinates to and from this.
 struct PhysicalState {
-  Vec3 r0 = Vec3::Zero();     // tow point O_r = P_0 [m, R_g]
-  Vec3 v0 = Vec3::Zero();     // its velocity [m/s, R_g]
-  std::vector<Vec3> e;        // e_k, unit vector P_{k-1} -> P_k, k = 1..n at index k-1 [-, R_g]
-  std::vector<Vec3> w;        // omega_k, angular velocity of element k, perpendicular to e_k [rad/s, R_g]
+  Vec3 r0 = Vec3::Zero();         // tow point O_r = P_0 [m, R_g]
+  Vec3 v0 = Vec3::Zero();         // its velocity [m/s, R_g]
+  std::vector<Vec3> e;            // e_k, unit vector P_{k-1} -> P_k, k = 1..n at index k-1 [-, R_g]
+  std::vector<Vec3> w;            // omega_k, angular velocity of element k, perpendicular to e_k [rad/s, R_g]
   std::vector<BodyState> bodies;  // one per Model::bodies entry, same order
   // Current joint-to-joint length of each element and its rate (index k-1):
   // Element::length and 0 unless a winch (the top element) or elasticity
@@ -50,47 +50,47 @@ struct PhysicalState {
 
 /// Everything the dynamics compute at one instant (outputs of one evaluation).
 struct Accelerations {
-  Vec3 a0 = Vec3::Zero();         // tow point acceleration [m/s^2, R_g]
-  std::vector<Vec3> alpha;        // element angular accelerations, perpendicular to e_k [rad/s^2, R_g]
-  std::vector<double> length_acc; // l_k'', element length accelerations (0: inextensible) [m/s^2]
-  std::vector<Vec3> alpha_b;      // body angular accelerations, per body [rad/s^2, R_g]
-  Vec3 tow_force = Vec3::Zero();  // F_R on the cable at O_r [N, R_g]
-  double top_length_acc = 0;      // winch: l_1'' of the top element (imposed or from the drum) [m/s^2]
-  std::vector<Vec3> link_force;   // F_L on each body at its link point Q, from the cable above [N, R_g]
+  Vec3 a0 = Vec3::Zero();              // tow point acceleration [m/s^2, R_g]
+  std::vector<Vec3> alpha;             // element angular accelerations, perpendicular to e_k [rad/s^2, R_g]
+  std::vector<double> length_acc;      // l_k'', element length accelerations (0: inextensible) [m/s^2]
+  std::vector<Vec3> alpha_b;           // body angular accelerations, per body [rad/s^2, R_g]
+  Vec3 tow_force = Vec3::Zero();       // F_R on the cable at O_r [N, R_g]
+  double top_length_acc = 0;           // winch: l_1'' of the top element (imposed or from the drum) [m/s^2]
+  std::vector<Vec3> link_force;        // F_L on each body at its link point Q, from the cable above [N, R_g]
   std::vector<Vec3> lower_link_force;  // force of each in-line body on the cable below at Q2 [N, R_g]
                                        // (zero for the end body)
-  std::vector<Vec3> joint_force;  // f_k, force through joint k on the part below it, k = 0..n;
-                                  // at an in-line body's joint: through its lower link Q2 [N, R_g]
+  std::vector<Vec3> joint_force;       // f_k, force through joint k on the part below it, k = 0..n;
+                                       // at an in-line body's joint: through its lower link Q2 [N, R_g]
 };
 
 /// Intermediate results of one rigid body (index b of Model::bodies).
 struct BodyWork {
   // Kinematics
-  Mat3 R = Mat3::Identity();    // rotation, body axes -> R_g [-]
-  Vec3 rQ = Vec3::Zero();       // Q - O_t [m, R_g]
-  Vec3 rQ2 = Vec3::Zero();      // Q2 - O_t (in-line body's lower link) [m, R_g]
-  Vec3 O = Vec3::Zero();        // body origin O_t [m, R_g]
-  Vec3 vO = Vec3::Zero();       // its velocity [m/s, R_g]
-  Vec3 Q = Vec3::Zero();        // link point Q = bottom of the element above [m, R_g]
-  Vec3 vQ = Vec3::Zero();       // its velocity [m/s, R_g]
-  Vec3 w = Vec3::Zero();        // angular velocity omega_B [rad/s, R_g]
+  Mat3 R = Mat3::Identity();         // rotation, body axes -> R_g [-]
+  Vec3 rQ = Vec3::Zero();            // Q - O_t [m, R_g]
+  Vec3 rQ2 = Vec3::Zero();           // Q2 - O_t (in-line body's lower link) [m, R_g]
+  Vec3 O = Vec3::Zero();             // body origin O_t [m, R_g]
+  Vec3 vO = Vec3::Zero();            // its velocity [m/s, R_g]
+  Vec3 Q = Vec3::Zero();             // link point Q = bottom of the element above [m, R_g]
+  Vec3 vQ = Vec3::Zero();            // its velocity [m/s, R_g]
+  Vec3 w = Vec3::Zero();             // angular velocity omega_B [rad/s, R_g]
   std::vector<double> deflection{};  // applied deflection of each controlled surface (BodyState::controls) [rad]
   // d(momentum, moment of momentum about O_t)/dt = Mw [a_O; alpha] + hw
-  Mat6 Mw = Mat6::Zero();       // [kg, kg m, kg m^2] blocks, R_g
-  Vec6 hw = Vec6::Zero();       // [N; N m], R_g
-  Vec3 Fb = Vec3::Zero();       // external force but the links' [N, R_g]
-  Vec3 Mb = Vec3::Zero();       // its moment about O_t [N m, R_g]
-  Vec3 Fs_q = Vec3::Zero();     // in-line body: seabed force on the cable's half-element at Q (in Fb) [N, R_g]
-  double ls_q = 0;              // that half-element's length in contact [m]
+  Mat6 Mw = Mat6::Zero();    // [kg, kg m, kg m^2] blocks, R_g
+  Vec6 hw = Vec6::Zero();    // [N; N m], R_g
+  Vec3 Fb = Vec3::Zero();    // external force but the links' [N, R_g]
+  Vec3 Mb = Vec3::Zero();    // its moment about O_t [N m, R_g]
+  Vec3 Fs_q = Vec3::Zero();  // in-line body: seabed force on the cable's half-element at Q (in Fb) [N, R_g]
+  double ls_q = 0;           // that half-element's length in contact [m]
   // Articulated quantities (docs/theory.md "Bodies in the chain"):
-  Mat6 Me = Mat6::Zero();       // Mw plus the cable below seen at Q2 [SI, R_g]
-  Vec6 he = Vec6::Zero();       // hw plus the cable below's bias [N; N m]
-  Mat3 Phi = Mat3::Zero();      // (inertia about Q after elimination)^-1 [1/(kg m^2)]
-  Mat3 C = Mat3::Zero();        // coupling of a_Q into the moment about Q [kg m]
-  Vec3 rhs = Vec3::Zero();      // known moment about Q [N m]
-  Vec3 wcent = Vec3::Zero();    // centripetal part of a_O - a_Q [m/s^2]
-  Mat3 KQ = Mat3::Zero();       // F_L = KQ a_Q + bQ [kg]
-  Vec3 bQ = Vec3::Zero();       // [N]
+  Mat6 Me = Mat6::Zero();     // Mw plus the cable below seen at Q2 [SI, R_g]
+  Vec6 he = Vec6::Zero();     // hw plus the cable below's bias [N; N m]
+  Mat3 Phi = Mat3::Zero();    // (inertia about Q after elimination)^-1 [1/(kg m^2)]
+  Mat3 C = Mat3::Zero();      // coupling of a_Q into the moment about Q [kg m]
+  Vec3 rhs = Vec3::Zero();    // known moment about Q [N m]
+  Vec3 wcent = Vec3::Zero();  // centripetal part of a_O - a_Q [m/s^2]
+  Mat3 KQ = Mat3::Zero();     // F_L = KQ a_Q + bQ [kg]
+  Vec3 bQ = Vec3::Zero();     // [N]
 };
 
 /// Preallocated intermediate results: kinematics, loads and the recursion's
@@ -98,32 +98,32 @@ struct BodyWork {
 /// evaluation); `fits(model)` is checked at the entry of the dynamics.
 struct Workspace {
   // Kinematics (index k = 0..n for joints; k-1 for element k)
-  std::vector<Vec3> P, vP;      // top joint of element k+1 (P_n: the cable end) and velocity [m], [m/s], R_g
-                                // (at an in-line body's joint: its lower link Q2)
-  std::vector<Vec3> G, vG;      // element centres G_k and velocities [m], [m/s], R_g
-  std::vector<Vec3> edot;       // de_k/dt = omega_k x e_k [1/s, R_g]
-  std::vector<double> L;        // current length of element k (index k-1) [m]
+  std::vector<Vec3> P, vP;  // top joint of element k+1 (P_n: the cable end) and velocity [m], [m/s], R_g
+                            // (at an in-line body's joint: its lower link Q2)
+  std::vector<Vec3> G, vG;  // element centres G_k and velocities [m], [m/s], R_g
+  std::vector<Vec3> edot;   // de_k/dt = omega_k x e_k [1/s, R_g]
+  std::vector<double> L;    // current length of element k (index k-1) [m]
   // Winch: the top element at its current length (scaled_element), and the
   // velocity of its material at the sheave, v_0 + l' e_1.
   // Over an elastic top element: scaled to the paid-out L_1, and the
   // material leaves the sheave at v_0 + (l_1/L_1) L_1' e_1.
-  bool winch = false;           // true when element 1 is the winch's [-]
-  Element top{};                // element 1 scaled to l_1 (elastic: to L_1) [SI]
-  Vec3 v_top = Vec3::Zero();    // [m/s, R_g]
+  bool winch = false;         // true when element 1 is the winch's [-]
+  Element top{};              // element 1 scaled to l_1 (elastic: to L_1) [SI]
+  Vec3 v_top = Vec3::Zero();  // [m/s, R_g]
   // Loads on each element at G_k, added-mass acceleration terms excluded
-  std::vector<Vec3> F, Mom;     // force [N] and moment about G_k [N m], R_g
-  std::vector<Mat3> Mt;         // translational inertia m I + ma (I - ee^T) [kg]
+  std::vector<Vec3> F, Mom;  // force [N] and moment about G_k [N m], R_g
+  std::vector<Mat3> Mt;      // translational inertia m I + ma (I - ee^T) [kg]
   // Attachments: inertia and known force at their joint (index k = 0..n)
-  std::vector<Mat3> Ma;         // summed mass + added mass [kg]
-  std::vector<Vec3> Fa;         // summed loads [N, R_g]
+  std::vector<Mat3> Ma;  // summed mass + added mass [kg]
+  std::vector<Vec3> Fa;  // summed loads [N, R_g]
   // Seabed contact (seabed_loads; zero without a seabed), at P_k (index k = 0..n):
-  std::vector<Vec3> Fs;         // force on the cable there, normal + friction [N, R_g] (in Fa; in the end body's Fb at Q)
-  std::vector<double> ls;       // length of cable in contact that the joint represents [m]
-  double seabed_normal = 0;     // sum of |normal force| over the cable and the bodies [N]
-  double seabed_friction = 0;   // sum of |friction force| over the cable and the bodies [N]
+  std::vector<Vec3> Fs;      // force on the cable there, normal + friction [N, R_g] (in Fa; in the end body's Fb at Q)
+  std::vector<double> ls;    // length of cable in contact that the joint represents [m]
+  double seabed_normal = 0;  // sum of |normal force| over the cable and the bodies [N]
+  double seabed_friction = 0;  // sum of |friction force| over the cable and the bodies [N]
   // Articulated quantities of the recursion (index k = 0..n)
-  std::vector<Mat3> K;          // f_k = K_k a_{P_k} + b_k [kg]
-  std::vector<Vec3> b;          // [N]
+  std::vector<Mat3> K;  // f_k = K_k a_{P_k} + b_k [kg]
+  std::vector<Vec3> b;  // [N]
   // Per element (index k-1), in the tangent basis T = [t1 t2] normal to e_k:
   std::vector<Eigen::Matrix<double, 3, 2>> T;   // tangent basis [-]
   std::vector<Eigen::Matrix<double, 3, 2>> GT;  // G T, G = (L/2) Mt + L K_k [kg m]
@@ -131,10 +131,10 @@ struct Workspace {
   std::vector<Eigen::Vector2d> Tr0;             // T^T r_0 (moment of the known loads) [N m]
   std::vector<Vec3> c;                          // centripetal part of d2e/dt2: -|w|^2 e [1/s^2]
   std::vector<ElasticWork> elastic;             // elastic elements' articulated quantities and tension
-  std::vector<BodyWork> body;   // per Model::bodies entry
-  std::vector<int> body_at;     // index of the body hanging at joint k, or -1 (k = 0..n)
-  Accelerations acc;            // result of the last evaluation
-  CourseCache course;           // the tow's course segments, kept between evaluations
+  std::vector<BodyWork> body;                   // per Model::bodies entry
+  std::vector<int> body_at;                     // index of the body hanging at joint k, or -1 (k = 0..n)
+  Accelerations acc;                            // result of the last evaluation
+  CourseCache course;                           // the tow's course segments, kept between evaluations
 
   /// Allocate for a model.
   explicit Workspace(const Model& model);

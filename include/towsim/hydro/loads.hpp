@@ -14,8 +14,8 @@ double smooth_sign(double x, double v_s);
 /// the added mass are NOT included: they belong to the mass matrix Mt, Ia.
 /// e: unit axis, edot = de/dt, vG: velocity of G, xG: position of G [m, R_g],
 /// t: time [s]. Outputs: F [N, R_g] and moment about G, M [N m, R_g].
-void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot,
-                   const Vec3& vG, const Vec3& xG, double t, Vec3& F, Vec3& M);
+void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot, const Vec3& vG,
+                   const Vec3& xG, double t, Vec3& F, Vec3& M);
 
 /// Translational inertia of an element at G: m I + ma (I - ee^T) [kg].
 Mat3 element_mass(const Element& el, const Vec3& e);
@@ -85,10 +85,10 @@ double seabed_normal_stiffness(const Model& model, const Workspace& ws, int k);
 
 /// The flow a lifting surface sees (body kinematics in ws, deflection d [rad]).
 struct SurfaceFlow {
-  double alpha = 0;            // angle of attack [rad] (0 without flow)
-  double speed = 0;            // relative speed in the surface's plane [m/s]
-  Vec3 up = Vec3::Zero();      // body velocity relative to the water, in the surface's plane [m/s, R_g]
-  Vec3 span = Vec3::Zero();    // span axis, chord x normal [-, R_g]
+  double alpha = 0;          // angle of attack [rad] (0 without flow)
+  double speed = 0;          // relative speed in the surface's plane [m/s]
+  Vec3 up = Vec3::Zero();    // body velocity relative to the water, in the surface's plane [m/s, R_g]
+  Vec3 span = Vec3::Zero();  // span axis, chord x normal [-, R_g]
 };
 SurfaceFlow surface_flow(const Fluid& fluid, const LiftingSurface& ls, double d, double t, const BodyWork& ws);
 

@@ -9,16 +9,16 @@ namespace towsim {
 
 /// The controller's settings (the model: immutable during a run).
 struct DepthControl {
-  double target_depth = 0;        // depth to hold, of the body origin O_t, positive down [m]
-  double kp = 0;                  // proportional gain [rad/m]
-  double ki = 0;                  // integral gain [rad/(m s)]
-  double kd = 0;                  // derivative gain [rad s/m]
-  double max_deflection = 0;      // |delta| and |command| limit [rad]
-  double max_rate = 0;            // |d delta/dt| limit [rad/s]
+  double target_depth = 0;           // depth to hold, of the body origin O_t, positive down [m]
+  double kp = 0;                     // proportional gain [rad/m]
+  double ki = 0;                     // integral gain [rad/(m s)]
+  double kd = 0;                     // derivative gain [rad s/m]
+  double max_deflection = 0;         // |delta| and |command| limit [rad]
+  double max_rate = 0;               // |d delta/dt| limit [rad/s]
   double servo_time_constant = 0.1;  // tau: d delta/dt = (u_s - delta) / tau within the rate limit [s]
-  double tracking_time = 1;       // T_t of the back-calculation anti-windup [s]
-  double initial_deflection = 0;  // delta at t = 0 [rad]
-  double settling_band = 0;       // |e| band of the settling time in summary.json [m]; 0 = 1 % of the first |e|
+  double tracking_time = 1;          // T_t of the back-calculation anti-windup [s]
+  double initial_deflection = 0;     // delta at t = 0 [rad]
+  double settling_band = 0;          // |e| band of the settling time in summary.json [m]; 0 = 1 % of the first |e|
 };
 
 /// The controller's state (one per controlled surface).

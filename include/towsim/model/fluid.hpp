@@ -22,7 +22,7 @@ struct Fluid {
   /// Current profile: velocity U(z) [m/s, R_g] given at depths, linearly
   /// interpolated in depth, held constant beyond the table's ends. A single
   /// row means a uniform current. Empty means still water.
-  std::vector<double> current_depth;  // depth = -z of each row [m], increasing
+  std::vector<double> current_depth;   // depth = -z of each row [m], increasing
   std::vector<Vec3> current_velocity;  // U at that depth [m/s, R_g]
 
   /// Water velocity u(x, t) at point x [m, R_g] and time t [s]: [m/s, R_g].

@@ -33,11 +33,11 @@ inline constexpr double kSeabedSlipSpeed = 0.01;
 /// A sea bottom at z = -depth(x) [m, R_g], depth linear in x_g between the
 /// table's rows and constant beyond its ends (one row: flat).
 struct Seabed {
-  std::vector<double> x;        // table abscissae x_g, strictly increasing [m]
-  std::vector<double> depth;    // depth below the still water level at x, > 0 [m]
-  double stiffness = 1e5;       // k: normal stiffness per metre in contact [N/m per m]
-  double damping = 1e3;         // c: normal damping per metre in contact [N s/m per m]
-  double friction = 0.5;        // mu: Coulomb coefficient [-]
+  std::vector<double> x;                 // table abscissae x_g, strictly increasing [m]
+  std::vector<double> depth;             // depth below the still water level at x, > 0 [m]
+  double stiffness = 1e5;                // k: normal stiffness per metre in contact [N/m per m]
+  double damping = 1e3;                  // c: normal damping per metre in contact [N s/m per m]
+  double friction = 0.5;                 // mu: Coulomb coefficient [-]
   double slip_speed = kSeabedSlipSpeed;  // v_s of the smoothed friction [m/s]
 
   /// A flat bottom at depth d [m].

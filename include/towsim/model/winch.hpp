@@ -44,13 +44,13 @@ struct Winch {
   double damping = 0;                // Tension: c, drum damping [N s/m]
   double max_speed = std::numeric_limits<double>::infinity();         // |L'| limit [m/s]
   double max_acceleration = std::numeric_limits<double>::infinity();  // |L''| limit (tension mode) [m/s^2]
-  double min_length = 0;             // the winch stops hauling in at this deployed length [m]
+  double min_length = 0;  // the winch stops hauling in at this deployed length [m]
   double max_length = std::numeric_limits<double>::infinity();  // drum capacity: stops paying out [m]
-  double rating = 0;                 // winch rating (line pull) for the tow tension ratio [N]; 0 = not given
-  double nominal_length = 0;         // L_e, the top section's element length [m]
-  double split_at = 1.5;             // the top element splits above split_at * L_e [-]
-  double remove_at = 0.1;            // and is removed below remove_at * L_e [-]
-  double length_offset = 0;          // cable drawn in by removals (straightened kinks) [m]
+  double rating = 0;          // winch rating (line pull) for the tow tension ratio [N]; 0 = not given
+  double nominal_length = 0;  // L_e, the top section's element length [m]
+  double split_at = 1.5;      // the top element splits above split_at * L_e [-]
+  double remove_at = 0.1;     // and is removed below remove_at * L_e [-]
+  double length_offset = 0;   // cable drawn in by removals (straightened kinks) [m]
 
   bool active() const { return mode != Mode::None; }
 };
@@ -69,8 +69,8 @@ std::vector<double> winch_breakpoints(const Winch& w);
 /// Schedule from a pay-out speed table {t, rate} (linear between rows, held
 /// beyond them; one row = constant) starting at length L0 at t = 0, stopped
 /// (speed set to 0) while it would take L out of [min_length, max_length].
-std::vector<WinchPiece> schedule_from_rate(const std::vector<double>& t, const std::vector<double>& rate,
-                                           double L0, double min_length, double max_length);
+std::vector<WinchPiece> schedule_from_rate(const std::vector<double>& t, const std::vector<double>& rate, double L0,
+                                           double min_length, double max_length);
 
 /// Schedule from a length table {t, L} (linear between rows, held beyond
 /// them); the speed jumps at each row.

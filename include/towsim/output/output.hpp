@@ -34,10 +34,10 @@ struct Extreme {
 
 /// Extremes of one body.
 struct BodyExtremes {
-  Extreme max_link_force;         // |F_L| [N]
-  Extreme max_lower_link_force;   // |force at Q2| [N] (in-line body)
-  Extreme max_depth;              // -z of O_t [m]
-  Extreme min_deg[3], max_deg[3]; // roll, pitch, yaw [deg]
+  Extreme max_link_force;          // |F_L| [N]
+  Extreme max_lower_link_force;    // |force at Q2| [N] (in-line body)
+  Extreme max_depth;               // -z of O_t [m]
+  Extreme min_deg[3], max_deg[3];  // roll, pitch, yaw [deg]
 };
 
 /// Utilisation above which a run warns: a safety factor of 3 on the breaking load [-].
@@ -48,7 +48,7 @@ inline constexpr double kUtilisationFailure = 1.0;
 /// The first sample where a node's utilisation went above a threshold.
 struct Crossing {
   double time = std::numeric_limits<double>::quiet_NaN();         // [s]
-  long node = -1;                                                  // nodes.csv index, -1 = never
+  long node = -1;                                                 // nodes.csv index, -1 = never
   double arc_length = std::numeric_limits<double>::quiet_NaN();   // of the node from the tow point [m]
   double utilisation = std::numeric_limits<double>::quiet_NaN();  // there and then [-]
   bool happened() const { return node >= 0; }
@@ -56,31 +56,31 @@ struct Crossing {
 
 /// Figures of one depth controller (docs/outputs: summary.json "depth_control").
 struct ControlExtremes {
-  Extreme max_abs_deflection;    // |delta| [deg]
-  Extreme max_abs_rate;          // |d delta/dt| [deg/s]
-  Extreme max_abs_error;         // |depth - target| [m]
-  double first_error = std::numeric_limits<double>::quiet_NaN();  // e of the first sample [m]
-  double band = std::numeric_limits<double>::quiet_NaN();         // settling band [m]
+  Extreme max_abs_deflection;                                       // |delta| [deg]
+  Extreme max_abs_rate;                                             // |d delta/dt| [deg/s]
+  Extreme max_abs_error;                                            // |depth - target| [m]
+  double first_error = std::numeric_limits<double>::quiet_NaN();    // e of the first sample [m]
+  double band = std::numeric_limits<double>::quiet_NaN();           // settling band [m]
   double settled_since = std::numeric_limits<double>::quiet_NaN();  // first time of the current run of
-                                                                     // samples with |e| <= band; NaN when outside [s]
-  double final_error = std::numeric_limits<double>::quiet_NaN();  // e of the last sample [m]
+                                                                    // samples with |e| <= band; NaN when outside [s]
+  double final_error = std::numeric_limits<double>::quiet_NaN();    // e of the last sample [m]
 };
 
 /// Extremes over all written samples.
 struct Extremes {
-  Extreme max_tow_tension;    // |F_R| [N]
-  Extreme max_cable_tension;  // largest joint tension anywhere [N]
-  Extreme max_end_depth;      // -z of the cable's end [m]
-  Extreme min_axial_force;    // smallest axial force in any joint, < 0 in compression [N]
-  Extreme min_depth, max_depth;  // -z of the end body's origin, or of the cable end without one [m]
-  Extreme max_layback;        // horizontal distance tow point -> end body origin (or cable end) [m]
-  Extreme max_utilisation;    // largest tension / breaking load at a node [-] (sections with breaking_load)
-  Crossing utilisation_warning;  // first utilisation > kUtilisationWarning
-  Crossing cable_failure;        // first utilisation > kUtilisationFailure
-  Extreme max_contact_length;    // cable length on the seabed [m] (with a seabed)
-  Extreme max_seabed_normal;     // sum of |normal force| of the seabed [N]
-  Extreme max_seabed_friction;   // sum of |friction force| of the seabed [N]
-  BodyExtremes end_body_extremes;           // the end body's (if any)
+  Extreme max_tow_tension;         // |F_R| [N]
+  Extreme max_cable_tension;       // largest joint tension anywhere [N]
+  Extreme max_end_depth;           // -z of the cable's end [m]
+  Extreme min_axial_force;         // smallest axial force in any joint, < 0 in compression [N]
+  Extreme min_depth, max_depth;    // -z of the end body's origin, or of the cable end without one [m]
+  Extreme max_layback;             // horizontal distance tow point -> end body origin (or cable end) [m]
+  Extreme max_utilisation;         // largest tension / breaking load at a node [-] (sections with breaking_load)
+  Crossing utilisation_warning;    // first utilisation > kUtilisationWarning
+  Crossing cable_failure;          // first utilisation > kUtilisationFailure
+  Extreme max_contact_length;      // cable length on the seabed [m] (with a seabed)
+  Extreme max_seabed_normal;       // sum of |normal force| of the seabed [N]
+  Extreme max_seabed_friction;     // sum of |friction force| of the seabed [N]
+  BodyExtremes end_body_extremes;  // the end body's (if any)
   std::vector<BodyExtremes> inline_bodies;  // per Model::bodies entry (in-line ones used)
   std::vector<ControlExtremes> controls;    // per depth controller (bodies, then surfaces, in order)
   /// Update with one sample of `model`.

@@ -20,7 +20,7 @@ inline constexpr double kMpmDuration = 3 * 3600.0;
 struct SignalStats {
   long samples = 0;
   double mean = 0, std = 0, min = 0, max = 0;  // [unit of x]
-  double zero_crossing_period = 0;  // record length / up-crossings of the mean [s]; 0 = none
+  double zero_crossing_period = 0;             // record length / up-crossings of the mean [s]; 0 = none
   double mpm = 0;  // mean + std sqrt(2 ln(kMpmDuration / Tz)) (Rayleigh maxima); NaN without crossings
 };
 
@@ -52,7 +52,7 @@ class SeaStatistics {
   bool write_spectra(const std::string& path) const;
 
  private:
-  double start_;  // [s]
+  double start_;                                                      // [s]
   std::vector<double> t_, eta_, tension_, link_, depth_, tow_heave_;  // tow_heave_: Sample::tow_wave.z [m]
 };
 

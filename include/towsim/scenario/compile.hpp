@@ -3,9 +3,9 @@
 
 #include <optional>
 
+#include "towsim/model/model.hpp"
 #include "towsim/scenario/diagnostics.hpp"
 #include "towsim/scenario/spec.hpp"
-#include "towsim/model/model.hpp"
 
 namespace towsim::io {
 

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "towsim/model/model.hpp"
 #include "towsim/scenario/diagnostics.hpp"
 #include "towsim/scenario/spec.hpp"
 #include "towsim/scenario/yaml_tree.hpp"
-#include "towsim/model/model.hpp"
 
 namespace towsim::io {
 
@@ -30,8 +30,7 @@ LoadedScenario load_scenario_file(const std::string& path, const std::vector<std
 
 /// The same from YAML text: `file` names it in messages, `name` is the
 /// default model name, `base_dir` the directory of relative track files.
-LoadedScenario load_scenario_text(const std::string& text, const std::string& file,
-                                  const std::string& name, const std::string& base_dir,
-                                  const std::vector<std::string>& sets = {});
+LoadedScenario load_scenario_text(const std::string& text, const std::string& file, const std::string& name,
+                                  const std::string& base_dir, const std::vector<std::string>& sets = {});
 
 }  // namespace towsim::io

@@ -12,16 +12,16 @@ namespace towsim {
 /// One slack episode: a time interval during which at least one elastic
 /// element is slack, and the snap that follows it.
 struct SlackEvent {
-  double start = 0;          // first accepted step with a slack element [s]
-  double end = 0;            // first accepted step with none again (the run's end if it never came taut) [s]
-  int first_element = 0;     // highest slack element during the episode (1 = top) [-]
-  int last_element = 0;      // lowest slack element [-]
-  double from = 0, to = 0;   // unstretched arc length from the tow point: top of first_element, bottom of last [m]
-  double min_strain = 0;     // most negative strain of a slack element [-]
-  bool ended = false;        // false: still slack at the end of the run
-  double snap_tension = 0;   // largest element tension after it came taut, until the next episode [N]
+  double start = 0;         // first accepted step with a slack element [s]
+  double end = 0;           // first accepted step with none again (the run's end if it never came taut) [s]
+  int first_element = 0;    // highest slack element during the episode (1 = top) [-]
+  int last_element = 0;     // lowest slack element [-]
+  double from = 0, to = 0;  // unstretched arc length from the tow point: top of first_element, bottom of last [m]
+  double min_strain = 0;    // most negative strain of a slack element [-]
+  bool ended = false;       // false: still slack at the end of the run
+  double snap_tension = 0;  // largest element tension after it came taut, until the next episode [N]
   double snap_time = std::numeric_limits<double>::quiet_NaN();  // when [s]
-  int snap_element = 0;      // where (element index, 1 = top) [-]
+  int snap_element = 0;                                         // where (element index, 1 = top) [-]
 };
 
 /// Slack episodes and the peak element tension over a run, updated after
@@ -46,17 +46,17 @@ class SlackRecord {
   void finish(double t);
 
   const std::vector<SlackEvent>& events() const { return events_; }
-  long episodes = 0;          // slack episodes counted (events() keeps the first kMaxEvents)
-  double slack_time = 0;      // total time with some element slack [s]
-  double max_tension = 0;     // largest element tension over the run [N]
+  long episodes = 0;       // slack episodes counted (events() keeps the first kMaxEvents)
+  double slack_time = 0;   // total time with some element slack [s]
+  double max_tension = 0;  // largest element tension over the run [N]
   double max_tension_time = std::numeric_limits<double>::quiet_NaN();  // [s]
-  int max_tension_element = 0;  // (1 = top; 0: never taut) [-]
+  int max_tension_element = 0;                                         // (1 = top; 0: never taut) [-]
   bool active() const { return active_; }
 
  private:
   std::vector<SlackEvent> events_;
-  bool active_ = false;   // an episode is open
-  double last_t_ = 0;     // time of the last update [s]
+  bool active_ = false;     // an episode is open
+  double last_t_ = 0;       // time of the last update [s]
   bool snap_open_ = false;  // the last episode's snap is still being tracked
 };
 

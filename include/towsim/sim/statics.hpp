@@ -11,18 +11,18 @@ namespace towsim {
 
 /// Result of a statics solve.
 struct StaticsResult {
-  PhysicalState state;      // configuration; every point moves at tow_velocity
-  Vec3 tow_velocity;        // steady velocity of the tow point [m/s, R_g]
-  Vec3 tow_force;           // F_R [N, R_g]
-  std::vector<Vec3> link_force;  // F_L on each body at Q [N, R_g]
-  std::vector<Vec3> body_force;  // each in-line body's force on the cable below at Q2 [N, R_g]
+  PhysicalState state;            // configuration; every point moves at tow_velocity
+  Vec3 tow_velocity;              // steady velocity of the tow point [m/s, R_g]
+  Vec3 tow_force;                 // F_R [N, R_g]
+  std::vector<Vec3> link_force;   // F_L on each body at Q [N, R_g]
+  std::vector<Vec3> body_force;   // each in-line body's force on the cable below at Q2 [N, R_g]
   std::vector<Vec3> joint_force;  // f_k through joint k, k = 0..n [N, R_g]
-  Sample sample;            // the equilibrium as an output sample (t = 0)
-  double residual = 0;      // largest angular acceleration left [rad/s^2]
-  int iterations = 0;       // Newton iterations
+  Sample sample;                  // the equilibrium as an output sample (t = 0)
+  double residual = 0;            // largest angular acceleration left [rad/s^2]
+  int iterations = 0;             // Newton iterations
   bool converged = false;
   bool interrupted = false;  // the stop flag was set: the state is the last iterate
-  std::string message;      // why it did not converge
+  std::string message;       // why it did not converge
 };
 
 /// The tow velocity a steady tow settles to: the sum of the ramps' final
@@ -48,11 +48,11 @@ Model with_deployed_length(const Model& model, double L);
 
 /// Deployed length for a target depth (`towsim statics --target-depth`).
 struct TargetDepthResult {
-  double length = 0;        // deployed length found [m]
-  double depth = 0;         // depth of the end body's origin (or the cable end) there [m]
+  double length = 0;  // deployed length found [m]
+  double depth = 0;   // depth of the end body's origin (or the cable end) there [m]
   bool found = false;
-  std::string message;      // why not
-  StaticsResult statics;    // the steady configuration at that length
+  std::string message;    // why not
+  StaticsResult statics;  // the steady configuration at that length
 };
 
 /// The deployed length that puts the end body (or the cable end) at `depth`

@@ -37,13 +37,13 @@ PhysicalState split_elastic_state(const Model& model, const PhysicalState& s);
 
 /// Result of removing the top element.
 struct Removal {
-  Model model;                // the model with one element less
-  PhysicalState state;        // the state mapped into it, after the impulse
-  double energy_lost = 0;     // kinetic energy before - after (the removed element's included) [J]
-  double removed_energy = 0;  // kinetic energy the removed element had (its material joins the next one) [J]
+  Model model;                       // the model with one element less
+  PhysicalState state;               // the state mapped into it, after the impulse
+  double energy_lost = 0;            // kinetic energy before - after (the removed element's included) [J]
+  double removed_energy = 0;         // kinetic energy the removed element had (its material joins the next one) [J]
   double energy_before_impulse = 0;  // kinetic energy of the mapped state before the impulse [J]
-  double impulse_work = 0;    // work of the impulse at the sheave, lambda . (v_before + v_after) / 2 [J]
-  Vec3 impulse = Vec3::Zero();  // impulse of the sheave on the cable [N s, R_g]
+  double impulse_work = 0;           // work of the impulse at the sheave, lambda . (v_before + v_after) / 2 [J]
+  Vec3 impulse = Vec3::Zero();       // impulse of the sheave on the cable [N s, R_g]
 };
 
 /// Remove the top element (length l_1 small) of state s at t: the next

@@ -15,15 +15,15 @@ namespace towsim {
 /// (tau = t - t0): exact to round-off.
 struct CourseState {
   static constexpr double kNever = std::numeric_limits<double>::infinity();
-  double t0 = 0;            // start of the segment [s]
-  Vec3 p = Vec3::Zero();    // horizontal position at t0 [m, R_g] (z = 0)
-  Vec3 h = Vec3::UnitX();   // unit heading at t0 [-, R_g] (horizontal)
-  double U = 0;             // speed along the heading at t0 [m/s]
-  double a = 0;             // dU/dt while a speed change runs [m/s^2]
-  double a_end = kNever;    // time the speed change ends [s]
-  double U_end = 0;         // speed then [m/s]
-  double R = 0;             // turn radius [m]; 0 = straight
-  Vec3 n = Vec3::Zero();    // unit normal towards the turn's centre [-, R_g]
+  double t0 = 0;              // start of the segment [s]
+  Vec3 p = Vec3::Zero();      // horizontal position at t0 [m, R_g] (z = 0)
+  Vec3 h = Vec3::UnitX();     // unit heading at t0 [-, R_g] (horizontal)
+  double U = 0;               // speed along the heading at t0 [m/s]
+  double a = 0;               // dU/dt while a speed change runs [m/s^2]
+  double a_end = kNever;      // time the speed change ends [s]
+  double U_end = 0;           // speed then [m/s]
+  double R = 0;               // turn radius [m]; 0 = straight
+  Vec3 n = Vec3::Zero();      // unit normal towards the turn's centre [-, R_g]
   double turn_left = kNever;  // heading change left before the turn ends [rad]
 };
 

@@ -26,7 +26,6 @@ namespace towsim {
 
 class Vessel;  // towsim/waves/vessel.hpp
 
-
 /// One piece of an imposed tow-point motion.
 using TowLaw = std::variant<Ramp, Heave, Track, Turn, SpeedChange>;
 

@@ -10,9 +10,9 @@ namespace towsim {
 /// goes straight on at the new heading (angle = kNever: it turns for ever).
 /// `port` turns left (towards +y when heading +x, z up), else starboard.
 struct Turn {
-  double radius = 1;       // [m]
-  double start_time = 0;   // [s]
-  bool port = true;        // true = to port (left), false = starboard
+  double radius = 1;                   // [m]
+  double start_time = 0;               // [s]
+  bool port = true;                    // true = to port (left), false = starboard
   double angle = CourseState::kNever;  // change of heading at which it ends [rad]
 
   bool operator==(const Turn&) const = default;

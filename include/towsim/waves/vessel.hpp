@@ -34,9 +34,9 @@ struct RaoTable {
 /// The six motions of the vessel and their rates at one instant, vessel axes.
 struct VesselMotion {
   Vec6 x = Vec6::Zero(), v = Vec6::Zero(), a = Vec6::Zero();  // [m, rad], per s, per s^2
-  double course = 0;        // psi: direction of the course from x_g [rad]
-  double course_rate = 0;   // dpsi/dt [rad/s]
-  double elevation = 0;     // wave elevation at the RAO origin [m]
+  double course = 0;                                          // psi: direction of the course from x_g [rad]
+  double course_rate = 0;                                     // dpsi/dt [rad/s]
+  double elevation = 0;                                       // wave elevation at the RAO origin [m]
 };
 
 /// An immutable vessel: RAOs in a sea, or a measured motion record.
@@ -47,8 +47,8 @@ class Vessel {
   /// Measured motions: rows at `time` [s] of (surge, sway, heave [m], roll,
   /// pitch, yaw [rad]), a natural cubic spline through them, held at the ends.
   /// `waves` (may be null) only gives the elevation output.
-  Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<const WaveField> waves,
-         std::vector<double> time, std::vector<Vec6> motions);
+  Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<const WaveField> waves, std::vector<double> time,
+         std::vector<Vec6> motions);
 
   /// The motions at t for the RAO origin moving as `origin` (the tow law).
   VesselMotion motion(const TowKinematics& origin, double t) const;
@@ -65,18 +65,18 @@ class Vessel {
   const Vec3& sheave() const { return sheave_; }
 
  private:
-  Vec3 sheave_;           // r_s [m, vessel axes]
-  double course0_;        // course while the vessel is (nearly) at rest [rad]
+  Vec3 sheave_;     // r_s [m, vessel axes]
+  double course0_;  // course while the vessel is (nearly) at rest [rad]
   std::shared_ptr<const WaveField> waves_;
   // RAOs per wave component, interpolated in period at construction, at each
   // table heading: index (component * headings + heading) * 6 + dof.
-  std::vector<double> headings_;       // [deg]
-  std::vector<double> amp_, lag_;      // [m/m or rad/m], [rad]
-  bool mirror_ = false;                // headings only in [0, 180]: port-starboard symmetry
-  bool exact_ = false;                 // exact rotation of the sheave offset
+  std::vector<double> headings_;   // [deg]
+  std::vector<double> amp_, lag_;  // [m/m or rad/m], [rad]
+  bool mirror_ = false;            // headings only in [0, 180]: port-starboard symmetry
+  bool exact_ = false;             // exact rotation of the sheave offset
   // Measured record.
   std::vector<double> time_;
-  std::vector<Vec6> rec_, curv_;       // values and spline second derivatives
+  std::vector<Vec6> rec_, curv_;  // values and spline second derivatives
 };
 
 /// The vessel's initial course from the tow law: the direction of its

@@ -17,11 +17,11 @@ namespace towsim {
 
 /// One harmonic of the sea.
 struct WaveComponent {
-  double amplitude;  // a_i [m]
-  double omega;      // circular frequency omega_i [rad/s]
-  double k;          // wavenumber k_i (dispersion relation) [1/m]
-  double phase;      // eps_i [rad]
-  double z_cut;      // below this height its kinematics are skipped (kWaveCutoff) [m, R_g]
+  double amplitude;       // a_i [m]
+  double omega;           // circular frequency omega_i [rad/s]
+  double k;               // wavenumber k_i (dispersion relation) [1/m]
+  double phase;           // eps_i [rad]
+  double z_cut;           // below this height its kinematics are skipped (kWaveCutoff) [m, R_g]
   double dx = 0, dy = 0;  // its unit horizontal travel direction (short-crested seas) [-, R_g]
 };
 
@@ -34,7 +34,7 @@ inline constexpr double kWaveCutoff = 1e-3;
 
 /// An immutable linear, long-crested sea.
 struct WaveField {
-  double g = 9.81;  // [m/s^2]
+  double g = 9.81;                                         // [m/s^2]
   double depth = std::numeric_limits<double>::infinity();  // water depth h [m]; infinity = deep
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();    // unit horizontal travel direction d [-, R_g]
   std::vector<WaveComponent> components;                   // sorted by z_cut, deepest first
@@ -84,8 +84,7 @@ enum class SpectrumType { Jonswap, PiersonMoskowitz };
 double spectral_density(double hs, double tp, double gamma, double omega);
 
 /// A regular wave of height H [m], period T [s], crest at the origin at t = 0.
-WaveField make_regular_wave(double height, double period, const Eigen::Vector3d& direction, double depth,
-                            double g);
+WaveField make_regular_wave(double height, double period, const Eigen::Vector3d& direction, double depth, double g);
 
 /// A sea of `n` harmonics from the spectrum (see docs/theory.md "Waves"):
 /// equal-energy frequency bins (each component carries hs^2 / (16 n), its
