@@ -1,6 +1,7 @@
 // Kinematics of the chain and its bodies from a physical state (docs/theory.md §2, §4).
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "towsim/dynamics/state.hpp"
 
@@ -165,8 +166,13 @@ Vec3 roll_pitch_yaw(const Quat& q) {
   const Mat3 R = q.toRotationMatrix();
   // R = Rz(yaw) Ry(pitch) Rx(roll): R(2,0) = -sin(pitch).
   const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  const double roll = std::atan2(R(2, 1), R(2, 2));
-  const double yaw = std::atan2(R(1, 0), R(0, 0));
+  // Roll and yaw in (-pi, pi]: atan2 of a round-off zero gives +pi or -pi by
+  // the zero's sign, so an attitude on the cut (a planar tow past pitch -90
+  // degrees) reads +pi always, in both formulations (kCut: above round-off).
+  constexpr double kCut = 1e-9;  // [rad]
+  auto wrap = [](double a) { return a <= -std::numbers::pi + kCut ? a + 2 * std::numbers::pi : a; };
+  const double roll = wrap(std::atan2(R(2, 1), R(2, 2)));
+  const double yaw = wrap(std::atan2(R(1, 0), R(0, 0)));
   return Vec3(roll, pitch, yaw);
 }
 

@@ -690,3 +690,22 @@ TEST(BodyModel, KirchhoffMatchesFiniteDifferences) {
     std::printf("[measured]   worst err/tol: plain FD %.2f, Richardson %.2f\n", ratio, ratio_r);
   }
 }
+
+// Roll and yaw are read in (-180, 180] degrees: an attitude on atan2's cut (a
+// planar tow whose body pitched past -90 degrees: roll and yaw 180) reads the
+// same whatever the sign of the round-off zero in R, so both formulations
+// print the same angles. Exact: the cut's +pi is atan2's own value.
+TEST(BodyModel, RollAndYawOnTheCutReadPlusPi) {
+  const double s = std::sin(-50.0 * std::numbers::pi / 180), c = std::cos(-50.0 * std::numbers::pi / 180);
+  for (const double zero : {0.0, -0.0}) {
+    // A rotation of -100 degrees about y_g, with a signed zero in x.
+    const towsim::Quat q(c, zero, s, 0.0);
+    const towsim::Vec3 rpy = towsim::roll_pitch_yaw(q);
+    EXPECT_EQ(rpy.x(), std::numbers::pi) << zero;
+    EXPECT_EQ(rpy.z(), std::numbers::pi) << zero;
+    EXPECT_NEAR(rpy.y(), -80.0 * std::numbers::pi / 180, 1e-14);  // pitch: |R(2,0)| = sin 80, round-off
+  }
+  // Off the cut the angles are atan2's (-179 degrees stays -179).
+  const towsim::Vec3 rpy = towsim::roll_pitch_yaw(towsim::quat_from_rpy(-179.0 * std::numbers::pi / 180, 0.1, 0.2));
+  EXPECT_NEAR(rpy.x(), -179.0 * std::numbers::pi / 180, 1e-14);
+}
