@@ -8,12 +8,20 @@
 #
 # Environment: JOBS (build and test parallelism, default 2), ASAN_BUILD (build
 # dir, default build-asan), SANITIZE_EXCLUDE (ctest -E regex of tests left out,
-# default: none; see docs/reliability.md).
+# default: the long tests listed in scripts/sanitize-long-tests.txt, see
+# docs/reliability.md), SANITIZE_ALL=1 (leave nothing out).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS="${JOBS:-2}"
 BUILD="${ASAN_BUILD:-build-asan}"
-EXCLUDE="${SANITIZE_EXCLUDE:-}"
+# Default: the long tests of scripts/sanitize-long-tests.txt (regex per line,
+# '#' comments), joined into one ctest -E regex.
+long_tests() { sed -e 's/#.*//' -e 's/[[:space:]]*$//' -e '/^$/d' scripts/sanitize-long-tests.txt | paste -sd'|'; }
+if [[ "${SANITIZE_ALL:-0}" == 1 ]]; then
+  EXCLUDE=""
+else
+  EXCLUDE="${SANITIZE_EXCLUDE:-$(long_tests)}"
+fi
 
 mkdir -p "$BUILD"
 # The Python module is left out: an ASan-instrumented extension cannot load
