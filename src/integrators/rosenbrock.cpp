@@ -14,6 +14,12 @@ namespace {
 // y1 = y + sum_i b_i k_i; bhat: the embedded order-2 solution.
 constexpr double kGamma = 4.3586652150845900e-01;
 constexpr double kSafety = 0.95;  // step size controller's safety factor [-]
+// f_t's forward difference over kTimeDifference h: far above the 1e-12 |t|
+// by which law times are moved inside a step's window (System::law_time),
+// far below the inputs' time scales. Measured on paper-3d-turn: 1e-3 and
+// 1e-5 give the same steps (1836, 1837) and errors; any f_t keeps the order
+// (it is W's time column).
+constexpr double kTimeDifference = 1e-3;  // [-]
 constexpr double kAlpha[4][4] = {{0, 0, 0, 0},
                                  {8.7173304301691801e-01, 0, 0, 0},
                                  {8.4457060015369423e-01, -1.1299064236484185e-01, 0, 0},
@@ -35,8 +41,14 @@ constexpr double kBtheta[4][3] = {{1.0564298455794094, -1.3864882699759573, 0.57
 
 }  // namespace
 
-RosenbrockW::RosenbrockW(System& sys, double tol, double force_scale, ForceEstimate force_estimate)
-    : sys_(sys), tol_(tol), force_scale_(force_scale), force_estimate_(force_estimate), gamma_(kGamma) {
+RosenbrockW::RosenbrockW(System& sys, double tol, double force_scale, ForceEstimate force_estimate,
+                         TimeDerivative time_derivative)
+    : sys_(sys),
+      tol_(tol),
+      force_scale_(force_scale),
+      force_estimate_(force_estimate),
+      time_derivative_(time_derivative),
+      gamma_(kGamma) {
   // Transformed variables u_i = sum_j gamma_ij k_j (Hairer & Wanner IV.7):
   // (I - h gamma J) u_i = h gamma f(y + sum_j a_ij u_j) + gamma sum_j c_ij u_j,
   // a = alpha Gamma^-1, c = diag(1/gamma) - Gamma^-1, m = b^T Gamma^-1.
@@ -61,6 +73,7 @@ RosenbrockW::RosenbrockW(System& sys, double tol, double force_scale, ForceEstim
       c_[i][j] = (i == j ? 1 / kGamma : 0) - Gi[i][j];
       m_[j] += kB[i] * Gi[i][j];
       mhat_[j] += kBhat[i] * Gi[i][j];
+      if (j <= i) gsum_[i] += kGam[i][j];
     }
   }
 }
@@ -74,6 +87,29 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
     sys_.derivative(y, f0_, t);
     sys_.prepare_stage_solve(t);
     have_f0_ = true;
+  }
+  // The explicit time dependence (tow law, waves, winch schedule): time as a
+  // state whose column in W is f_t, here (f(y, t + dt) - f0) / dt at the
+  // step's start (ROW form, Hairer & Wanner IV.7: the stages get
+  // gamma_i h^2 f_t). W's time column may be anything without losing the
+  // order (it is part of W); left out (zero, as before), paper-3d-turn took
+  // 4367 steps at tol 1e-5 instead of 1836, its tow force 3.5x less
+  // accurate (docs/performance.md "W's time column").
+  // Exactly zero (a steady tow: the inputs do not change on this piece of
+  // the tow law) it is not evaluated again before the next invalidate(), the
+  // law's next breakpoint; were the inputs to change meanwhile, W's time
+  // column would be zero, as without it: the order holds either way.
+  if (time_derivative_ == TimeDerivative::FiniteDifference && !have_ft_ && !ft_zero_) {
+    const double dt = kTimeDifference * h;
+    use_ft_ = dt > 1e-9 * std::max(1.0, std::abs(t));  // else law_time's shift would dominate: no column
+    if (use_ft_) {
+      sys_.derivative(y, scratch_, t + dt);
+      ft_.resize(N);
+      for (std::size_t q = 0; q < N; ++q) ft_[q] = (scratch_[q] - f0_[q]) / dt;
+      ft_zero_ = std::all_of(ft_.begin(), ft_.end(), [](double v) { return v == 0; });
+      use_ft_ = !ft_zero_;
+    }
+    have_ft_ = true;
   }
   // Stages: one evaluation and one O(n) solve each (stage 1 reuses f0).
   for (int i = 0; i < kStages; ++i) {
@@ -90,6 +126,8 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
     for (std::size_t q = 0; q < N; ++q) rhs_[q] = hg * (*f)[q];
     for (int j = 0; j < i; ++j)
       for (std::size_t q = 0; q < N; ++q) rhs_[q] += gamma_ * c_[i][j] * u_[j][q];
+    if (use_ft_ && gsum_[i] != 0)
+      for (std::size_t q = 0; q < N; ++q) rhs_[q] += hg * gsum_[i] * h * ft_[q];
     sys_.stage_solve(hg, rhs_, u_[i]);
   }
   y1_ = y;
@@ -156,6 +194,7 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
   t0d_ = t, hd_ = h, dense_ = true;
   t = t1;
   f0_.swap(fi_);
+  have_ft_ = false;
   sys_.prepare_stage_solve(t1);
   max_error = std::max(max_error, err * tol_);
   max_force_error = std::max(max_force_error, ferr);

@@ -449,7 +449,14 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     if (model.sim.integrator != Integrator::Rosenbrock) return;
     if (!chain.sys->has_stage_solve())
       check = "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)";
-    ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model));
+    // W's time column (f_t): not with a winch. Measured on fish-depth-change
+    // (docs/performance.md "W's time column"): with it the link tension was
+    // 2.8x less accurate (at the start of the haul-in) at 6 % more
+    // evaluations; not understood, left out there.
+    const auto td = model.winch.active() ? RosenbrockW::TimeDerivative::None
+                                         : RosenbrockW::TimeDerivative::FiniteDifference;
+    ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model),
+                                        RosenbrockW::ForceEstimate::Embedded, td);
   };
   make_ros();
   double h = model.sim.time_step;

@@ -714,7 +714,8 @@ void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
   s.v0 = p.V;
   stop_rotations(s);
   StateVector y = sys->initial(s, 0.0);
-  RosenbrockW ros(*sys, kRelaxTolerance, weight, RosenbrockW::ForceEstimate::Filtered);  // the path does not matter
+  RosenbrockW ros(*sys, kRelaxTolerance, weight, RosenbrockW::ForceEstimate::Filtered,
+                  RosenbrockW::TimeDerivative::None);  // the path does not matter: no f_t evaluations
   double t = 0, h = 1e-3, previous = 0;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(p.size());
   for (int step = 0; step < kMaxRelaxSteps && !stopped(stop_flag);) {

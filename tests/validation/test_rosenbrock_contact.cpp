@@ -87,10 +87,16 @@ TEST(RosenbrockSeabed, DraggedCableAgreesWithRk4) {
   double Tmax = 0, contact = 1e9;
   for (const Sample& s : r) Tmax = std::max(Tmax, s.tow_force.norm()), contact = std::min(contact, s.contact_length);
   EXPECT_GT(contact, 40.0);  // the cable slides on the bottom throughout
-  // 0.05 s and 0.1 s: 20x and 40x the contact's RK4 limit (~2.5e-3 s).
-  // Measured 9.6e-5 and 1.2e-3 (order 3: 1.0e-6 at 0.01 s, 8.7e-6 at 0.02 s);
+  // 0.05 s and 0.09 s: 20x and 36x the contact's RK4 limit (~2.5e-3 s).
+  // Measured 9.5e-5 and 1.4e-4 (order 3: 1.0e-6 at 0.01 s, 8.7e-6 at 0.02 s);
   // bounds 1e-3 (the tow force accuracy of test_rosenbrock.cpp) and 5e-3.
-  for (const auto& [h, bound] : {std::pair{0.05, 1e-3}, std::pair{0.1, 5e-3}}) {
+  // Fixed steps without error control are near their limit here: after the
+  // ramp (the W-method's time column is then zero) the sliding cable's first
+  // element diverges at 0.11 s (t = 25.7 s) and 0.12 s (21.8 s) without the
+  // time column, at 0.1 s (29.3 s), 0.11 s (26.5 s), 0.12 s (22.1 s) with
+  // it (the state at the ramp's end differs at the method's error); 0.1 s
+  // was the step here before the time column.
+  for (const auto& [h, bound] : {std::pair{0.05, 1e-3}, std::pair{0.09, 5e-3}}) {
     RunStats st;
     const auto b = testing::run(fixed_rosenbrock(m, h), &st);
     ASSERT_EQ(b.size(), r.size());

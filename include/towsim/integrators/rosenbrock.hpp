@@ -19,9 +19,16 @@ class RosenbrockW {
   /// relaxation, whose path does not matter: fewer steps). docs/theory.md §6.3.
   enum class ForceEstimate { Embedded, Filtered };
 
+  /// The explicit time dependence of f (tow law, waves, winch schedule):
+  /// f_t by a forward difference at each step's start, one evaluation, in
+  /// the stages' term gamma_i h^2 f_t (runs), or left out (a relaxation at
+  /// fixed inputs). docs/theory.md §6.3.
+  enum class TimeDerivative { FiniteDifference, None };
+
   /// tol: relative and absolute tolerance [-]; force_scale: absolute force
   /// floor of the force error norm [N] (the system's apparent weight).
-  RosenbrockW(System& sys, double tol, double force_scale, ForceEstimate force_estimate = ForceEstimate::Embedded);
+  RosenbrockW(System& sys, double tol, double force_scale, ForceEstimate force_estimate = ForceEstimate::Embedded,
+              TimeDerivative time_derivative = TimeDerivative::FiniteDifference);
 
   /// Try one step of size h from (y, t). Accepted: y, t advanced (y
   /// projected), returns true. Either way h becomes the next proposal [s].
@@ -29,7 +36,7 @@ class RosenbrockW {
 
   /// The state was changed from outside (a tow velocity jump, a breakpoint):
   /// the cached derivative at the step's start is stale.
-  void invalidate() { have_f0_ = false; }
+  void invalidate() { have_f0_ = false, have_ft_ = false, ft_zero_ = false; }
 
   /// Dense output: the state at t inside the last accepted step [t0, t1]
   /// (the method's continuous extension, docs/theory.md §6.3), projected.
@@ -44,12 +51,18 @@ class RosenbrockW {
   System& sys_;
   double tol_, force_scale_;
   ForceEstimate force_estimate_;
+  TimeDerivative time_derivative_;
   std::array<std::array<double, kStages>, kStages> a_{}, c_{};  // transformed coefficients
   std::array<double, kStages> m_{}, mhat_{}, alpha_{};          // weights, stage times
+  std::array<double, kStages> gsum_{};                          // gamma_i = sum_{j<=i} gamma_ij (f_t term)
   std::array<std::array<double, kStages>, kStages> gi_{};       // Gamma^-1
   double gamma_ = 0;
   bool have_f0_ = false;
   bool last_rejected_ = false;
+  bool have_ft_ = false;  // ft_ holds f_t at the step's start (kept over rejections)
+  bool use_ft_ = false;   // ... and it is nonzero (a difference was taken)
+  bool ft_zero_ = false;  // f_t was exactly zero since the last invalidate(): not evaluated
+  StateVector ft_;        // df/dt at fixed y at the step's start [state units / s^2]
   StateVector f0_, fi_, yi_, rhs_, y1_, yhat_, scratch_;
   StateVector y0d_;          // start of the last accepted step (dense output)
   double t0d_ = 0, hd_ = 0;  // its start and size [s]
