@@ -157,11 +157,10 @@ char* put_g12(char* b, double v) {
         "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
         "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
         "8081828384858687888990919293949596979899";
-    for (int i = 4; i >= 0; i -= 2) {
-      const std::uint32_t r = x % 100;
-      x /= 100;
-      std::memcpy(out + i, kPairs + 2 * r, 2);
-    }
+    const std::uint32_t hi = x / 10000, lo = x % 10000;  // x < 10^6: digits hi | lo/100 | lo%100
+    std::memcpy(out, kPairs + 2 * hi, 2);
+    std::memcpy(out + 2, kPairs + 2 * (lo / 100), 2);
+    std::memcpy(out + 4, kPairs + 2 * (lo % 100), 2);
   };
   six(d, static_cast<std::uint32_t>(m / 1000000));
   six(d + 6, static_cast<std::uint32_t>(m % 1000000));
@@ -577,11 +576,14 @@ nlohmann::ordered_json RunRecord::final_row() const {
 }
 
 RunWriter::RunWriter(const std::string& dir, const Model& model, bool write_nodes) : RunRecord(model) {
+  // Unbuffered: the rows arrive in large batches, each one write(2).
   series_ = open_file(dir, "timeseries.csv");
+  std::setvbuf(series_, nullptr, _IONBF, 0);
   write_all(series_, timeseries_header(model) + "\n");
   node_ids_ = model.winch.active();
   if (write_nodes) {
     nodes_ = open_file(dir, "nodes.csv");
+    std::setvbuf(nodes_, nullptr, _IONBF, 0);
     std::string h = node_ids_ ? "time,node,node_id" : "time,node";
     for (const auto& c : node_columns(model)) h += "," + c;
     write_all(nodes_, h + "\n");
