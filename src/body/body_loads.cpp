@@ -126,7 +126,7 @@ void body_inertia(const Fluid& fluid, const Body& b, BodyWork& ws, double t) {
   h.head<3>() += wb.cross(PR.head<3>()) + wb.cross(PA.head<3>());
   h.tail<3>() += wb.cross(PR.tail<3>()) + vb.cross(PR.head<3>()) + wb.cross(PA.tail<3>()) + vr.cross(PA.head<3>());
   // To R_g: B M B^T with B = diag(R, R), block by block (R M_ij R^T).
-  const Mat6 M = b.rigid_mass + b.fluid_mass;
+  const Mat6& M = b.total_mass;
   ws.Mw.topLeftCorner<3, 3>().noalias() = R * M.topLeftCorner<3, 3>() * R.transpose();
   ws.Mw.topRightCorner<3, 3>().noalias() = R * M.topRightCorner<3, 3>() * R.transpose();
   ws.Mw.bottomLeftCorner<3, 3>().noalias() = R * M.bottomLeftCorner<3, 3>() * R.transpose();
@@ -157,7 +157,7 @@ void body_loads(const Fluid& fluid, const Body& b, double t, BodyWork& ws) {
   for (std::size_t j = 0; j < b.surfaces.size(); ++j)
     surface_loads(fluid, b.surfaces[j], current_deflection(b, j, ws, t), t, ws);
   // Generic damping on the body-frame velocity relative to the water.
-  if (!b.linear_damping.isZero() || !b.quadratic_damping.isZero()) {
+  if (b.damped) {
     Vec6 nur;
     nur << ws.R.transpose() * (ws.vO - fluid.velocity(ws.O, t)), ws.R.transpose() * ws.w;
     const Vec6 tau = -b.linear_damping * nur - b.quadratic_damping * nur.cwiseAbs().cwiseProduct(nur);

@@ -166,13 +166,12 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
     sys_.project(yi_, t1);
     sys_.derivative(yi_, scratch_, t1);
     Vec3 tow_hat = Vec3::Zero();
-    std::vector<Vec3> link_hat;
-    if (acc) tow_hat = acc->tow_force, link_hat = acc->link_force;
-    sys_.derivative(y1_, fi_, t1);  // last: the next step's start
+    if (acc) tow_hat = acc->tow_force, link_hat_ = acc->link_force;  // storage reused
+    sys_.derivative(y1_, fi_, t1);                                   // last: the next step's start
     if (acc) {
       auto rel = [&](const Vec3& a, const Vec3& b) { return (a - b).norm() / (force_scale_ + a.norm()); };
       ferr = rel(acc->tow_force, tow_hat);
-      for (std::size_t b = 0; b < link_hat.size(); ++b) ferr = std::max(ferr, rel(acc->link_force[b], link_hat[b]));
+      for (std::size_t b = 0; b < link_hat_.size(); ++b) ferr = std::max(ferr, rel(acc->link_force[b], link_hat_[b]));
     }
     if (!std::isfinite(ferr)) ferr = std::numeric_limits<double>::infinity();
     err = std::max(err, ferr / tol_);

@@ -120,6 +120,12 @@ class DefaultSystem final : public System {
     return s;
   }
 
+  const PhysicalState& physical_view(const StateVector& y) const override {
+    view_ = s_;  // as physical(y), into storage of the same sizes
+    unpack(y, view_);
+    return view_;
+  }
+
   void derivative(const StateVector& y, StateVector& dy, double t) override {
     ++rhs_evaluations;
     unpack(y, s_);

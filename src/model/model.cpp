@@ -89,6 +89,9 @@ void finalize_body(Body& body, const Fluid& fluid) {
   }
   body.displaced_volume = volume;
   body.buoyancy_center = volume > 0 ? Vec3(moment / volume) : body.cg;
+  // Once here rather than at each evaluation (body_inertia, body_loads).
+  body.total_mass = body.rigid_mass + body.fluid_mass;
+  body.damped = !body.linear_damping.isZero() || !body.quadratic_damping.isZero();
 }
 
 int control_count(const Body& body) {

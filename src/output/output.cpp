@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <bit>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -136,54 +138,62 @@ bool round12(double v, std::uint64_t& m, int& X) {
   return true;
 }
 
+/// Room for one formatted number (put_g12's fixed-size copies included) [bytes].
+constexpr std::size_t kNumberRoom = 40;
+
 /// v as std::to_chars(general, 12) writes it ("%.12g": 12 significant
 /// digits, trailing zeros dropped, scientific below 1e-4 and from 1e12),
-/// the same bytes, several times faster (round12, then the digits).
+/// the same bytes, several times faster (round12, then the digits). Writes
+/// up to 40 bytes from b (fixed-size copies past the end), returns the end.
 char* put_g12(char* b, double v) {
   std::uint64_t m = 0;
   int X = 0;
-  if (!round12(v, m, X)) return std::to_chars(b, b + 40, v, std::chars_format::general, 12).ptr;
-  // The 12 digits (two halves of 6, two digits at a time), then the trailing zeros dropped.
-  char d[12];
+  if (!round12(v, m, X)) return std::to_chars(b, b + kNumberRoom, v, std::chars_format::general, 12).ptr;
+  // The 12 digits (two halves of 6, two digits at a time), zero-padded to 24
+  // bytes so that fixed 12-byte copies from any digit stay inside d.
+  char d[24] = "00000000000000000000000";
   auto six = [](char* out, std::uint32_t x) {
     static constexpr char kPairs[] =
         "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
         "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
         "8081828384858687888990919293949596979899";
-    for (int i = 4; i >= 0; i -= 2) {
-      const std::uint32_t r = x % 100;
-      x /= 100;
-      out[i] = kPairs[2 * r];
-      out[i + 1] = kPairs[2 * r + 1];
-    }
+    const std::uint32_t hi = x / 10000, lo = x % 10000;  // x < 10^6: digits hi | lo/100 | lo%100
+    std::memcpy(out, kPairs + 2 * hi, 2);
+    std::memcpy(out + 2, kPairs + 2 * (lo / 100), 2);
+    std::memcpy(out + 4, kPairs + 2 * (lo % 100), 2);
   };
   six(d, static_cast<std::uint32_t>(m / 1000000));
   six(d + 6, static_cast<std::uint32_t>(m % 1000000));
-  int nd = 12;
+  int nd = 12;  // digits up to the last non-zero one
   while (nd > 1 && d[nd - 1] == '0') --nd;
   char* p = b;
   if (v < 0) *p++ = '-';
   if (X >= -4 && X < 12) {
-    // Fixed: X + 1 digits before the point (or "0.000" before them).
     if (X >= 0) {
-      for (int i = 0; i <= X; ++i) *p++ = i < nd ? d[i] : '0';
+      // Fixed: X + 1 digits before the point (the digits past nd are '0').
+      std::memcpy(p, d, 12);
+      p += X + 1;
       if (nd > X + 1) {
-        *p++ = '.';
-        for (int i = X + 1; i < nd; ++i) *p++ = d[i];
+        *p = '.';
+        std::memcpy(p + 1, d + X + 1, 12);
+        p += nd - X;
       }
     } else {
-      *p++ = '0';
-      *p++ = '.';
-      for (int i = 0; i < -X - 1; ++i) *p++ = '0';
-      for (int i = 0; i < nd; ++i) *p++ = d[i];
+      // "0.000" (-X - 1 zeros after the point), then the digits.
+      static constexpr char kLead[5] = {'0', '.', '0', '0', '0'};
+      std::memcpy(p, kLead, sizeof kLead);
+      p += 1 - X;
+      std::memcpy(p, d, 12);
+      p += nd;
     }
     return p;
   }
   // Scientific: d.ddde-XX (at least two exponent digits).
   *p++ = d[0];
   if (nd > 1) {
-    *p++ = '.';
-    for (int i = 1; i < nd; ++i) *p++ = d[i];
+    *p = '.';
+    std::memcpy(p + 1, d + 1, 12);
+    p += nd;
   }
   *p++ = 'e';
   *p++ = X < 0 ? '-' : '+';
@@ -221,11 +231,24 @@ double tidy_time(double t) {
   return r == 0 ? 0.0 : r;
 }
 
+namespace {
+
+/// v at p as put_number writes it (at most kNumberRoom bytes); returns the end.
+char* put_value(char* p, double v) {
+  if (std::abs(v) < kZeroBelow) {  // 0, as to_chars writes it (many columns are zero)
+    *p = '0';
+    return p + 1;
+  }
+  return put_g12(p, v);
+}
+
+}  // namespace
+
 void put_number(std::string& out, double v) {
-  char b[40];
+  char b[kNumberRoom];
   // 12 significant digits (the shortest form of tidy(v)), the bytes of
   // std::to_chars(general, 12), formatted directly (put_g12).
-  const char* end = put_g12(b, std::abs(v) < kZeroBelow ? 0.0 : v);
+  const char* end = put_value(b, v);
   out.append(b, static_cast<std::size_t>(end - b));
 }
 
@@ -392,7 +415,11 @@ std::string timeseries_header(const Model& model) {
   return h;
 }
 
-void timeseries_values(const Model& model, const Sample& s, std::vector<double>& v) {
+namespace {
+
+/// timeseries_values() before tidy (the time already rounded): put_number
+/// writes v and tidy(v) alike.
+void raw_timeseries_values(const Model& model, const Sample& s, std::vector<double>& v) {
   const Vec3 end = s.node_pos.empty() ? Vec3::Constant(std::nan("")) : s.node_pos.back();
   const BodySample* eb = end_sample(model, s);
   v.clear();
@@ -434,6 +461,12 @@ void timeseries_values(const Model& model, const Sample& s, std::vector<double>&
   for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b)  // depth controllers
     for (const ControlSample& c : s.bodies[b].controls)
       v.insert(v.end(), {c.deflection_deg, c.rate_deg_s, c.depth_error});
+}
+
+}  // namespace
+
+void timeseries_values(const Model& model, const Sample& s, std::vector<double>& v) {
+  raw_timeseries_values(model, s, v);
   for (std::size_t i = 1; i < v.size(); ++i) v[i] = tidy(v[i]);
 }
 
@@ -520,77 +553,108 @@ void RunRecord::write(const Sample& s) {
   extremes_.add(model_, s);
   if (has_sea(model_)) sea_.add(model_, s);
   ++samples_;
-  timeseries_values(model_, s, last_row_);
+  raw_timeseries_values(model_, s, raw_row_);
+  row_tidied_ = false;
+}
+
+const std::vector<double>& RunRecord::last_row() const {
+  if (!row_tidied_) {  // tidied on demand: the writer formats the raw row
+    last_row_ = raw_row_;
+    for (std::size_t i = 1; i < last_row_.size(); ++i) last_row_[i] = tidy(last_row_[i]);
+    row_tidied_ = true;
+  }
+  return last_row_;
 }
 
 nlohmann::ordered_json RunRecord::final_row() const {
-  if (last_row_.empty()) return nullptr;
+  const std::vector<double>& row = last_row();
+  if (row.empty()) return nullptr;
   nlohmann::ordered_json j;
   const auto names = timeseries_columns(model_);
-  for (std::size_t i = 0; i < names.size() && i < last_row_.size(); ++i) j[names[i]] = num(last_row_[i]);
+  for (std::size_t i = 0; i < names.size() && i < row.size(); ++i) j[names[i]] = num(row[i]);
   return j;
 }
 
 RunWriter::RunWriter(const std::string& dir, const Model& model, bool write_nodes) : RunRecord(model) {
+  // Unbuffered: the rows arrive in large batches, each one write(2).
   series_ = open_file(dir, "timeseries.csv");
+  std::setvbuf(series_, nullptr, _IONBF, 0);
   write_all(series_, timeseries_header(model) + "\n");
   node_ids_ = model.winch.active();
   if (write_nodes) {
     nodes_ = open_file(dir, "nodes.csv");
+    std::setvbuf(nodes_, nullptr, _IONBF, 0);
     std::string h = node_ids_ ? "time,node,node_id" : "time,node";
     for (const auto& c : node_columns(model)) h += "," + c;
     write_all(nodes_, h + "\n");
   }
+  last_write_ = std::chrono::steady_clock::now();
 }
 
 RunWriter::~RunWriter() {
+  flush();
   if (series_ != nullptr) std::fclose(series_);
   if (nodes_ != nullptr) std::fclose(nodes_);
 }
 
 void RunWriter::write(const Sample& s) {
   RunRecord::write(s);
-  // timeseries.csv: the row just recorded.
-  buf_.clear();
-  const auto& row = last_row();
+  // timeseries.csv: the row just recorded, formatted in place (the buffer
+  // grown first to room for every number, then cut to what was written).
+  const auto& row = raw_row();
+  std::size_t at = series_buf_.size();
+  series_buf_.resize(at + (row.size() + 1) * kNumberRoom);
+  char* p = series_buf_.data() + at;
   for (std::size_t i = 0; i < row.size(); ++i) {
-    if (i > 0) buf_ += ',';
-    if (i == 0)
-      put_time(buf_, row[i]);
-    else
-      put_number(buf_, row[i]);
-  }
-  buf_ += '\n';
-  write_all(series_, buf_);
-  if (nodes_ == nullptr) return;
-  // nodes.csv: one row per node, the time formatted once; the values
-  // unrounded (put_number rounds them as tidy would).
-  buf_.clear();
-  time_.clear();
-  put_time(time_, s.t);
-  auto put_integer = [this](long i) {
-    char b[24];
-    buf_ += ',';
-    buf_.append(b, std::to_chars(b, b + sizeof b, i).ptr);
-  };
-  for (std::size_t k = 0; k < s.node_pos.size(); ++k) {
-    buf_ += time_;
-    put_integer(static_cast<long>(k));
-    if (node_ids_) put_integer(k < s.node_id.size() ? s.node_id[k] : static_cast<long>(k));
-    values_.clear();
-    raw_node_values(&model(), s, k, values_);
-    for (double v : values_) {
-      buf_ += ',';
-      put_number(buf_, v);
+    if (i > 0) {
+      *p++ = ',';
+      p = put_value(p, row[i]);
+    } else {
+      p = std::to_chars(p, p + kNumberRoom, tidy_time(row[0])).ptr;  // as put_time writes it
     }
-    buf_ += '\n';
   }
-  write_all(nodes_, buf_);
+  *p++ = '\n';
+  series_buf_.resize(static_cast<std::size_t>(p - series_buf_.data()));
+  if (nodes_ != nullptr) {
+    // nodes.csv: one row per node, the time formatted once; the values
+    // unrounded (put_number rounds them as tidy would).
+    time_.clear();
+    put_time(time_, s.t);
+    at = nodes_buf_.size();
+    for (std::size_t k = 0; k < s.node_pos.size(); ++k) {
+      values_.clear();
+      raw_node_values(&model(), s, k, values_);
+      nodes_buf_.resize(at + time_.size() + (values_.size() + 3) * kNumberRoom);
+      p = nodes_buf_.data() + at;
+      std::memcpy(p, time_.data(), time_.size());
+      p += time_.size();
+      *p++ = ',';
+      p = std::to_chars(p, p + kNumberRoom, static_cast<long>(k)).ptr;
+      if (node_ids_) {
+        *p++ = ',';
+        p = std::to_chars(p, p + kNumberRoom, k < s.node_id.size() ? s.node_id[k] : static_cast<long>(k)).ptr;
+      }
+      for (double v : values_) {
+        *p++ = ',';
+        p = put_value(p, v);
+      }
+      *p++ = '\n';
+      at = static_cast<std::size_t>(p - nodes_buf_.data());
+    }
+    nodes_buf_.resize(at);
+  }
+  // Whole rows to the files: when a buffer is large, or kWriteEvery after the last write.
+  if (series_buf_.size() + nodes_buf_.size() >= kWriteBytes ||
+      std::chrono::steady_clock::now() - last_write_ >= kWriteEvery)
+    flush();
 }
 
 void RunWriter::flush() {
-  if (series_ != nullptr) std::fflush(series_);
-  if (nodes_ != nullptr) std::fflush(nodes_);
+  if (series_ != nullptr && !series_buf_.empty()) write_all(series_, series_buf_);
+  if (nodes_ != nullptr && !nodes_buf_.empty()) write_all(nodes_, nodes_buf_);
+  series_buf_.clear();
+  nodes_buf_.clear();
+  last_write_ = std::chrono::steady_clock::now();
 }
 
 nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,

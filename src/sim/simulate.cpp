@@ -93,27 +93,32 @@ void check_stall(const Model& model, const Workspace& ws, double t, RunStats& st
   }
 }
 
-/// Output sample of state y at time t; tracks the element length drift.
-Sample sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats,
-                 std::string* err = nullptr) {
+/// Output sample of state y at time t into `out` (its storage reused);
+/// tracks the element length drift.
+void sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats, Sample& out,
+               std::string* err = nullptr) {
   const Workspace& ws = sys.evaluate(y, t);
   if (err) *err = check_rk4_step(model, ws, t, stats);
   check_stall(model, ws, t, stats);
-  const PhysicalState s = sys.physical(y);
-  Sample out = make_sample(model, s, ws, t);
+  make_sample(model, sys.physical_view(y), ws, t, out);
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
     const int b = ws.body_at[k + 1];
     const Vec3& bottom = b >= 0 ? ws.body[static_cast<std::size_t>(b)].Q : ws.P[k + 1];
     const double L = ws.L[k];  // the state's length (winch, elastic)
     stats.max_element_drift = std::max(stats.max_element_drift, std::abs((bottom - ws.P[k]).norm() / L - 1));
   }
-  return out;
 }
 
 }  // namespace
 
 Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, double t) {
   Sample out;
+  make_sample(model, s, ws, t, out);
+  return out;
+}
+
+void make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, double t, Sample& out) {
+  // Every field set again; the vectors keep their storage.
   out.t = t;
   out.tow_pos = ws.P.front();
   out.tow_vel = ws.vP.front();
@@ -143,6 +148,9 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
     }
     if (model.seabed) out.node_seabed.push_back(fs);
   };
+  for (auto* v : {&out.node_pos, &out.node_vel, &out.node_seabed}) v->clear();
+  for (auto* v : {&out.tension, &out.axial, &out.strain, &out.utilisation}) v->clear();
+  out.contact_length = 0;
   const std::size_t n = els.size();
   for (std::size_t k = 0; k <= n; ++k) {
     const int b = k == 0 ? -1 : ws.body_at[k];
@@ -159,28 +167,32 @@ Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& 
   }
   out.seabed_normal = ws.seabed_normal;
   out.seabed_friction = ws.seabed_friction;
+  out.bodies.resize(model.bodies.size());
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyWork& bw = ws.body[b];
-    out.bodies.push_back({bw.O,
-                          bw.vO,
-                          roll_pitch_yaw(s.bodies[b].q) * kRad2Deg,
-                          bw.w,
-                          ws.acc.link_force[b],
-                          ws.acc.lower_link_force[b],
-                          {}});
+    BodySample& o = out.bodies[b];
+    o.pos = bw.O;
+    o.vel = bw.vO;
+    o.rpy_deg = roll_pitch_yaw(s.bodies[b].q) * kRad2Deg;
+    o.omega = bw.w;
+    o.link_force = ws.acc.link_force[b];
+    o.lower_link_force = ws.acc.lower_link_force[b];
+    o.controls.clear();
     // Depth controllers: deflection, its rate and the depth error.
     std::size_t c = 0;
     for (const LiftingSurface& ls : model.bodies[b].surfaces) {
       if (!ls.depth_control) continue;
       const ControlState& cs = s.bodies[b].controls[c];
       const ControlRates r = depth_control_rates(*ls.depth_control, cs, -bw.O.z(), -bw.vO.z());
-      out.bodies.back().controls.push_back({bw.deflection[c++] * kRad2Deg, r.ddeflection * kRad2Deg, r.error});
+      o.controls.push_back({bw.deflection[c++] * kRad2Deg, r.ddeflection * kRad2Deg, r.error});
     }
   }
+  out.has_waves = false;
+  out.wave_elevation = 0;
+  out.tow_wave = Vec3::Zero();
   if (has_sea(model)) sea_sample(model, t, out);
   out.node_id.resize(out.node_pos.size());
   for (std::size_t k = 0; k < out.node_id.size(); ++k) out.node_id[k] = static_cast<long>(k);
-  return out;
 }
 
 double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* element, double* tension) {
@@ -224,7 +236,7 @@ namespace {
 std::string check_state(const Model& model, const System& sys, const StateVector& y) {
   for (std::size_t i = 0; i < y.size(); ++i)
     if (!std::isfinite(y[i])) return sys.describe(i) + ": state is not finite (NaN or infinity)";
-  const PhysicalState s = sys.physical(y);
+  const PhysicalState& s = sys.physical_view(y);
   for (int k = 0; k < model.cable.n(); ++k)
     if (s.w[k].norm() > kMaxRate)
       return "element " + std::to_string(k + 1) + ": angular velocity diverged (" + std::to_string(s.w[k].norm()) +
@@ -425,8 +437,9 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   double t = 0;
   std::string check;  // a refusal from the rk4 stability check
   // One sample of the current chain at (state yy, time tt), its nodes with their identities.
-  auto sample = [&](const StateVector& yy, double tt) {
-    Sample out = sample_of(*chain.model, *chain.sys, yy, tt, stats, &check);
+  Sample out;  // the sample being written (its storage reused)
+  auto sample = [&](const StateVector& yy, double tt) -> const Sample& {
+    sample_of(*chain.model, *chain.sys, yy, tt, stats, out, &check);
     if (chain.node_id.empty()) {
       chain.node_id = out.node_id;
       chain.next_id = static_cast<long>(out.node_id.size());

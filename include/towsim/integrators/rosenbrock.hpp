@@ -68,6 +68,8 @@ class RosenbrockW {
   double t0d_ = 0, hd_ = 0;  // its start and size [s]
   bool dense_ = false;       // y0d_, t0d_, hd_ and u_ describe the last accepted step
   std::array<StateVector, kStages> u_;
+
+  std::vector<Vec3> link_hat_;  // link forces at the embedded solution [N, R_g] (storage reused)
 };
 
 }  // namespace towsim

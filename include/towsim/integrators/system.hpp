@@ -33,6 +33,12 @@ class System {
   virtual double apply_tow_jump(StateVector& y, double t) = 0;
   /// Physical state of y.
   virtual PhysicalState physical(const StateVector& y) const = 0;
+  /// physical(y) in storage the system keeps (no allocation once sized),
+  /// valid until the next call: for checks and outputs at every step.
+  virtual const PhysicalState& physical_view(const StateVector& y) const {
+    view_ = physical(y);
+    return view_;
+  }
   /// Full evaluation for output at (y, t): kinematics, forces, joint forces.
   virtual const Workspace& evaluate(const StateVector& y, double t) = 0;
   /// What state component i belongs to ("element 3", "body", "tow point").
@@ -66,6 +72,7 @@ class System {
     return std::clamp(t, t0_ + d, t1_ - d);
   }
   double t0_ = -1e300, t1_ = 1e300;  // window of the current step [s]
+  mutable PhysicalState view_;       // physical_view's storage
 };
 
 /// The system of the model's formulation (model.sim.formulation).

@@ -164,6 +164,8 @@ struct Body {
   Mat6 fluid_mass = Mat6::Zero();       // M_A: added_mass + sphere and cylinder added masses, about O_t, body axes
   double displaced_volume = 0;          // total: volume + spheres + cylinders [m^3]
   Vec3 buoyancy_center = Vec3::Zero();  // centre of the total displaced volume, body axes [m]
+  Mat6 total_mass = Mat6::Zero();       // rigid_mass + fluid_mass, body axes [SI]
+  bool damped = false;                  // linear_damping or quadratic_damping not zero (Eigen's isZero)
 };
 
 /// How the run starts.

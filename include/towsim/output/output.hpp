@@ -10,6 +10,7 @@
 // 7088.4, not 7088.400000000001). summary.json holds the same values.
 #pragma once
 
+#include <chrono>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -155,7 +156,7 @@ class RunRecord : public OutputSink {
   /// Number of samples written.
   long samples() const { return samples_; }
   /// The last sample's timeseries values as written (empty before the first).
-  const std::vector<double>& last_row() const { return last_row_; }
+  const std::vector<double>& last_row() const;
   /// The last row's values by column name (null before any row).
   nlohmann::ordered_json final_row() const;
   const Model& model() const { return model_; }
@@ -167,12 +168,20 @@ class RunRecord : public OutputSink {
   SeaStatistics sea_;
   Extremes extremes_;
   long samples_ = 0;
-  std::vector<double> last_row_;
+  std::vector<double> raw_row_;           // the last row before tidy (time rounded)
+  mutable std::vector<double> last_row_;  // raw_row_ tidied, on demand
+  mutable bool row_tidied_ = true;
+
+ protected:
+  /// The last row unrounded (the time rounded): written as last_row() reads.
+  const std::vector<double>& raw_row() const { return raw_row_; }
 };
 
-/// Writes timeseries.csv (and nodes.csv) row by row, each sample's rows
-/// complete and flushed to the OS before the next, so that a crash leaves
-/// whole rows.
+/// Writes timeseries.csv (and nodes.csv): each sample's rows are formatted
+/// into a buffer and handed to the OS whole, once the buffers hold
+/// kWriteBytes or kWriteEvery after the last write (and at flush() and at
+/// the end), so that a crash leaves whole rows, all but at most the last
+/// kWriteEvery of them.
 class RunWriter : public RunRecord {
  public:
   /// Create the files in the existing directory `dir` and write their
@@ -182,16 +191,23 @@ class RunWriter : public RunRecord {
   RunWriter(const RunWriter&) = delete;
   RunWriter& operator=(const RunWriter&) = delete;
 
-  /// Append the sample's rows and flush them.
+  /// Append the sample's rows (written out as the class comment says).
   void write(const Sample& s) override;
-  /// Flush both files.
+  /// Write out the rows buffered so far and flush both files.
   void flush() override;
+
+  /// Buffered rows are written out from this size on [bytes]
+  static constexpr std::size_t kWriteBytes = 64 * 1024;
+  /// ... or this long after the last write [s of wall time]
+  static constexpr std::chrono::milliseconds kWriteEvery{100};
 
  private:
   std::FILE* series_ = nullptr;
   std::FILE* nodes_ = nullptr;
-  bool node_ids_ = false;  // nodes.csv has a node_id column (a model with a winch)
-  std::string buf_;
+  bool node_ids_ = false;   // nodes.csv has a node_id column (a model with a winch)
+  std::string series_buf_;  // timeseries.csv rows not yet written
+  std::string nodes_buf_;   // nodes.csv rows not yet written
+  std::chrono::steady_clock::time_point last_write_;
   std::string time_;  // the sample's time as written
   std::vector<double> values_;
 };

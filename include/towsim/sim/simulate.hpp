@@ -63,6 +63,8 @@ struct Sample {
 /// just filled for it (forward_dynamics(model, s, t, ws)): the one place
 /// where outputs are assembled, for runs and statics alike.
 Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, double t);
+/// The same into `out`, every field set again (its vectors' storage reused).
+void make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, double t, Sample& out);
 
 /// Receives samples in time order. Implementations write files.
 class OutputSink {
