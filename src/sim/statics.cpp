@@ -600,6 +600,12 @@ void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult&
   // evaluation that gave r.
   const double floor = residual_floor(p.model);  // kFloor, or the seabed springs' round-off
   const auto good = [&p, floor](const Eigen::VectorXd& res) { return good_residual(p, floor, res); };
+  // Newton-Krylov first (O(n) per product) with cable on the bottom: above
+  // the dense solve's limit, and from the relaxation above kPolishLimit.
+  if (!out.interrupted && p.model.seabed && !good(r) && (N > kDenseLimit || (!p.sweeps && N > kPolishLimit))) {
+    newton_krylov(p, floor, stop_flag, out.iterations);
+    r = p.residual(zero);
+  }
   const bool dense = !out.interrupted && !(p.max_alpha(r) < kTolerance) &&
                      (N <= kPolishLimit || (!good(r) && N <= kDenseLimit));
   if (dense) {
@@ -653,10 +659,6 @@ void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult&
     }
     if (!improved) break;
   }
-  // Too large for the dense solve and not converged, with a seabed (the
-  // sweeps leave its contact out): Newton-Krylov, O(n) per product.
-  if (!out.interrupted && N > kDenseLimit && p.model.seabed && !good(p.residual(zero)))
-    newton_krylov(p, floor, stop_flag, out.iterations);
   r = p.residual(Eigen::VectorXd::Zero(N));  // p.ws at the result, for good() and the message
   out.residual = r.allFinite() ? p.max_alpha(r) : std::numeric_limits<double>::quiet_NaN();  // max drops NaNs
   const double rel = p.relative_moment(r);
