@@ -790,12 +790,13 @@ void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
 /// Each step backtracked until |r| decreases. Adds its Newton steps to
 /// `iterations`; p.base the result.
 void newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag, int& iterations) {
-  constexpr int kMaxNewton = 100;       // Newton steps [-]
-  constexpr int kKrylov = 80;           // largest Krylov space [-]
-  constexpr double kForcing = 1e-4;     // GMRES stops at this fraction of |r| (inexact Newton) [-]
-  constexpr double kPseudoStep = 1e3;   // the preconditioner's h [s]: Newton-like, M/h^2 regularises K
-  constexpr double kDifference = 1e-7;  // |dx| of the difference quotient [rad]: ~sqrt(eps)
-  constexpr double kMaxStep = 0.5;      // largest angle of a Newton step [rad] (as the dense solve)
+  constexpr int kMaxNewton = 100;        // Newton steps [-]
+  constexpr int kKrylov = 80;            // largest Krylov space [-]
+  constexpr double kForcing = 1e-4;      // GMRES stops at this fraction of |r| (inexact Newton) [-]
+  constexpr double kPseudoStep = 1e3;    // the preconditioner's h [s]: Newton-like, M/h^2 regularises K
+  constexpr double kDifference = 1e-7;   // |dx| of the difference quotient [rad]: ~sqrt(eps)
+  constexpr double kMaxStep = 0.5;       // largest angle of a Newton step [rad] (as the dense solve)
+  constexpr double kCompression = 1e-9;  // an element's compression beyond round-off, of its forces [-]
   Model rm = p.model;
   rm.sim.formulation = Formulation::Default;
   const double U = p.V.norm();
@@ -839,6 +840,7 @@ void newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag
     }
     return x;
   };
+  const PhysicalState start = p.base;
   Eigen::VectorXd r = p.residual(zero);
   for (int it = 0; it < kMaxNewton && !stopped(stop_flag); ++it, ++iterations) {
     if (!r.allFinite() || p.max_alpha(r) < kTolerance || good_residual(p, floor, r)) break;
@@ -901,7 +903,22 @@ void newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag
     }
     if (!better) break;
   }
+  // Newton finds unstable equilibria as well (an inverted chain standing in
+  // compression): every element must hang along the pull on it, tension
+  // T_k = e_k . (F_k/2 - f_k) >= 0 to round-off (as the sweeps' stable
+  // side), else the start is kept.
   p.residual(zero);  // p.ws at the result
+  for (int i = 0; i < p.n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    const int b = p.ws.body_at[u + 1];
+    const Vec3& below = b >= 0 ? p.ws.acc.link_force[static_cast<std::size_t>(b)] : p.ws.acc.joint_force[u + 1];
+    const Vec3 pull = 0.5 * p.ws.F[u] - below;
+    if (p.base.e[i].dot(pull) < -kCompression * (p.ws.F[u].norm() + below.norm())) {
+      p.accept_state(start);
+      p.residual(zero);
+      return;
+    }
+  }
 }
 
 /// Elastic elements (docs/theory.md §5.4, §7): the equilibrium of a chain of
