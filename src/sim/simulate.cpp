@@ -462,10 +462,13 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     if (model.sim.integrator != Integrator::Rosenbrock) return;
     if (!chain.sys->has_stage_solve())
       check = "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)";
-    // W's time column (f_t): not with a winch. Measured on fish-depth-change
-    // (docs/performance.md "W's time column"): with it the link tension was
-    // 2.8x less accurate (at the start of the haul-in) at 6 % more
-    // evaluations; not understood, left out there.
+    // W's time column (f_t): not with a winch. f_t is right there (fixed
+    // steps: more accurate, order 3), but on fish-depth-change it does not
+    // pay (docs/performance.md "W's time column", "With a winch"): in the
+    // schedule's speed ramps the steps grow up to 2x and the fish's attitude
+    // error, ~tol per step and of one sign, adds up (link tension 2.8x less
+    // accurate); between them max_step binds, f_t only costs (6 % more
+    // evaluations). More evaluations for equal accuracy at every tolerance.
     const auto td = model.winch.active() ? RosenbrockW::TimeDerivative::None
                                          : RosenbrockW::TimeDerivative::FiniteDifference;
     ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model),
