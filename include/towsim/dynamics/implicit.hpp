@@ -41,9 +41,17 @@ struct LocalJacobian {
 void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG, const Vec3& xG,
                             double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K);
 
+/// Derivatives of a body's loads (body_loads, F_b and M_b about O_t, R_g):
+/// damping D = -d(F_b; M_b)/d(v_O; omega_B) (6x6) and stiffness about O_t
+/// KO = -dM_b/dtheta, turning the body about O_t (3x3). Analytic (gravity,
+/// buoyancy, thrusters, sphere and cylinder drag, lifting surfaces, generic
+/// damping); in a non-uniform flow the water's velocity and acceleration
+/// gradients by central differences (docs/theory.md §6.3).
+void body_load_derivatives(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& D, Mat3& KO);
+
 /// Per-part hook, body: damping C (6x6 on v_O, omega_B) and rotational
-/// stiffness K about the link point Q, by central differences of its loads
-/// (symmetric part, negative eigenvalues dropped). bw: the body's evaluation.
+/// stiffness K about the link point Q, from body_load_derivatives (symmetric
+/// parts, negative eigenvalues dropped). bw: the body's evaluation.
 void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& C, Mat3& K);
 
 /// Per-part hook, attachment at a joint: drag damping on the joint's velocity.
