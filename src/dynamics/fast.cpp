@@ -59,12 +59,8 @@ void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat
                       Workspace& ws) {
   const double L = ws.L[k], m = el.mass, ma = el.added_mass, mn = m + ma;
   // Tangent basis normal to e.
-  Eigen::Index i;
-  e.cwiseAbs().minCoeff(&i);
-  const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
-  const Vec3 t2 = e.cross(t1);
-  ws.T[k].col(0) = t1;
-  ws.T[k].col(1) = t2;
+  ws.T[k] = tangent_basis(e);
+  const Vec3 t1 = ws.T[k].col(0), t2 = ws.T[k].col(1);
   const Vec3 c = -w.squaredNorm() * e;  // Mt c = m c
   ws.c[k] = c;
   // K T (K symmetric), G T = L (mn/2 T + K T), and the 2x2 rotational block

@@ -18,17 +18,6 @@ namespace {
 
 inline std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
-/// Tangent basis normal to e (same construction as the recursion's).
-Eigen::Matrix<double, 3, 2> tangent_basis(const Vec3& e) {
-  Eigen::Index i;
-  e.cwiseAbs().minCoeff(&i);
-  const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
-  Eigen::Matrix<double, 3, 2> T;
-  T.col(0) = t1;
-  T.col(1) = e.cross(t1);
-  return T;
-}
-
 /// A body's elimination at zero velocity, inertia part: modified inertia Me
 /// (the body's Mw plus its local terms); an in-line body first takes in the
 /// cable below, K2 at its lower link Q2.

@@ -8,10 +8,6 @@ namespace towsim {
 
 double smooth_sign(double x, double v_s) { return x / std::sqrt(x * x + v_s * v_s); }
 
-Mat3 element_mass(const Element& el, const Vec3& e) {
-  return el.mass * Mat3::Identity() + el.added_mass * (Mat3::Identity() - e * e.transpose());
-}
-
 void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot, const Vec3& vG,
                    const Vec3& xG, double t, Vec3& F, Vec3& M) {
   const Fluid& fluid = model.fluid;

@@ -2,12 +2,15 @@
 #include "towsim/integrators/rosenbrock.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 namespace towsim {
 
 namespace {
+
+inline std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
 // ROS34PW2 (Rang & Angermann, BIT 45 (2005) 761-787), in the form
 // (I - h gamma J) k_i = h f(y + sum_j alpha_ij k_j) + h J sum_j gamma_ij k_j,
@@ -112,39 +115,59 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
     have_ft_ = true;
   }
   // Stages: one evaluation and one O(n) solve each (stage 1 reuses f0).
+  // Each combination is one pass over the state, its terms added in the
+  // order j = 0, 1, ... (the same round-off as a pass per term).
   for (int i = 0; i < kStages; ++i) {
     const StateVector* f = &f0_;
+    std::array<const double*, kStages> us{};  // u_j with a nonzero weight
+    std::array<double, kStages> wj{};         // their weights
+    int nj = 0;
     if (i > 0) {
-      yi_ = y;
       for (int j = 0; j < i; ++j)
-        if (a_[i][j] != 0)
-          for (std::size_t q = 0; q < N; ++q) yi_[q] += a_[i][j] * u_[j][q];
+        if (a_[i][j] != 0) us[idx(nj)] = u_[idx(j)].data(), wj[idx(nj++)] = a_[i][j];
+      yi_.resize(N);
+      for (std::size_t q = 0; q < N; ++q) {
+        double v = y[q];
+        for (int l = 0; l < nj; ++l) v += wj[idx(l)] * us[idx(l)][q];
+        yi_[q] = v;
+      }
       sys_.derivative(yi_, fi_, t + alpha_[i] * h);
       f = &fi_;
     }
+    nj = 0;
+    for (int j = 0; j < i; ++j) us[idx(nj)] = u_[idx(j)].data(), wj[idx(nj++)] = gamma_ * c_[i][j];
+    const bool with_ft = use_ft_ && gsum_[i] != 0;
+    const double wft = hg * gsum_[i] * h;
     rhs_.resize(N);
-    for (std::size_t q = 0; q < N; ++q) rhs_[q] = hg * (*f)[q];
-    for (int j = 0; j < i; ++j)
-      for (std::size_t q = 0; q < N; ++q) rhs_[q] += gamma_ * c_[i][j] * u_[j][q];
-    if (use_ft_ && gsum_[i] != 0)
-      for (std::size_t q = 0; q < N; ++q) rhs_[q] += hg * gsum_[i] * h * ft_[q];
+    for (std::size_t q = 0; q < N; ++q) {
+      double v = hg * (*f)[q];
+      for (int l = 0; l < nj; ++l) v += wj[idx(l)] * us[idx(l)][q];
+      if (with_ft) v += wft * ft_[q];
+      rhs_[q] = v;
+    }
     sys_.stage_solve(hg, rhs_, u_[i]);
   }
-  y1_ = y;
-  rhs_.assign(N, 0.0);
-  for (int i = 0; i < kStages; ++i)
-    for (std::size_t q = 0; q < N; ++q) y1_[q] += m_[i] * u_[i][q], rhs_[q] += (m_[i] - mhat_[i]) * u_[i][q];
+  // y1 = y + sum m_i u_i and y1 - yhat = sum (m_i - mhat_i) u_i, one pass.
+  std::array<double, kStages> dm{};
+  for (int i = 0; i < kStages; ++i) dm[idx(i)] = m_[i] - mhat_[i];
+  y1_.resize(N);
+  rhs_.resize(N);
+  for (std::size_t q = 0; q < N; ++q) {
+    double v = y[q], d = 0.0;
+    for (int i = 0; i < kStages; ++i) v += m_[i] * u_[i][q], d += dm[idx(i)] * u_[i][q];
+    y1_[q] = v;
+    rhs_[q] = d;
+  }
   // Filtered error estimate (Shampine): (I - hg J)^-1 (y1 - yhat). The
   // embedded solution is not L-stable (|R(inf)| = 0.48): unfiltered, the
   // damped stiff modes (element rocking) would dominate the estimate.
   sys_.stage_solve(hg, rhs_, scratch_);
-  yhat_ = y1_;
-  for (std::size_t q = 0; q < N; ++q) yhat_[q] -= scratch_[q];
   // The solution whose forces are compared with y1's: the embedded one
-  // itself, y1 - (y1 - yhat), or the filtered one.
+  // itself, y1 - (y1 - yhat), or the filtered one; yhat with it, one pass.
   const StateVector& dy_force = force_estimate_ == ForceEstimate::Embedded ? rhs_ : scratch_;
-  yi_ = y1_;
-  for (std::size_t q = 0; q < N; ++q) yi_[q] -= dy_force[q];
+  yhat_.resize(N);
+  yi_.resize(N);
+  for (std::size_t q = 0; q < N; ++q) yhat_[q] = y1_[q] - scratch_[q], yi_[q] = y1_[q] - dy_force[q];
   sys_.project(y1_, t1);
   sys_.project(yhat_, t1);
   // State error: |y1 - yhat| against tol (1 + |y|), max norm.

@@ -291,8 +291,12 @@ class DefaultSystem final : public System {
       rhs_.top_dLr = lam * r[winch_offset() + 1];
     }
     implicit_stage_solve(model_, js_, jws_, hg, rhs_, iw_);
-    // Rows without local terms keep k = r (W = I there: still a W-method).
-    k = r;
+    // Rows without local terms keep k = r (W = I there: still a W-method);
+    // the tow point's and the elements' rows (the first body_offset(0)) are
+    // all written below, so only the rest is copied.
+    k.resize(r.size());
+    std::copy(r.begin() + static_cast<std::ptrdiff_t>(body_offset(0)), r.end(),
+              k.begin() + static_cast<std::ptrdiff_t>(body_offset(0)));
     // Position rows: k_x = r_x + hg B k_v (B: velocities -> position rates at the step's start).
     const Vec3 kv0 = CMap3(&r[3]) + iw_.a0;
     set3(k, 3, kv0);

@@ -52,12 +52,11 @@ double residual_floor(const Model& m) {
   return floor;
 }
 
-/// Two unit vectors completing e to an orthonormal frame.
+/// Two unit vectors completing e to an orthonormal frame (state.hpp's basis).
 void tangent_basis(const Vec3& e, Vec3& t1, Vec3& t2) {
-  Eigen::Index i;
-  e.cwiseAbs().minCoeff(&i);
-  t1 = e.cross(Vec3::Unit(i)).normalized();
-  t2 = e.cross(t1);
+  const Eigen::Matrix<double, 3, 2> T = towsim::tangent_basis(e);
+  t1 = T.col(0);
+  t2 = T.col(1);
 }
 
 /// The steady problem: a copy of the model whose tow point moves at V with no acceleration.

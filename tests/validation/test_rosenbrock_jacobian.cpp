@@ -48,17 +48,6 @@ Model km_cable_piece(const JacCase& c) {
   return m;
 }
 
-/// An orthonormal basis of the plane normal to e.
-Eigen::Matrix<double, 3, 2> normal_plane(const Vec3& e) {
-  Eigen::Index i;
-  e.cwiseAbs().minCoeff(&i);
-  const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
-  Eigen::Matrix<double, 3, 2> T;
-  T.col(0) = t1;
-  T.col(1) = e.cross(t1);
-  return T;
-}
-
 class RosenbrockJacobian : public ::testing::TestWithParam<JacCase> {};
 
 // The flat state (e_k, omega_k, q, omega_B) is reduced to the manifold's
@@ -106,7 +95,7 @@ TEST_P(RosenbrockJacobian, StageSolveMatchesFiniteDifferencesOnTheStiffModes) {
   for (int k = 0; k < n; ++k) {
     const Eigen::Index ie = 6 + 3 * k, iw = 6 + 3 * n + 3 * k;
     const Vec3 e(y[ie], y[ie + 1], y[ie + 2]), w(y[iw], y[iw + 1], y[iw + 2]);
-    const auto T = normal_plane(e);
+    const auto T = tangent_basis(e);
     for (int a = 0; a < 2; ++a) {
       const Vec3 ta = T.col(a);
       for (int d = 0; d < 3; ++d) {

@@ -188,6 +188,21 @@ inline const Element& current_element(const Model& model, const Workspace& ws, s
   return k == 0 && ws.winch ? ws.top : model.cable.elements[k];
 }
 
+/// Orthonormal basis T = [t1 t2] of the plane normal to a unit vector e
+/// (an element's rotation plane, docs/theory.md §5.2): t1 = e x u / |e x u|,
+/// u the axis of e's smallest component (|e x u| >= sqrt(2/3)), t2 = e x t1.
+/// The one construction of the recursion, the stage solves, the statics and
+/// the tests: their bases are the same bits.
+inline Eigen::Matrix<double, 3, 2> tangent_basis(const Vec3& e) {
+  Eigen::Index i = 0;
+  e.cwiseAbs().minCoeff(&i);
+  const Vec3 t1 = e.cross(Vec3::Unit(i)).normalized();
+  Eigen::Matrix<double, 3, 2> T;
+  T.col(0) = t1;
+  T.col(1) = e.cross(t1);
+  return T;
+}
+
 /// Kinetic energy of cable and bodies, added mass included (the fluid's
 /// kinetic energy in the ideal-fluid model), from kinematics in ws [J].
 /// Needs compute_kinematics and compute_loads (inertias) for s.

@@ -18,7 +18,17 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
                    const Vec3& xG, double t, Vec3& F, Vec3& M);
 
 /// Translational inertia of an element at G: m I + ma (I - ee^T) [kg].
-Mat3 element_mass(const Element& el, const Vec3& e);
+/// Inline, coefficient by coefficient (called per element per evaluation;
+/// the same operations, and bits, as the matrix expression).
+inline Mat3 element_mass(const Element& el, const Vec3& e) {
+  Mat3 M;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const double d = i == j ? 1.0 : 0.0;  // I_ij
+      M(i, j) = el.mass * d + el.added_mass * (d - e[i] * e[j]);
+    }
+  return M;
+}
 
 /// Rotational inertia of an element about G, perpendicular to e: I + Ia [kg m^2].
 inline double element_rot_inertia(const Element& el) { return el.inertia + el.added_inertia; }
