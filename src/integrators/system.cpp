@@ -19,7 +19,7 @@ using CMap3 = Eigen::Map<const Vec3>;
 void set3(StateVector& y, std::size_t i, const Vec3& v) { y[i] = v.x(), y[i + 1] = v.y(), y[i + 2] = v.z(); }
 
 /// In Motion mode, put the imposed tow position and velocity at t into (r0, v0).
-void impose_tow(const Model& m, double t, Vec3& r0, Vec3& v0, CourseCache& course) {
+void impose_tow(const Model& m, double t, Vec3& r0, Vec3& v0, CourseCursor& course) {
   if (m.tow.mode != Tow::Mode::Motion) return;
   const TowKinematics k = tow_kinematics(m.tow, t, course);
   r0 = k.pos;

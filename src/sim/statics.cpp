@@ -76,6 +76,7 @@ struct SteadyProblem {
       : model(m), V(v), ws(m), n(m.cable.n()), nb(static_cast<int>(m.bodies.size())) {
     model.tow.mode = Tow::Mode::Motion;
     model.tow.pieces.clear();  // a0 = 0; the velocity is set in the state
+    finalize_tow(model.tow);
     model.tow.vessel.reset();  // calm water: no ship motion, no waves
     model.fluid.waves.reset();
     t1.assign(static_cast<std::size_t>(n), Vec3::Zero());
@@ -710,6 +711,7 @@ void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
   }
   rm.tow.pieces.clear();
   if (U > 0) rm.tow.pieces.emplace_back(Ramp{p.V / U, U, 0.0});
+  finalize_tow(rm.tow);
   const std::unique_ptr<System> sys = make_system(rm);
   if (!sys->has_stage_solve()) return;
   double weight = 1.0;  // force scale of the error norm: the chain's apparent weight [N]
@@ -803,6 +805,7 @@ void newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag
   const double U = p.V.norm();
   rm.tow.pieces.clear();
   if (U > 0) rm.tow.pieces.emplace_back(Ramp{p.V / U, U, 0.0});
+  finalize_tow(rm.tow);
   const std::unique_ptr<System> sys = make_system(rm);
   if (!sys->has_stage_solve()) return;
   const int N = p.size();

@@ -239,7 +239,7 @@ TowKinematics tow_kinematics(const Tow& tow, double t) {
   return tow.vessel ? tow.vessel->tow_point(k, t) : k;
 }
 
-TowKinematics tow_kinematics(const Tow& tow, double t, CourseCache& cache) {
+TowKinematics tow_kinematics(const Tow& tow, double t, CourseCursor& cache) {
   const TowKinematics k = tow_law_kinematics(tow, t, cache);
   return tow.vessel ? tow.vessel->tow_point(k, t) : k;
 }

@@ -134,7 +134,7 @@ struct Workspace {
   std::vector<BodyWork> body;                   // per Model::bodies entry
   std::vector<int> body_at;                     // index of the body hanging at joint k, or -1 (k = 0..n)
   Accelerations acc;                            // result of the last evaluation
-  CourseCache course;                           // the tow's course segments, kept between evaluations
+  CourseCursor course;                          // the tow law's last result (the course plan is the tow's)
 
   /// Allocate for a model.
   explicit Workspace(const Model& model);
