@@ -242,6 +242,9 @@ class DefaultSystem final : public System {
   }
 
   bool has_stage_solve() const override { return true; }
+  // w_k after the e_k block; a body's w after its quaternion.
+  std::size_t element_rate_row(std::size_t k) const override { return 6 + 3 * (static_cast<std::size_t>(n_) + k); }
+  std::size_t body_rate_row(std::size_t b) const override { return body_offset(b) + 4; }
 
   void prepare_stage_solve(double t) override {
     // Keep the evaluation at the step's start: its kinematics, inertias and

@@ -102,7 +102,11 @@ struct Workspace {
                             // (at an in-line body's joint: its lower link Q2)
   std::vector<Vec3> G, vG;  // element centres G_k and velocities [m], [m/s], R_g
   std::vector<Vec3> edot;   // de_k/dt = omega_k x e_k [1/s, R_g]
-  std::vector<double> L;    // current length of element k (index k-1) [m]
+  // Current length of element k (index k-1) [m]: PhysicalState::length_of
+  // gathered by compute_kinematics, the state's length when it carries one
+  // (winch, elastic) else the model's, so the sweeps read one dense array
+  // without that branch per element and per pass.
+  std::vector<double> L;
   // Winch: the top element at its current length (scaled_element), and the
   // velocity of its material at the sheave, v_0 + l' e_1.
   // Over an elastic top element: scaled to the paid-out L_1, and the
