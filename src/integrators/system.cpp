@@ -19,7 +19,7 @@ using CMap3 = Eigen::Map<const Vec3>;
 void set3(StateVector& y, std::size_t i, const Vec3& v) { y[i] = v.x(), y[i + 1] = v.y(), y[i + 2] = v.z(); }
 
 /// In Motion mode, put the imposed tow position and velocity at t into (r0, v0).
-void impose_tow(const Model& m, double t, Vec3& r0, Vec3& v0, CourseCache& course) {
+void impose_tow(const Model& m, double t, Vec3& r0, Vec3& v0, CourseCursor& course) {
   if (m.tow.mode != Tow::Mode::Motion) return;
   const TowKinematics k = tow_kinematics(m.tow, t, course);
   r0 = k.pos;
@@ -242,6 +242,9 @@ class DefaultSystem final : public System {
   }
 
   bool has_stage_solve() const override { return true; }
+  // w_k after the e_k block; a body's w after its quaternion.
+  std::size_t element_rate_row(std::size_t k) const override { return 6 + 3 * (static_cast<std::size_t>(n_) + k); }
+  std::size_t body_rate_row(std::size_t b) const override { return body_offset(b) + 4; }
 
   void prepare_stage_solve(double t) override {
     // Keep the evaluation at the step's start: its kinematics, inertias and

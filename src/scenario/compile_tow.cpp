@@ -154,6 +154,7 @@ Tow build_tow(const TowSpec& t, bool include_manoeuvres) {
     tow.force_time.push_back(row.values[0]);
     tow.force_value.emplace_back(row.values[1], row.values[2], row.values[3]);
   }
+  finalize_tow(tow);  // the course worked out once
   return tow;
 }
 

@@ -75,6 +75,7 @@ struct SteadyProblem {
       : model(m), V(v), ws(m), n(m.cable.n()), nb(static_cast<int>(m.bodies.size())) {
     model.tow.mode = Tow::Mode::Motion;
     model.tow.pieces.clear();  // a0 = 0; the velocity is set in the state
+    finalize_tow(model.tow);
     model.tow.vessel.reset();  // calm water: no ship motion, no waves
     model.fluid.waves.reset();
     t1.assign(static_cast<std::size_t>(n), Vec3::Zero());
@@ -709,6 +710,7 @@ void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
   }
   rm.tow.pieces.clear();
   if (U > 0) rm.tow.pieces.emplace_back(Ramp{p.V / U, U, 0.0});
+  finalize_tow(rm.tow);
   const std::unique_ptr<System> sys = make_system(rm);
   if (!sys->has_stage_solve()) return;
   double weight = 1.0;  // force scale of the error norm: the chain's apparent weight [N]
@@ -802,25 +804,25 @@ void newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag
   const double U = p.V.norm();
   rm.tow.pieces.clear();
   if (U > 0) rm.tow.pieces.emplace_back(Ramp{p.V / U, U, 0.0});
+  finalize_tow(rm.tow);
   const std::unique_ptr<System> sys = make_system(rm);
   if (!sys->has_stage_solve()) return;
   const int N = p.size();
-  const std::size_t n3 = 3 * static_cast<std::size_t>(p.n);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
   StateVector y, dy, rhs, k;
-  // x of the preconditioned step for the residual v (P v ~ J^-1 v). The
-  // default formulation's state: [r0, v0, e_1..e_n, w_1..w_n, per body
-  // (q, w_body), ...] (src/integrators/system.cpp); only the rates' rows are set.
+  // x of the preconditioned step for the residual v (P v ~ J^-1 v): only the
+  // rates' rows of the flat state are set (the system gives where they are).
   auto precondition = [&](const Eigen::VectorXd& v) {
     std::fill(rhs.begin(), rhs.end(), 0.0);
     for (int i = 0; i < p.n; ++i) {
       const auto u = static_cast<std::size_t>(i);
       const Vec3 a = (v[2 * i] * p.t1[u] + v[2 * i + 1] * p.t2[u]) / p.scale[u];
-      for (std::size_t c = 0; c < 3; ++c) rhs[6 + n3 + 3 * u + c] = a[static_cast<Eigen::Index>(c)];
+      const std::size_t o = sys->element_rate_row(u);
+      for (std::size_t c = 0; c < 3; ++c) rhs[o + c] = a[static_cast<Eigen::Index>(c)];
     }
     for (int b = 0; b < p.nb; ++b) {
       const auto ub = static_cast<std::size_t>(b);
-      const std::size_t o = 6 + 2 * n3 + 7 * ub + 4;
+      const std::size_t o = sys->body_rate_row(ub);
       for (std::size_t c = 0; c < 3; ++c)
         rhs[o + c] = v[2 * p.n + 3 * b + static_cast<int>(c)] / p.scale[static_cast<std::size_t>(p.n) + ub];
     }
@@ -829,13 +831,14 @@ void newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag
     Eigen::VectorXd x(N);
     for (int i = 0; i < p.n; ++i) {
       const auto u = static_cast<std::size_t>(i);
-      const Vec3 w(k[6 + n3 + 3 * u], k[6 + n3 + 3 * u + 1], k[6 + n3 + 3 * u + 2]);
+      const std::size_t o = sys->element_rate_row(u);
+      const Vec3 w(k[o], k[o + 1], k[o + 2]);
       const Vec3 de = h2 * w.cross(p.base.e[i]);
       x[2 * i] = -de.dot(p.t1[u]);
       x[2 * i + 1] = -de.dot(p.t2[u]);
     }
     for (int b = 0; b < p.nb; ++b) {
-      const std::size_t o = 6 + 2 * n3 + 7 * static_cast<std::size_t>(b) + 4;
+      const std::size_t o = sys->body_rate_row(static_cast<std::size_t>(b));
       x.segment<3>(2 * p.n + 3 * b) = -h2 * Vec3(k[o], k[o + 1], k[o + 2]);
     }
     return x;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <memory>
 #include <type_traits>
 #include <utility>
 
@@ -125,49 +126,45 @@ TowKinematics tow_law_kinematics(const Tow& tow, double t) {
   return k;
 }
 
-void CourseCache::build(const Tow& tow) {
-  built_ = true;
-  has_last_ = false;
-  start_ = tow.start;
-  pieces_ = tow.pieces;
-  segments_.clear();
-  // The walk to the end records every segment; t_first_ as in walk.
+void finalize_tow(Tow& tow) {
+  auto plan = std::make_shared<CoursePlan>();
+  plan->pieces = tow.pieces.size();
+  plan->start = tow.start;
+  // The walk to the end records every segment; t_first as in walk.
   std::vector<CourseSegment> seg;
   CourseState c;
-  course_ = walk(
+  plan->course = walk(
       tow, CourseState::kNever, c, [](double, Event, std::size_t, const CourseState&) {}, &seg);
-  for (const auto& [end, state] : seg) segments_.push_back({end, state});
+  for (const auto& [end, state] : seg) plan->segments.push_back({end, state});
   const auto& ps = tow.pieces;
   const auto first = std::find_if(ps.begin(), ps.end(), [](const TowLaw& p) { return is_manoeuvre(p); });
-  t_first_ = first == ps.end() ? CourseState::kNever : start_time(*first);
+  plan->t_first = first == ps.end() ? CourseState::kNever : start_time(*first);
+  tow.plan = std::move(plan);
 }
 
-TowKinematics CourseCache::law_at(const Tow& tow, double t) {
-  // A track (a table of any length) would cost more to compare at each call
-  // than the walk: such a tow is walked as without the cache.
-  if (std::any_of(tow.pieces.begin(), tow.pieces.end(),
-                  [](const TowLaw& p) { return std::holds_alternative<Track>(p); }))
+TowKinematics tow_law_kinematics(const Tow& tow, double t, CourseCursor& cursor) {
+  // No plan, or one built for other pieces: walked as without it.
+  const CoursePlan* plan = tow.plan.get();
+  if (plan == nullptr || plan->pieces != tow.pieces.size() || plan->start != tow.start)
     return tow_law_kinematics(tow, t);
-  if (!built_ || tow.start != start_ || tow.pieces != pieces_) build(tow);
-  if (has_last_ && t == last_t_ && std::signbit(t) == std::signbit(last_t_)) return last_;  // -0 is not 0 here
+  if (cursor.plan == tow.plan && t == cursor.last_t && std::signbit(t) == std::signbit(cursor.last_t))
+    return cursor.last;  // -0 is not 0 here
   TowKinematics k = offsets(tow, t);
   // As walk: a course only after the first manoeuvre; then the segment
   // containing t, the first that does not end before it.
-  if (course_ && t > t_first_) {
-    const auto seg = std::partition_point(segments_.begin(), segments_.end(),
-                                          [t](const Segment& s) { return s.end < t; });
+  if (plan->course && t > plan->t_first) {
+    const auto seg = std::partition_point(plan->segments.begin(), plan->segments.end(),
+                                          [t](const CoursePlan::Segment& s) { return s.end < t; });
     const TowKinematics h = course_at(seg->state, t);
     k.pos = Vec3(h.pos.x(), h.pos.y(), k.pos.z());
     k.vel = Vec3(h.vel.x(), h.vel.y(), k.vel.z());
     k.acc = Vec3(h.acc.x(), h.acc.y(), k.acc.z());
   }
-  has_last_ = true;
-  last_t_ = t;
-  last_ = k;
+  if (cursor.plan != tow.plan) cursor.plan = tow.plan;
+  cursor.last_t = t;
+  cursor.last = k;
   return k;
 }
-
-TowKinematics tow_law_kinematics(const Tow& tow, double t, CourseCache& cache) { return cache.law_at(tow, t); }
 
 std::vector<double> tow_breakpoints(const Tow& tow) {
   std::vector<double> out;

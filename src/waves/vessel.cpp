@@ -239,8 +239,8 @@ TowKinematics tow_kinematics(const Tow& tow, double t) {
   return tow.vessel ? tow.vessel->tow_point(k, t) : k;
 }
 
-TowKinematics tow_kinematics(const Tow& tow, double t, CourseCache& cache) {
-  const TowKinematics k = tow_law_kinematics(tow, t, cache);
+TowKinematics tow_kinematics(const Tow& tow, double t, CourseCursor& cursor) {
+  const TowKinematics k = tow_law_kinematics(tow, t, cursor);
   return tow.vessel ? tow.vessel->tow_point(k, t) : k;
 }
 

@@ -37,6 +37,7 @@ inline void straight_tow(Model& m, double V) {
   if (V != 0) {
     m.tow.pieces.push_back(Ramp{Vec3::UnitX(), V, 0});
   }
+  towsim::finalize_tow(m.tow);  // the example's course plan no longer holds
 }
 
 /// The cable's primary coefficients (docs/theory.md §3), as a scenario gives them.

@@ -199,18 +199,21 @@ TEST(Manoeuvres, HeaveCarriesOnDuringTheCourse) {
   EXPECT_EQ(c.h, Vec3::UnitX());
 }
 
-// The course cache gives the walk's numbers bit for bit (the same segment
-// states, so no tolerance): at random and repeated times, before the first
-// manoeuvre, on each side of every breakpoint, and after the tow changed
-// (it rebuilds rather than serve the old course).
-TEST(Manoeuvres, CourseCacheGivesTheWalksNumbersExactly) {
+// The tow's course plan (finalize_tow) gives the walk's numbers bit for bit (the
+// same segment states, so no tolerance): at random and repeated times, before
+// the first manoeuvre, on each side of every breakpoint, after the tow changed
+// and was finalized again, with a track, and with pieces added without
+// finalizing (the stale plan is not used). The cursor's last result is kept
+// only for the plan it came from.
+TEST(Manoeuvres, CoursePlanGivesTheWalksNumbersExactly) {
   Tow tow = motion({Ramp{Vec3(1, 1, 0), 2.0, 20}, Heave{0.5, 8.0, 5.0}, turn(25, 30, true, 40),
                     SpeedChange{3.0, 40, 30}, turn(25, 70, false, 80), turn(25, 110, true, 40),
                     SpeedChange{0.5, 120, 20}});
-  towsim::CourseCache cache;
+  towsim::finalize_tow(tow);
+  towsim::CourseCursor cursor;
   auto same = [&](double t) {
-    const TowKinematics a = towsim::tow_law_kinematics(tow, t), b = towsim::tow_law_kinematics(tow, t, cache);
-    const TowKinematics c = towsim::tow_kinematics(tow, t, cache);
+    const TowKinematics a = towsim::tow_law_kinematics(tow, t), b = towsim::tow_law_kinematics(tow, t, cursor);
+    const TowKinematics c = towsim::tow_kinematics(tow, t, cursor);
     return a.pos == b.pos && a.vel == b.vel && a.acc == b.acc && b.pos == c.pos && b.acc == c.acc;
   };
   std::vector<double> times{-1.0, 0.0, 29.999, 30.0, 200.0, 200.0, 1e6};
@@ -219,16 +222,25 @@ TEST(Manoeuvres, CourseCacheGivesTheWalksNumbersExactly) {
   int differ = 0;
   for (double t : times) differ += same(t) ? 0 : 1;
   EXPECT_EQ(differ, 0);
-  // The tow changes under the cache: a later first turn, then no manoeuvre at all.
+  // The tow changes and is finalized again: a later first turn, then no manoeuvre at all.
   std::get<Turn>(tow.pieces[2]).start_time = 35;
+  towsim::finalize_tow(tow);
   EXPECT_TRUE(same(36.0));
   EXPECT_TRUE(same(200.0));
   tow.pieces.resize(2);
+  towsim::finalize_tow(tow);
   EXPECT_TRUE(same(200.0));
   tow.start = Vec3(1, 2, 3);
+  towsim::finalize_tow(tow);
   EXPECT_TRUE(same(200.0));
+  // A track under the course, with its plan; then a piece added without finalize.
   tow.pieces.insert(tow.pieces.begin(), towsim::Track::make({0, 10, 20}, {Vec3::Zero(), Vec3(5, 1, 0), Vec3(9, 4, 0)}));
-  EXPECT_TRUE(same(15.0));
+  tow.pieces.push_back(turn(25, 30, true, 40));
+  towsim::finalize_tow(tow);
+  for (double t : {15.0, 31.0, 45.0, 200.0}) EXPECT_TRUE(same(t)) << t;
+  tow.pieces.push_back(SpeedChange{1.0, 100, 10});
+  EXPECT_TRUE(same(200.0));
+  EXPECT_TRUE(same(105.0));
 }
 
 // Material acceleration of a depth-profile current: zero for a horizontal

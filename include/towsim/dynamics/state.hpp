@@ -102,7 +102,11 @@ struct Workspace {
                             // (at an in-line body's joint: its lower link Q2)
   std::vector<Vec3> G, vG;  // element centres G_k and velocities [m], [m/s], R_g
   std::vector<Vec3> edot;   // de_k/dt = omega_k x e_k [1/s, R_g]
-  std::vector<double> L;    // current length of element k (index k-1) [m]
+  // Current length of element k (index k-1) [m]: PhysicalState::length_of
+  // gathered by compute_kinematics, the state's length when it carries one
+  // (winch, elastic) else the model's, so the sweeps read one dense array
+  // without that branch per element and per pass.
+  std::vector<double> L;
   // Winch: the top element at its current length (scaled_element), and the
   // velocity of its material at the sheave, v_0 + l' e_1.
   // Over an elastic top element: scaled to the paid-out L_1, and the
@@ -134,7 +138,7 @@ struct Workspace {
   std::vector<BodyWork> body;                   // per Model::bodies entry
   std::vector<int> body_at;                     // index of the body hanging at joint k, or -1 (k = 0..n)
   Accelerations acc;                            // result of the last evaluation
-  CourseCache course;                           // the tow's course segments, kept between evaluations
+  CourseCursor course;                          // the tow law's last result (the course plan is the tow's)
 
   /// Allocate for a model.
   explicit Workspace(const Model& model);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,6 +57,13 @@ class System {
   /// Solve (I - hg J) k = r for the stage increment k, J the local Jacobian
   /// approximation of prepare_stage_solve; hg = h gamma [s]. O(n).
   virtual void stage_solve(double /*hg*/, const StateVector& /*r*/, StateVector& /*k*/) {}
+  /// Rows of the flat state holding element k's angular velocity w_k and
+  /// body b's angular velocity (3 rows each, [1/s, R_g]): for solvers that set
+  /// and read rates through stage_solve (statics). Given by the systems with
+  /// a stage solve; kNoRow otherwise.
+  static constexpr std::size_t kNoRow = static_cast<std::size_t>(-1);
+  virtual std::size_t element_rate_row(std::size_t /*k*/) const { return kNoRow; }
+  virtual std::size_t body_rate_row(std::size_t /*b*/) const { return kNoRow; }
   /// Forces of the last derivative() call (tow force, link forces), or null.
   virtual const Accelerations* last_accelerations() const { return nullptr; }
   /// odeint's call signature.

@@ -12,8 +12,9 @@ namespace towsim::io {
 /// Check every value of `spec` (ranges, unit vectors, inertia, tables, tow
 /// pieces) and report all problems to `diags`. When there are none, build and
 /// return the Model (elements through make_element, the body through
-/// finalize_body); otherwise return nothing. Values already reported by the
-/// parser (not `given`) are not checked again.
+/// finalize_body, the tow's course through finalize_tow); otherwise return
+/// nothing. Values already reported by the parser (not `given`) are not
+/// checked again.
 std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags);
 
 }  // namespace towsim::io

@@ -2,7 +2,10 @@
 // psi(t) in the horizontal plane (docs/theory.md 6.2).
 #pragma once
 
+#include <cstddef>
 #include <limits>
+#include <memory>
+#include <vector>
 
 #include "towsim/tow/kinematics.hpp"
 
@@ -25,6 +28,30 @@ struct CourseState {
   double R = 0;               // turn radius [m]; 0 = straight
   Vec3 n = Vec3::Zero();      // unit normal towards the turn's centre [-, R_g]
   double turn_left = kNever;  // heading change left before the turn ends [rad]
+};
+
+/// The course's segments worked out once from a tow's start and pieces
+/// (finalize_tow, towsim/tow/tow.hpp): tow_law_kinematics through it gives the same numbers (the same
+/// segment states) without walking the events from the first manoeuvre at
+/// every call. Immutable once built.
+struct CoursePlan {
+  struct Segment {
+    double end = 0;     // the segment lasts up to this time [s] (kNever: for ever)
+    CourseState state;  // the course at its start
+  };
+  bool course = false;                   // a course runs after t_first
+  double t_first = CourseState::kNever;  // the first manoeuvre's start [s]
+  std::vector<Segment> segments;         // in time order
+  std::size_t pieces = 0;                // the tow's piece count it was built for [-]
+  Vec3 start = Vec3::Zero();             // the tow's start it was built for [m, R_g]
+};
+
+/// Per-evaluation state of the tow law (in the Workspace): the last result,
+/// for the plan it came from.
+struct CourseCursor {
+  std::shared_ptr<const CoursePlan> plan;  // the plan `last` was computed with (none: no last result)
+  double last_t = 0;                       // [s]
+  TowKinematics last{};                    // tow_law_kinematics at last_t
 };
 
 /// Horizontal position, velocity and acceleration at t >= c.t0 in c's segment.

@@ -16,6 +16,7 @@
 #include <variant>
 #include <vector>
 
+#include "towsim/tow/course.hpp"
 #include "towsim/tow/heave.hpp"
 #include "towsim/tow/ramp.hpp"
 #include "towsim/tow/speed.hpp"
@@ -45,45 +46,25 @@ struct Tow {
   /// Motion mode: a vessel whose wave motion carries the tow point on top of
   /// the pieces (which then move its RAO origin), or none (src/waves/vessel.cpp).
   std::shared_ptr<const Vessel> vessel;
+  /// The course worked out from start and pieces by finalize_tow(tow), shared
+  /// by copies; none: the course is walked at each call (same numbers).
+  std::shared_ptr<const CoursePlan> plan;
 };
+
+/// Build tow.plan from its start and pieces. Call it again after changing
+/// them (compile does; a plan whose piece count or start differs from the
+/// tow's is not used).
+void finalize_tow(Tow& tow);
 
 /// Imposed tow-point kinematics at time t (Motion mode): the pieces, then
 /// the vessel's wave motion when there is one (src/waves/vessel.cpp).
 TowKinematics tow_kinematics(const Tow& tow, double t);
 /// The pieces alone (the vessel's RAO origin when there is a vessel).
 TowKinematics tow_law_kinematics(const Tow& tow, double t);
-/// The course's segments worked out once for a tow's pieces, and the last
-/// result: tow_law_kinematics through it gives the same numbers (the same
-/// segment states) without walking the events from the first manoeuvre at
-/// every call. Built on first use, rebuilt whenever the tow's start or pieces
-/// differ from the ones it holds, so a changed tow is never served stale
-/// (a tow with a Track is walked at each call: comparing it would cost more).
-class CourseCache {
- public:
-  /// tow_law_kinematics(tow, t).
-  TowKinematics law_at(const Tow& tow, double t);
-
- private:
-  struct Segment {
-    double end = 0;     // the segment lasts up to this time [s] (kNever: for ever)
-    CourseState state;  // the course at its start
-  };
-  void build(const Tow& tow);
-
-  bool built_ = false;
-  Vec3 start_ = Vec3::Zero();      // the tow's start it was built for [m, R_g]
-  std::vector<TowLaw> pieces_;     // the pieces it was built for
-  bool course_ = false;            // a course runs after t_first_
-  double t_first_ = 0;             // the first manoeuvre's start [s]
-  std::vector<Segment> segments_;  // in time order
-  bool has_last_ = false;
-  double last_t_ = 0;     // [s]
-  TowKinematics last_{};  // tow_law_kinematics at last_t_
-};
-
-/// tow_kinematics and tow_law_kinematics through a course cache (same numbers).
-TowKinematics tow_kinematics(const Tow& tow, double t, CourseCache& cache);
-TowKinematics tow_law_kinematics(const Tow& tow, double t, CourseCache& cache);
+/// tow_kinematics and tow_law_kinematics through the tow's course plan and a
+/// cursor (same numbers as without).
+TowKinematics tow_kinematics(const Tow& tow, double t, CourseCursor& cursor);
+TowKinematics tow_law_kinematics(const Tow& tow, double t, CourseCursor& cursor);
 
 /// Imposed tow force at time t (Force mode) [N, R_g].
 Vec3 tow_force(const Tow& tow, double t);
