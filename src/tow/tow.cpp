@@ -140,12 +140,19 @@ void finalize_tow(Tow& tow) {
   const auto first = std::find_if(ps.begin(), ps.end(), [](const TowLaw& p) { return is_manoeuvre(p); });
   plan->t_first = first == ps.end() ? CourseState::kNever : start_time(*first);
   tow.plan = std::move(plan);
+  tow.plan_pieces = std::make_shared<const std::vector<TowLaw>>(tow.pieces);
 }
 
 TowKinematics tow_law_kinematics(const Tow& tow, double t, CourseCursor& cursor) {
-  // No plan, or one built for other pieces: walked as without it.
+  // The plan is checked against the pieces once per cursor (a Workspace:
+  // once per run), its piece count and start at every call; no plan, or one
+  // built for other pieces: walked as without it.
   const CoursePlan* plan = tow.plan.get();
-  if (plan == nullptr || plan->pieces != tow.pieces.size() || plan->start != tow.start)
+  if (cursor.checked != plan) {
+    cursor.checked = plan;
+    cursor.usable = plan != nullptr && tow.plan_pieces && *tow.plan_pieces == tow.pieces;
+  }
+  if (!cursor.usable || plan->pieces != tow.pieces.size() || plan->start != tow.start)
     return tow_law_kinematics(tow, t);
   if (cursor.plan == tow.plan && t == cursor.last_t && std::signbit(t) == std::signbit(cursor.last_t))
     return cursor.last;  // -0 is not 0 here

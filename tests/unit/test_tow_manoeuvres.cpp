@@ -241,6 +241,13 @@ TEST(Manoeuvres, CoursePlanGivesTheWalksNumbersExactly) {
   tow.pieces.push_back(SpeedChange{1.0, 100, 10});
   EXPECT_TRUE(same(200.0));
   EXPECT_TRUE(same(105.0));
+  // A piece edited in place after finalize (same count and start): a new
+  // cursor (a new run's Workspace) finds the plan stale and walks.
+  towsim::finalize_tow(tow);
+  std::get<SpeedChange>(tow.pieces.back()).speed = 2.0;
+  cursor.checked = nullptr, cursor.plan.reset();  // as a new cursor
+  EXPECT_TRUE(same(150.0));
+  EXPECT_TRUE(same(200.0));
 }
 
 // Material acceleration of a depth-profile current: zero for a horizontal

@@ -49,6 +49,8 @@ struct CoursePlan {
 /// Per-evaluation state of the tow law (in the Workspace): the last result,
 /// for the plan it came from.
 struct CourseCursor {
+  const CoursePlan* checked = nullptr;     // the plan last checked against the tow's pieces and start
+  bool usable = false;                     // ... and it matched them
   std::shared_ptr<const CoursePlan> plan;  // the plan `last` was computed with (none: no last result)
   double last_t = 0;                       // [s]
   TowKinematics last{};                    // tow_law_kinematics at last_t

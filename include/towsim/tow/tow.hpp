@@ -49,11 +49,15 @@ struct Tow {
   /// The course worked out from start and pieces by finalize_tow(tow), shared
   /// by copies; none: the course is walked at each call (same numbers).
   std::shared_ptr<const CoursePlan> plan;
+  /// The pieces the plan was built from: a cursor checks them against
+  /// `pieces` once (a Workspace: once per run); a plan that no longer matches
+  /// (the pieces edited after finalize_tow) is not used.
+  std::shared_ptr<const std::vector<TowLaw>> plan_pieces;
 };
 
 /// Build tow.plan from its start and pieces. Call it again after changing
-/// them (compile does; a plan whose piece count or start differs from the
-/// tow's is not used).
+/// them (compile does; a plan built for other pieces or another start is
+/// found out once per cursor and not used: the course is then walked).
 void finalize_tow(Tow& tow);
 
 /// Imposed tow-point kinematics at time t (Motion mode): the pieces, then
