@@ -16,6 +16,7 @@
 
 #include "../support/models.hpp"
 #include "../support/physics.hpp"
+#include "../support/rosenbrock.hpp"
 #include "towsim/integrators/rosenbrock.hpp"
 #include "towsim/integrators/system.hpp"
 #include "towsim/model/winch.hpp"
@@ -53,8 +54,8 @@ constexpr double kSample = 0.1;  // tow force compared every 0.1 s [s]
 std::vector<double> tow_force(double h, RosenbrockW::TimeDerivative td, bool rk4 = false) {
   const Model m = paper_turn();
   auto sys = make_system(m);
-  StateVector y = sys->initial(initial_state(m), 0.0), k1, k2, k3, k4, yt;
-  const std::size_t N = y.size();
+  StateVector y = sys->initial(initial_state(m), 0.0), k1;
+  testing::Rk4Scratch rk;
   RosenbrockW ros(*sys, 1e10, 1.0, RosenbrockW::ForceEstimate::Embedded, td);  // error control off
   std::vector<double> out;
   const int per_sample = static_cast<int>(std::lround(kSample / h));
@@ -68,20 +69,7 @@ std::vector<double> tow_force(double h, RosenbrockW::TimeDerivative td, bool rk4
     }
     if (s == steps) break;
     if (rk4) {
-      auto axpy = [&](const StateVector& k, double a) {
-        for (std::size_t i = 0; i < N; ++i) yt[i] = y[i] + a * k[i];
-      };
-      sys->set_window(t, t + h);
-      sys->derivative(y, k1, t);
-      yt = y;
-      axpy(k1, h / 2);
-      sys->derivative(yt, k2, t + h / 2);
-      axpy(k2, h / 2);
-      sys->derivative(yt, k3, t + h / 2);
-      axpy(k3, h);
-      sys->derivative(yt, k4, t + h);
-      for (std::size_t i = 0; i < N; ++i) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-      sys->project(y, t + h);
+      testing::rk4_step(*sys, y, t, h, rk);
     } else {
       double tt = t, hh = h;
       ros.invalidate();  // the output evaluation above moved the system's last evaluation
@@ -128,9 +116,9 @@ std::vector<double> winch_link_tension(double h, RosenbrockW::TimeDerivative td,
   EXPECT_TRUE(st.converged);
   constexpr double kT0 = 50, kT1 = 76, kOut = 0.5;  // window and sampling [s]
   auto sys = make_system(m);
-  StateVector y = sys->initial(st.state, kT0), k1, k2, k3, k4, yt;
+  StateVector y = sys->initial(st.state, kT0);
   sys->project(y, kT0);
-  const std::size_t N = y.size();
+  testing::Rk4Scratch rk;
   RosenbrockW ros(*sys, 1e10, 1.0, RosenbrockW::ForceEstimate::Embedded, td);  // error control off
   const std::vector<double> breaks = winch_breakpoints(m.winch);
   std::vector<double> out;
@@ -148,20 +136,7 @@ std::vector<double> winch_link_tension(double h, RosenbrockW::TimeDerivative td,
     }
     if (s == steps) break;
     if (rk4) {
-      auto axpy = [&](const StateVector& k, double a) {
-        for (std::size_t i = 0; i < N; ++i) yt[i] = y[i] + a * k[i];
-      };
-      sys->set_window(t, t + h);
-      sys->derivative(y, k1, t);
-      yt = y;
-      axpy(k1, h / 2);
-      sys->derivative(yt, k2, t + h / 2);
-      axpy(k2, h / 2);
-      sys->derivative(yt, k3, t + h / 2);
-      axpy(k3, h);
-      sys->derivative(yt, k4, t + h);
-      for (std::size_t i = 0; i < N; ++i) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-      sys->project(y, t + h);
+      testing::rk4_step(*sys, y, t, h, rk);
     } else {
       double tt = t, hh = h;
       EXPECT_TRUE(ros.try_step(y, tt, hh));
