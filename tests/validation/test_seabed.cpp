@@ -449,11 +449,11 @@ TEST(SeabedInline, BuoyantDepressorOverTheBottom) {
 
 // The heavy depressor of DepressorRestingOnTheBottom dragged at 0.5 m/s: a
 // two-part tow whose in-line body slides on its sphere with the cable lying
-// on both sides of it (exit 3 before, 2.11 rad/s^2 left). Independent
-// checks: along the tow the bottom's friction on the sliding parts
-// balances the top pull less the water's drag, and 10 s of the dynamics
-// from the result stay put (1 mm, 1e-3 of the tow force: as
-// DraggedBodyIsASteadyStateOfTheDynamics).
+// on both sides of it (exit 3 before: 2.10 rad/s^2 left, the body turned
+// over backwards). Checks: the body rests on its sphere, sunk within the
+// bound at rest, and 10 s of the dynamics from the result stay put (1 mm,
+// 1 mm/s, 1e-3 of the tow force: as DraggedBodyIsASteadyStateOfTheDynamics;
+// measured 5.8e-9 m).
 TEST(SeabedInline, DepressorDraggedOnTheBottom) {
   testing::CableSpec cs;
   Model m = depressor_model(100, 200, cs);
