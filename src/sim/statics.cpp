@@ -656,7 +656,7 @@ bool good_residual(const SteadyProblem& p, double floor, const Eigen::VectorXd& 
          (p.max_alpha(res) < floor || (p.relative_moment(res) < kRelativeFloor && p.max_body_alpha(res) < floor));
 }
 
-void newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag, int& iterations);
+bool newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag, int& iterations);
 
 /// The equilibrium of the problem's (inextensible) elements from its current
 /// iterate: the O(n) sweeps, then for small problems Levenberg-Marquardt;
@@ -872,8 +872,9 @@ void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
 /// contact springs, the bodies' load stiffness) and misses only what K
 /// leaves out (the loads' dependence on the attitude): GMRES supplies that.
 /// Each step backtracked until |r| decreases. Adds its Newton steps to
-/// `iterations`; p.base the result.
-void newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag, int& iterations) {
+/// `iterations`; p.base the result. Returns true when the compression guard
+/// dropped the result for the start.
+bool newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag, int& iterations) {
   constexpr int kMaxNewton = 100;        // Newton steps [-]
   constexpr int kKrylov = 80;            // largest Krylov space [-]
   constexpr double kForcing = 1e-4;      // GMRES stops at this fraction of |r| (inexact Newton) [-]
@@ -888,7 +889,7 @@ void newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag
   if (U > 0) rm.tow.pieces.emplace_back(Ramp{p.V / U, U, 0.0});
   finalize_tow(rm.tow);
   const std::unique_ptr<System> sys = make_system(rm);
-  if (!sys->has_stage_solve()) return;
+  if (!sys->has_stage_solve()) return false;
   const int N = p.size();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(N);
   StateVector y, dy, rhs, k;
@@ -1002,9 +1003,10 @@ void newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag
     if (p.base.e[i].dot(pull) < -kCompression * (p.ws.F[u].norm() + below.norm())) {
       p.accept_state(start);
       p.residual(zero);
-      return;
+      return true;
     }
   }
+  return false;
 }
 
 /// Elastic elements (docs/theory.md §5.4, §7): the equilibrium of a chain of
@@ -1085,6 +1087,27 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
   out.body_force = p.ws.acc.lower_link_force;
   out.joint_force = p.ws.acc.joint_force;
   out.sample = make_sample(elastic, p.base, p.ws, 0.0);
+  return out;
+}
+
+StaticsResult newton_krylov_statics(const Model& model, const Vec3& V, const PhysicalState& start) {
+  SteadyProblem p(model, V);
+  for (Element& el : p.model.cable.elements) el.axial_stiffness = 0;  // rigid elements, as solve_statics
+  PhysicalState s = start;
+  s.r0 = p.model.tow.start;
+  s.v0 = V;
+  p.accept_state(s);
+  StaticsResult out;
+  const double floor = residual_floor(p.model);
+  const bool rejected = newton_krylov(p, floor, nullptr, out.iterations);
+  const Eigen::VectorXd r = p.residual(Eigen::VectorXd::Zero(p.size()));  // p.ws at the result
+  out.residual = p.max_alpha(r);
+  out.converged = !rejected && good_residual(p, floor, r);
+  if (rejected) out.message = "compression";
+  out.state = p.base;
+  out.tow_velocity = V;
+  out.tow_force = p.ws.acc.tow_force;
+  out.joint_force = p.ws.acc.joint_force;
   return out;
 }
 

@@ -678,6 +678,57 @@ TEST(SeabedDragged, LongCableBeyondTheDenseSolve) {
 TEST(SeabedDragged, ThousandElementsPastTheTouchdown) { check_long_dragged(1000); }
 
 // ---------------------------------------------------------------------------
+// Newton-Krylov's compression guard (docs/theory.md §7): Newton finds
+// unstable equilibria too. A heavy chain of 10 elements standing straight
+// up from a stationary tow point, 1000 m above the bottom, is one exactly
+// (each element's weight along its axis: no moment), every element in
+// compression. Started tilted 0.01 rad from it, Newton-Krylov (which
+// solve_statics uses above 600 elements, or above 100 after relaxing)
+// steps towards it and the guard drops the result, a chain in compression,
+// for the start (before this test the guard was reached only by forcing
+// Newton-Krylov on a small problem). Started tilted as much from hanging,
+// the same solve converges to the hanging chain, whose top tension is the
+// cable's apparent weight w L (closed form; 1e-9: the residual floor's
+// moments, ~1e-8 rad/s^2 times the inertias, over lever arms of metres).
+// ---------------------------------------------------------------------------
+TEST(SeabedNewtonKrylov, CompressionGuardDropsTheInvertedColumn) {
+  testing::CableSpec cs;
+  cs.n = 10;
+  cs.length = 100;
+  Model m = testing::cable_model(cs);
+  m.seabed = Seabed::flat(1000, 1e5, 1e3, 0.5);
+  m.tow.mode = Tow::Mode::Motion;  // no pieces: the tow point stays at the origin
+  const double a = 0.01;           // tilt of the start [rad]
+  auto start = [&](double up) {
+    PhysicalState s = PhysicalState::hanging(m);
+    for (auto& e : s.e) e = Vec3(std::sin(a), 0, up * std::cos(a));
+    return s;
+  };
+  PhysicalState column = start(1.0);
+  const StaticsResult inverted = newton_krylov_statics(m, Vec3::Zero(), column);
+  std::printf("inverted start: %d Newton steps, guard: '%s', residual at the start kept %.2e rad/s^2\n",
+              inverted.iterations, inverted.message.c_str(), inverted.residual);
+  EXPECT_EQ(inverted.message, "compression");
+  EXPECT_FALSE(inverted.converged);
+  EXPECT_GT(inverted.iterations, 0);  // Newton steps were taken, then dropped
+  for (std::size_t k = 0; k < column.e.size(); ++k) EXPECT_EQ(inverted.state.e[k], column.e[k]) << k;
+  // The exact column is an equilibrium (zero residual, no step) and dropped as well.
+  for (auto& e : column.e) e = Vec3::UnitZ();
+  const StaticsResult exact = newton_krylov_statics(m, Vec3::Zero(), column);
+  EXPECT_EQ(exact.iterations, 0);
+  EXPECT_LT(exact.residual, 1e-12);
+  EXPECT_EQ(exact.message, "compression");
+  // The stable side: converged, no guard, the tension of a hanging chain.
+  const StaticsResult hanging = newton_krylov_statics(m, Vec3::Zero(), start(-1.0));
+  const double W = apparent_weight(cs) * cs.length;  // [N]
+  std::printf("hanging start: %d Newton steps, residual %.2e, T / (w L) - 1 = %.2e\n", hanging.iterations,
+              hanging.residual, hanging.tow_force.norm() / W - 1);
+  EXPECT_TRUE(hanging.converged) << hanging.message;
+  EXPECT_TRUE(hanging.message.empty());
+  EXPECT_NEAR(hanging.tow_force.norm(), W, 1e-9 * W);
+}
+
+// ---------------------------------------------------------------------------
 // A cable at rest on a sloped bottom (a depth table, slope 0.1 deepening
 // along +x), stationary tow point: at rest there is no friction, so the
 // lying part hangs on its tension along the slope. Closed forms: between
