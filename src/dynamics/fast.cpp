@@ -50,19 +50,18 @@ void body_articulated(const Body& body, BodyWork& bw, const Mat3* K2, const Vec3
   bw.bQ = Mll * bw.wcent + bw.C.transpose() * bw.Phi * (bw.rhs - bw.C * bw.wcent) + hl - bw.Fb;
 }
 
-/// One element's backward step: articulated inertia K_{k-1} and bias b_{k-1}
-/// seen at the top joint of element k, from (Kk, bk) at its bottom joint.
+/// One element's backward step, its inertia part: the articulated inertia
+/// K_{k-1} seen at the top joint of element k from Kk at its bottom joint,
+/// and what the bias step and the forward pass read (T, G T, Phi, H). It
+/// depends on the state's directions and lengths only, never on time or loads.
 /// The rotation equation lives in the plane normal to e_k: it is solved in a
 /// tangent basis T, where the element's own inertia is isotropic
 /// (T^T Mt T = (m + ma) I, Mt e = m e).
-void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat3& Kk, const Vec3& bk, std::size_t k,
-                      Workspace& ws) {
+void element_inertia(const Element& el, const Vec3& e, const Mat3& Kk, std::size_t k, Workspace& ws) {
   const double L = ws.L[k], m = el.mass, ma = el.added_mass, mn = m + ma;
   // Tangent basis normal to e.
   ws.T[k] = tangent_basis(e);
   const Vec3 t1 = ws.T[k].col(0), t2 = ws.T[k].col(1);
-  const Vec3 c = -w.squaredNorm() * e;  // Mt c = m c
-  ws.c[k] = c;
   // K T (K symmetric), G T = L (mn/2 T + K T), and the 2x2 rotational block
   // D = T^T (L^2/4 Mt + L^2 K) T + Ir (symmetric), inverted in closed form.
   const Vec3 u1 = Kk * t1, u2 = Kk * t2;
@@ -85,23 +84,38 @@ void element_backward(const Element& el, const Vec3& e, const Vec3& w, const Mat
   ws.Phi[k](0, 0) = p11;
   ws.Phi[k](0, 1) = ws.Phi[k](1, 0) = p12;
   ws.Phi[k](1, 1) = p22;
-  const Vec3 h1 = idet * a1, h2 = idet * a2;
+  ws.H[k].col(0) = idet * a1;
+  ws.H[k].col(1) = idet * a2;
   Mat3& K = ws.K[k];
   for (int r = 0; r < 3; ++r)
     for (int q = r; q < 3; ++q)
       K(r, q) = K(q, r) = (0.5 * (Kk(r, q) + Kk(q, r)) - ma * e[r] * e[q] + (r == q ? mn : 0.0)) - idet * S(r, q);
+}
+
+/// One element's backward step, its bias part: b_{k-1} at the top joint of
+/// element k from (Kk, bk) at its bottom joint and the element's loads, with
+/// the inertia part's T and H (element_inertia).
+void element_bias(const Element& el, const Vec3& e, const Vec3& w, const Mat3& Kk, const Vec3& bk, std::size_t k,
+                  Workspace& ws) {
+  const double L = ws.L[k], m = el.mass;
+  const Vec3 t1 = ws.T[k].col(0), t2 = ws.T[k].col(1);
+  const Vec3 c = -w.squaredNorm() * e;  // Mt c = m c
+  ws.c[k] = c;
   // [T^T (L^2/4 Mt + L^2 K) T + Ir] z = T^T r0 - (G T)^T a_top, beta = T z.
   const Vec3 Kc = Kk * c;
   const Vec3 r0 = 0.5 * L * (ws.F[k] - 0.5 * L * m * c) - L * (L * Kc + bk) - e.cross(ws.Mom[k]);
   const double z1 = t1.dot(r0), z2 = t2.dot(r0);
   ws.Tr0[k] = Eigen::Vector2d(z1, z2);
-  ws.b[k] = z1 * h1 + z2 * h2 + 0.5 * L * m * c + L * Kc + bk - ws.F[k];
+  ws.b[k] = z1 * ws.H[k].col(0) + z2 * ws.H[k].col(1) + 0.5 * L * m * c + L * Kc + bk - ws.F[k];
 }
 
 /// Backward pass, from the bottom of the chain up: at each joint, the part
 /// below is the element under it plus any attachment there, or a body (which
-/// carries the cable hanging from its lower link, if any).
-void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
+/// carries the cable hanging from its lower link, if any). With
+/// inertias_known, the rigid elements' inertia part (K, T, G T, Phi, H) is
+/// the workspace's already, from an evaluation at the same directions and
+/// lengths: only their bias part runs (elastic elements and bodies: all).
+void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws, bool inertias_known = false) {
   const std::size_t n = model.cable.elements.size();
   // Nothing hangs below the cable's end but its attachments.
   ws.K[n] = ws.Ma[n];
@@ -117,13 +131,19 @@ void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws) {
       Kk = &bw.KQ;
       bk = &bw.bQ;
     }
-    if (is_elastic(model.cable.elements[k]))
+    if (is_elastic(model.cable.elements[k])) {
       elastic_backward(s.e[k], s.length_of(model, k), ws.Mt[k], ws.F[k], ws.Mom[k], *Kk, *bk, ws.elastic[k], ws.K[k],
                        ws.b[k]);
-    else
-      element_backward(current_element(model, ws, k), s.e[k], s.w[k], *Kk, *bk, k, ws);
-    // An attachment at joint k moves with it: its inertia and loads add on.
-    ws.K[k] += ws.Ma[k];
+      ws.K[k] += ws.Ma[k];
+    } else {
+      const Element& el = current_element(model, ws, k);
+      if (!inertias_known || (k == 0 && ws.winch)) {  // the winch's top: its length moves with time
+        element_inertia(el, s.e[k], *Kk, k, ws);
+        ws.K[k] += ws.Ma[k];
+      }
+      element_bias(el, s.e[k], s.w[k], *Kk, *bk, k, ws);
+    }
+    // An attachment at joint k moves with it: its inertia (above) and loads add on.
     ws.b[k] -= ws.Fa[k];
   }
 }
@@ -330,6 +350,27 @@ void forward_dynamics(const Model& model, const PhysicalState& s, double t, Work
   compute_kinematics(model, s, ws);
   compute_loads(model, s, t, ws);
   backward_pass(model, s, ws);
+  forward_pass(model, s, t, ws);
+}
+
+void forward_dynamics_time_shift(const Model& model, const PhysicalState& s, double t, const Workspace& inertias,
+                                 Workspace& ws) {
+  check_fits(model, s, ws);
+  if (!inertias.fits(model)) throw std::logic_error("towsim: workspace does not fit the model");
+  // The rigid elements' inertia part, as the evaluation at s's directions
+  // and lengths left it (same sizes: copied in place, no allocation).
+  if (&inertias != &ws) {
+    std::copy(inertias.K.begin(), inertias.K.end(), ws.K.begin());
+    std::copy(inertias.T.begin(), inertias.T.end(), ws.T.begin());
+    std::copy(inertias.GT.begin(), inertias.GT.end(), ws.GT.begin());
+    std::copy(inertias.Phi.begin(), inertias.Phi.end(), ws.Phi.begin());
+    std::copy(inertias.H.begin(), inertias.H.end(), ws.H.begin());
+  }
+  // Everything that moves with time (the imposed tow motion through r0, v0;
+  // current, waves, schedules through the loads): as forward_dynamics.
+  compute_kinematics(model, s, ws);
+  compute_loads(model, s, t, ws);
+  backward_pass(model, s, ws, true);
   forward_pass(model, s, t, ws);
 }
 

@@ -452,7 +452,7 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
       iw.K[k] += ws.Ma[k] + joint_terms(k);
       continue;
     }
-    const auto& T = iw.T[k] = tangent_basis(s.e[k]);
+    const auto& T = iw.T[k] = ws.T[k];  // tangent_basis(s.e[k]): the evaluation at s computed it
     const Vec3 t1 = T.col(0), t2 = T.col(1);
     // G T = L (Mt/2 + K) T and D = T^T (L^2/4 Mt + L^2 K) T + Ir + hg^2 K_rock
     // (Mt and K symmetric: D symmetric, inverted in closed form).

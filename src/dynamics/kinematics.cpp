@@ -46,6 +46,7 @@ Workspace::Workspace(const Model& model) {
   K.assign(n + 1, Mat3::Zero());
   T.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
   GT.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
+  H.assign(n, Eigen::Matrix<double, 3, 2>::Zero());
   Phi.assign(n, Eigen::Matrix2d::Zero());
   Tr0.assign(n, Eigen::Vector2d::Zero());
   elastic.assign(n, ElasticWork{});

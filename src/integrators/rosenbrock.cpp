@@ -106,7 +106,7 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
     const double dt = kTimeDifference * h;
     use_ft_ = dt > 1e-9 * std::max(1.0, std::abs(t));  // else law_time's shift would dominate: no column
     if (use_ft_) {
-      sys_.derivative(y, scratch_, t + dt);
+      sys_.derivative_time_shift(y, scratch_, t + dt);  // y's inertias kept (y alone sets them)
       ft_.resize(N);
       for (std::size_t q = 0; q < N; ++q) ft_[q] = (scratch_[q] - f0_[q]) / dt;
       ft_zero_ = std::all_of(ft_.begin(), ft_.end(), [](double v) { return v == 0; });

@@ -1,6 +1,8 @@
 // The default and paper formulations as flat-state systems for the integrators.
 #include "towsim/integrators/system.hpp"
 
+#include <bit>
+#include <cstdint>
 #include <stdexcept>
 #include <utility>
 
@@ -126,13 +128,25 @@ class DefaultSystem final : public System {
     return view_;
   }
 
-  void derivative(const StateVector& y, StateVector& dy, double t) override {
+  void derivative(const StateVector& y, StateVector& dy, double t) override { evaluate_at(y, dy, t, false); }
+
+  void derivative_time_shift(const StateVector& y, StateVector& dy, double t) override { evaluate_at(y, dy, t, true); }
+
+  /// derivative(); time_shift: the rigid elements' inertias from jws_ when it
+  /// provably holds them for this state (jac_from_s_ and js_'s directions
+  /// and body attitudes bitwise those of s_: the inertias read nothing else
+  /// without a winch or elastic elements). Bit-identical either way.
+  void evaluate_at(const StateVector& y, StateVector& dy, double t, bool time_shift) {
     ++rhs_evaluations;
     unpack(y, s_);
     const double tl = law_time(t);
     impose_tow(model_, tl, s_.r0, s_.v0, ws_.course);
     impose_winch(tl, s_);
-    forward_dynamics(model_, s_, tl, ws_);
+    if (time_shift && inertias_in_jws())
+      forward_dynamics_time_shift(model_, s_, tl, jws_, ws_);
+    else
+      forward_dynamics(model_, s_, tl, ws_);
+    ws_from_s_ = true;
     dy.resize(size_);
     if (elastic_top_)
       dy[winch_offset()] = s_.top_unstretched_rate, dy[winch_offset() + 1] = ws_.acc.top_length_acc;
@@ -199,6 +213,7 @@ class DefaultSystem final : public System {
     l = (at_max ? model_.winch.max_length : model_.winch.min_length) - fixed_length_;
     PhysicalState s = physical(y);
     const Vec3 dv = -sheave_jump(model_, s, rate);
+    ws_from_s_ = false;
     tow_velocity_jump(model_, s, dv, ws_);
     for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws_.acc.alpha[k];
     for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws_.acc.alpha_b[b];
@@ -229,6 +244,7 @@ class DefaultSystem final : public System {
     const Vec3 dsheave = winch_ ? Vec3(sheave_jump(model_, s, dl)) : Vec3::Zero();
     const Vec3 dv = tow_jump(model_, t) + dsheave;
     if (dv.norm() == 0) return 0;
+    ws_from_s_ = false;
     s = jumped(model_, s, dv, t, ws_);
     if (elastic_top_ && model_.winch.mode == Winch::Mode::Imposed) {
       // l_1' = (d_1' relative to the sheave's material) + the sheave's pay-out.
@@ -254,6 +270,7 @@ class DefaultSystem final : public System {
     // same in both (outputs bit-identical, docs/performance.md).
     std::swap(jws_, ws_);
     std::swap(js_, s_);
+    std::swap(jac_from_s_, ws_from_s_);
     local_jacobian(model_, js_, jws_, law_time(t), iw_.jac);
     iw_.hg = -1;  // a new Jacobian: factorise again at the next stage solve
   }
@@ -348,6 +365,21 @@ class DefaultSystem final : public System {
   }
 
  private:
+  /// jws_ holds the rigid elements' inertias of s_'s state (after unpack).
+  bool inertias_in_jws() const {
+    if (!jac_from_s_ || winch_ || lengths_) return false;
+    // Bitwise (-0 and NaN included): the inertias were computed from these bits.
+    const auto same = [](const auto& a, const auto& b) {
+      for (Eigen::Index i = 0; i < a.size(); ++i)
+        if (std::bit_cast<std::uint64_t>(a.data()[i]) != std::bit_cast<std::uint64_t>(b.data()[i])) return false;
+      return true;
+    };
+    for (std::size_t k = 0; k < s_.e.size(); ++k)
+      if (!same(s_.e[k], js_.e[k])) return false;
+    for (std::size_t b = 0; b < s_.bodies.size(); ++b)
+      if (!same(s_.bodies[b].q.coeffs(), js_.bodies[b].q.coeffs())) return false;
+    return true;
+  }
   void unpack(const StateVector& y, PhysicalState& s) const {
     s.r0 = CMap3(y.data());
     s.v0 = CMap3(&y[3]);
@@ -436,6 +468,8 @@ class DefaultSystem final : public System {
   bool winch_ = false;        // the state carries the winch's l_1, l_1'
   bool elastic_top_ = false;  // ... as L_1, L_1' of an elastic top element (l_1, l_1' among the lengths)
   double fixed_length_ = 0;   // deployed length but l_1 [m]
+  bool ws_from_s_ = false;    // ws_ holds derivative()'s evaluation at s_
+  bool jac_from_s_ = false;   // jws_ holds it at js_ (swapped with ws_from_s_)
 };
 
 /// Paper formulation: y = [r0, v0, q, q'] with q the angles in their charts.

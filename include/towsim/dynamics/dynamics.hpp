@@ -15,6 +15,15 @@ namespace towsim {
 /// Results in ws.acc. Also fills ws's kinematics and loads.
 void forward_dynamics(const Model& model, const PhysicalState& s, double t, Workspace& ws);
 
+/// forward_dynamics(model, s, t, ws) at the directions and lengths of the
+/// last forward_dynamics on `inertias` (the caller's guarantee; its time,
+/// tow point and rates may differ): the rigid elements' articulated
+/// inertias (K, T, G T, Phi, H; state-only) are taken from there, the rest
+/// (kinematics, loads, biases, forward pass) recomputed. Bit-identical to
+/// forward_dynamics: the same operations on the same values (W's time
+/// column f_t, docs/performance.md). `inertias` may be ws itself.
+void forward_dynamics_time_shift(const Model& model, const PhysicalState& s, double t, const Workspace& inertias,
+                                 Workspace& ws);
 /// Impulsive response to a jump dv of the tow point's velocity (a tow law
 /// that is only C0 in position, e.g. a heave starting at full speed): the
 /// jumps of every element's and the body's angular velocity that the

@@ -132,7 +132,8 @@ struct StageRhs {
 /// Factorise M + hg C + hg^2 K in O(n): the backward pass of the recursion
 /// (articulated inertias K_k, rotation blocks Phi) with modified inertias.
 /// `ws` holds the evaluation at the state s the Jacobian iw.jac belongs to
-/// (kinematics, inertias). Valid for every stage solve with the same hg.
+/// (kinematics, inertias, the rigid elements' tangent bases T). Valid for
+/// every stage solve with the same hg.
 void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg, ImplicitWorkspace& iw);
 
 /// Solve (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K r_x in O(n)

@@ -133,6 +133,7 @@ struct Workspace {
   std::vector<Eigen::Matrix<double, 3, 2>> GT;  // G T, G = (L/2) Mt + L K_k [kg m]
   std::vector<Eigen::Matrix2d> Phi;             // (T^T (L^2/4 Mt + L^2 K_k) T + Ir)^-1 [1/(kg m^2)]
   std::vector<Eigen::Vector2d> Tr0;             // T^T r_0 (moment of the known loads) [N m]
+  std::vector<Eigen::Matrix<double, 3, 2>> H;   // G T Phi (b's gain on T^T r_0) [1/m]
   std::vector<Vec3> c;                          // centripetal part of d2e/dt2: -|w|^2 e [1/s^2]
   std::vector<ElasticWork> elastic;             // elastic elements' articulated quantities and tension
   std::vector<BodyWork> body;                   // per Model::bodies entry

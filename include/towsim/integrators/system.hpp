@@ -32,6 +32,10 @@ class System {
   /// the chain and body the impulsive response (tow_velocity_jump).
   /// Returns the jump's size [m/s] (0: nothing done).
   virtual double apply_tow_jump(StateVector& y, double t) = 0;
+  /// derivative(y, dy, t) when the last derivative() was at the same y and
+  /// another time (W's time column): a system may reuse what depends on y
+  /// alone. Bit-identical to derivative(); counts an evaluation.
+  virtual void derivative_time_shift(const StateVector& y, StateVector& dy, double t) { derivative(y, dy, t); }
   /// Physical state of y.
   virtual PhysicalState physical(const StateVector& y) const = 0;
   /// physical(y) in storage the system keeps (no allocation once sized),
