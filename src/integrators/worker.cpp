@@ -38,8 +38,11 @@ void Worker::start(Job job, void* context) {
 }
 
 void Worker::wait() {
+  // Each wait is on the value just seen: a job ending between the check and
+  // the wait ends the wait at once (no lost wake-up).
   const std::uint32_t want = posted_.load(std::memory_order_relaxed);
-  while (done_.load(std::memory_order_acquire) != want) await_change(done_, done_.load(std::memory_order_relaxed));
+  for (std::uint32_t d = done_.load(std::memory_order_acquire); d != want; d = done_.load(std::memory_order_acquire))
+    await_change(done_, d);
   if (error_) std::rethrow_exception(error_);
 }
 

@@ -172,11 +172,11 @@ TEST(Worker, CarriesExceptionsAndGoesOn) {
   } catch (const std::runtime_error& e) {
     EXPECT_STREQ(e.what(), "side evaluation failed");
   }
-  for (int i = 0; i < 100; ++i) {
+  for (int i = 0; i < 5000; ++i) {  // many hand-offs: a lost wake-up would hang here
     w.start([](void* c) { ++*static_cast<int*>(c); }, &ran);
     w.wait();
   }
-  EXPECT_EQ(ran, 100);
+  EXPECT_EQ(ran, 5000);
 }
 
 // auto: a worker from kAutoThreadsElements elements (two hardware threads),
