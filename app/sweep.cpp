@@ -186,7 +186,10 @@ CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const 
     while (!res.message.empty() && res.message.back() == '\n') res.message.pop_back();
     return res;
   }
-  const Model& model = *sc.model;
+  // One case per core already: each case on one thread (simulation.threads: 1).
+  Model own = *sc.model;
+  own.sim.threads = 1;
+  const Model& model = own;
   try {
     std::unique_ptr<RunRecord> rec;
     if (out_dir.empty()) {

@@ -187,14 +187,15 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
   if (err <= 1) {
     const Accelerations* acc = sys_.last_accelerations();
     sys_.project(yi_, t1);
-    sys_.derivative(yi_, scratch_, t1);
-    Vec3 tow_hat = Vec3::Zero();
-    if (acc) tow_hat = acc->tow_force, link_hat_ = acc->link_force;  // storage reused
-    sys_.derivative(y1_, fi_, t1);                                   // last: the next step's start
+    // The embedded solution's forces and f(y1), the next step's start (last
+    // on the system's workspace): independent, so at the same time on a
+    // worker thread when the system has one (simulation.threads).
+    sys_.derivative_with_side_forces(y1_, fi_, t1, yi_, t1, hat_);
     if (acc) {
       auto rel = [&](const Vec3& a, const Vec3& b) { return (a - b).norm() / (force_scale_ + a.norm()); };
-      ferr = rel(acc->tow_force, tow_hat);
-      for (std::size_t b = 0; b < link_hat_.size(); ++b) ferr = std::max(ferr, rel(acc->link_force[b], link_hat_[b]));
+      ferr = rel(acc->tow_force, hat_.tow_force);
+      for (std::size_t b = 0; b < hat_.link_force.size(); ++b)
+        ferr = std::max(ferr, rel(acc->link_force[b], hat_.link_force[b]));
     }
     if (!std::isfinite(ferr)) ferr = std::numeric_limits<double>::infinity();
     err = std::max(err, ferr / tol_);

@@ -3,12 +3,15 @@
 
 #include <bit>
 #include <cstdint>
+#include <exception>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/implicit.hpp"
 #include "towsim/dynamics/paper.hpp"
+#include "towsim/integrators/worker.hpp"
 
 namespace towsim {
 
@@ -69,7 +72,8 @@ Vec3 sheave_jump(const Model& m, const PhysicalState& s, double dL) {
 /// then per depth controller (bodies in order, surfaces in order) its integral and deflection.
 class DefaultSystem final : public System {
  public:
-  explicit DefaultSystem(const Model& m) : model_(m), ws_(m), s_(PhysicalState::hanging(m)), jws_(m), js_(s_), iw_(m) {
+  explicit DefaultSystem(const Model& m)
+      : model_(m), ws_(m), s_(PhysicalState::hanging(m)), jws_(m), js_(s_), iw_(m), threads_(evaluation_threads(m)) {
     n_ = m.cable.n();
     winch_ = m.winch.active() && n_ > 0;
     elastic_top_ = elastic_winch(m);
@@ -138,44 +142,35 @@ class DefaultSystem final : public System {
   /// without a winch or elastic elements). Bit-identical either way.
   void evaluate_at(const StateVector& y, StateVector& dy, double t, bool time_shift) {
     ++rhs_evaluations;
-    unpack(y, s_);
-    const double tl = law_time(t);
-    impose_tow(model_, tl, s_.r0, s_.v0, ws_.course);
-    impose_winch(tl, s_);
-    if (time_shift && inertias_in_jws())
-      forward_dynamics_time_shift(model_, s_, tl, jws_, ws_);
-    else
-      forward_dynamics(model_, s_, tl, ws_);
+    ws_from_s_ = false;  // until the evaluation completes
+    rates(y, dy, t, s_, ws_, time_shift);
     ws_from_s_ = true;
-    dy.resize(size_);
-    if (elastic_top_)
-      dy[winch_offset()] = s_.top_unstretched_rate, dy[winch_offset() + 1] = ws_.acc.top_length_acc;
-    else if (winch_)
-      dy[winch_offset()] = s_.length_rate[0], dy[winch_offset() + 1] = ws_.acc.top_length_acc;
-    // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
-    set3(dy, 0, s_.v0);
-    set3(dy, 3, ws_.acc.a0);
-    for (int k = 0; k < n_; ++k) {
-      set3(dy, 6 + 3 * k, s_.w[k].cross(s_.e[k]));
-      set3(dy, 6 + 3 * n_ + 3 * k, ws_.acc.alpha[k]);
-    }
-    for (std::size_t b = 0; b < s_.bodies.size(); ++b) {
-      const std::size_t o = body_offset(b);
-      const BodyState& bs = s_.bodies[b];
-      const Quat dq = Quat(0, bs.w.x(), bs.w.y(), bs.w.z()) * bs.q;
-      dy[o] = 0.5 * dq.w(), dy[o + 1] = 0.5 * dq.x(), dy[o + 2] = 0.5 * dq.y(), dy[o + 3] = 0.5 * dq.z();
-      set3(dy, o + 4, ws_.acc.alpha_b[b]);
-    }
-    // dl/dt = l', dl'/dt = l''.
-    if (lengths_) {
-      const std::size_t o = length_offset();
-      for (int k = 0; k < n_; ++k) {
-        dy[o + k] = s_.length_rate[k];
-        dy[o + n_ + k] = ws_.acc.length_acc[k];
-      }
-    }
-    control_rates(dy);
   }
+
+  void derivative_with_side_forces(const StateVector& y, StateVector& dy, double t, const StateVector& y_side,
+                                   double t_side, EvaluationForces& side) override {
+    if (threads_ < 2) {
+      System::derivative_with_side_forces(y, dy, t, y_side, t_side, side);
+      return;
+    }
+    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, s_);
+    rhs_evaluations += 2;
+    side_->y = &y_side, side_->t = t_side, side_->out = &side;
+    side_->worker.start(&side_job, this);
+    // f(y, t) here meanwhile; the side's failure first (serially it comes first).
+    std::exception_ptr error;
+    try {
+      ws_from_s_ = false;  // until the evaluation completes
+      rates(y, dy, t, s_, ws_);
+      ws_from_s_ = true;
+    } catch (...) {
+      error = std::current_exception();
+    }
+    side_->worker.wait();
+    if (error) std::rethrow_exception(error);
+  }
+
+  int threads() const override { return threads_; }
 
   void project(StateVector& y, double t) override {
     if (model_.tow.mode == Tow::Mode::Motion) {
@@ -365,8 +360,8 @@ class DefaultSystem final : public System {
   }
 
  private:
-  /// jws_ holds the rigid elements' inertias of s_'s state (after unpack).
-  bool inertias_in_jws() const {
+  /// jws_ holds the rigid elements' inertias of s's state (after unpack).
+  bool inertias_in_jws(const PhysicalState& s) const {
     if (!jac_from_s_ || winch_ || lengths_) return false;
     // Bitwise (-0 and NaN included): the inertias were computed from these bits.
     const auto same = [](const auto& a, const auto& b) {
@@ -374,10 +369,10 @@ class DefaultSystem final : public System {
         if (std::bit_cast<std::uint64_t>(a.data()[i]) != std::bit_cast<std::uint64_t>(b.data()[i])) return false;
       return true;
     };
-    for (std::size_t k = 0; k < s_.e.size(); ++k)
-      if (!same(s_.e[k], js_.e[k])) return false;
-    for (std::size_t b = 0; b < s_.bodies.size(); ++b)
-      if (!same(s_.bodies[b].q.coeffs(), js_.bodies[b].q.coeffs())) return false;
+    for (std::size_t k = 0; k < s.e.size(); ++k)
+      if (!same(s.e[k], js_.e[k])) return false;
+    for (std::size_t b = 0; b < s.bodies.size(); ++b)
+      if (!same(s.bodies[b].q.coeffs(), js_.bodies[b].q.coeffs())) return false;
     return true;
   }
   void unpack(const StateVector& y, PhysicalState& s) const {
@@ -404,6 +399,55 @@ class DefaultSystem final : public System {
       }
     }
     unpack_controls(y, s);
+  }
+  /// dy = f(y, t) evaluated on (s, ws): derivative()'s work, on the main
+  /// workspace or the worker's. Reads the model and the step's window only.
+  void rates(const StateVector& y, StateVector& dy, double t, PhysicalState& s, Workspace& ws,
+             bool time_shift = false) const {
+    unpack(y, s);
+    const double tl = law_time(t);
+    impose_tow(model_, tl, s.r0, s.v0, ws.course);
+    impose_winch(tl, s);
+    if (time_shift && inertias_in_jws(s))
+      forward_dynamics_time_shift(model_, s, tl, jws_, ws);
+    else
+      forward_dynamics(model_, s, tl, ws);
+    dy.resize(size_);
+    if (elastic_top_)
+      dy[winch_offset()] = s.top_unstretched_rate, dy[winch_offset() + 1] = ws.acc.top_length_acc;
+    else if (winch_)
+      dy[winch_offset()] = s.length_rate[0], dy[winch_offset() + 1] = ws.acc.top_length_acc;
+    // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
+    set3(dy, 0, s.v0);
+    set3(dy, 3, ws.acc.a0);
+    for (int k = 0; k < n_; ++k) {
+      set3(dy, 6 + 3 * k, s.w[k].cross(s.e[k]));
+      set3(dy, 6 + 3 * n_ + 3 * k, ws.acc.alpha[k]);
+    }
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+      const std::size_t o = body_offset(b);
+      const BodyState& bs = s.bodies[b];
+      const Quat dq = Quat(0, bs.w.x(), bs.w.y(), bs.w.z()) * bs.q;
+      dy[o] = 0.5 * dq.w(), dy[o + 1] = 0.5 * dq.x(), dy[o + 2] = 0.5 * dq.y(), dy[o + 3] = 0.5 * dq.z();
+      set3(dy, o + 4, ws.acc.alpha_b[b]);
+    }
+    // dl/dt = l', dl'/dt = l''.
+    if (lengths_) {
+      const std::size_t o = length_offset();
+      for (int k = 0; k < n_; ++k) {
+        dy[o + k] = s.length_rate[k];
+        dy[o + n_ + k] = ws.acc.length_acc[k];
+      }
+    }
+    control_rates(dy, s, ws);
+  }
+  /// The worker's job: the side evaluation on its own state and workspace.
+  static void side_job(void* self) {
+    auto& sys = *static_cast<DefaultSystem*>(self);
+    SideEvaluation& side = *sys.side_;
+    sys.rates(*side.y, side.dy, side.t, side.s, side.ws);
+    side.out->tow_force = side.ws.acc.tow_force;
+    side.out->link_force = side.ws.acc.link_force;
   }
   /// Length control: the top element's length and rate at t from the schedule.
   void impose_winch(double t, PhysicalState& s) const {
@@ -438,16 +482,15 @@ class DefaultSystem final : public System {
     for (BodyState& bs : s.bodies)
       for (ControlState& c : bs.controls) c.integral = y[control_offset(i)], c.deflection = y[control_offset(i++) + 1];
   }
-  /// dI/dt and d delta/dt from the depth of each controlled body (ws_ and s_ of this evaluation).
-  void control_rates(StateVector& dy) const {
+  /// dI/dt and d delta/dt from the depth of each controlled body (ws and s of this evaluation).
+  void control_rates(StateVector& dy, const PhysicalState& s, const Workspace& ws) const {
     std::size_t i = 0;
     for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
-      const BodyWork& bw = ws_.body[b];
+      const BodyWork& bw = ws.body[b];
       std::size_t c = 0;
       for (const LiftingSurface& ls : model_.bodies[b].surfaces) {
         if (!ls.depth_control) continue;
-        const ControlRates r = depth_control_rates(*ls.depth_control, s_.bodies[b].controls[c++], -bw.O.z(),
-                                                   -bw.vO.z());
+        const ControlRates r = depth_control_rates(*ls.depth_control, s.bodies[b].controls[c++], -bw.O.z(), -bw.vO.z());
         dy[control_offset(i)] = r.dintegral, dy[control_offset(i++) + 1] = r.ddeflection;
       }
     }
@@ -470,6 +513,22 @@ class DefaultSystem final : public System {
   double fixed_length_ = 0;   // deployed length but l_1 [m]
   bool ws_from_s_ = false;    // ws_ holds derivative()'s evaluation at s_
   bool jac_from_s_ = false;   // jws_ holds it at js_ (swapped with ws_from_s_)
+
+  /// The side evaluation of derivative_with_side_forces on the worker: its
+  /// own state and workspace (sized as s_ and ws_; every evaluation rewrites
+  /// what it reads of them, the rest is the model's), its inputs and output.
+  struct SideEvaluation {
+    SideEvaluation(const Model& m, const PhysicalState& s0) : ws(m), s(s0) {}
+    Workspace ws;
+    PhysicalState s;
+    StateVector dy;  // discarded rates
+    const StateVector* y = nullptr;
+    double t = 0;
+    EvaluationForces* out = nullptr;
+    Worker worker;  // last: its thread ends before the rest goes
+  };
+  int threads_ = 1;                       // evaluation_threads(model_) [-]
+  std::unique_ptr<SideEvaluation> side_;  // made at the first side evaluation with threads_ >= 2
 };
 
 /// Paper formulation: y = [r0, v0, q, q'] with q the angles in their charts.
@@ -567,6 +626,14 @@ class PaperSystem final : public System {
 };
 
 }  // namespace
+
+int evaluation_threads(const Model& model) {
+  if (model.sim.integrator != Integrator::Rosenbrock || model.sim.formulation != Formulation::Default) return 1;
+  if (model.sim.threads >= 2) return 2;
+  if (model.sim.threads == 1) return 1;
+  // auto: where the second core pays (docs/performance.md).
+  return model.cable.n() >= kAutoThreadsElements && std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+}
 
 std::unique_ptr<System> make_system(const Model& model) {
   if (model.sim.formulation == Formulation::Paper && lengths_in_state(model))

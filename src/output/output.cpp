@@ -673,6 +673,7 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   j["rhs_evaluations"] = stats.rhs_evaluations;
   j["max_element_drift"] = num(stats.max_element_drift);  // kept unrounded: it is a round-off measure
   j["integrator"] = stats.integrator;
+  j["threads"] = stats.threads;  // 2: step-end evaluations on a worker thread (simulation.threads)
   // rosenbrock: largest local error estimate of an accepted step (relative,
   // state and tow/link forces) and its force part; null for the others.
   j["integration_error_estimate"] = stats.error_estimate >= 0 ? num(stats.error_estimate)

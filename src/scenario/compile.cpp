@@ -1,16 +1,27 @@
 #include "towsim/scenario/compile.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 
 #include "checks.hpp"
 #include "reader.hpp"
+#include "scalar.hpp"
 
 namespace towsim::io {
 namespace {
 
 constexpr double kMaxSteps = 1e12;   // duration / time_step
 constexpr double kMaxSamples = 1e9;  // duration / output_interval
+
+/// simulation.threads as Simulation::threads: auto -> 0, an integer >= 1
+/// (at most INT_MAX: more than 2 run as 2), anything else -> -1.
+int threads_of(const std::string& text) {
+  if (text == "auto") return 0;
+  const auto v = scalar_to_integer(text);
+  if (!v || *v < 1) return -1;
+  return static_cast<int>(std::min<long long>(*v, std::numeric_limits<int>::max()));
+}
 
 void check_environment(const EnvironmentSpec& e, Diagnostics& d) {
   check_non_negative(e.water_density, d);
@@ -49,6 +60,9 @@ void check_simulation(const SimulationSpec& s, Diagnostics& d) {
   if (s.integrator.value == "rosenbrock" && s.formulation.value == "paper")
     d.error(s.integrator.where.loc, s.integrator.where.path,
             "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)");
+  if (s.threads.given && threads_of(s.threads.value) < 0)
+    d.error(s.threads.where.loc, s.threads.where.path,
+            "expected an integer >= 1 or auto (got '" + s.threads.value + "')");
 }
 
 /// Rules between `initial` and `tow`: a steady start takes its velocity from
@@ -119,6 +133,7 @@ Simulation build_simulation(const SimulationSpec& s, bool winch) {
   sim.max_step = unbounded ? std::numeric_limits<double>::infinity() : s.max_step.value;
   sim.formulation = s.formulation.value == "paper" ? Formulation::Paper : Formulation::Default;
   sim.write_nodes = s.write_nodes.value;
+  sim.threads = threads_of(s.threads.value);
   return sim;
 }
 

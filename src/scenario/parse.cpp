@@ -239,6 +239,7 @@ void parse_simulation(MapReader& r, SimulationSpec& sim) {
   r.choice("formulation", sim.formulation, {"default", "paper"});
   r.read("output_interval", sim.output_interval);
   r.read("write_nodes", sim.write_nodes);
+  r.read("threads", sim.threads);
   // Absent integrator and tolerance: the defaults for the formulation and the integrator.
   const Formulation f = sim.formulation.value == "paper" ? Formulation::Paper : Formulation::Default;
   if (!sim.integrator.given) sim.integrator.value = integrator_key(default_integrator(f));

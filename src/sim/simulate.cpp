@@ -411,6 +411,7 @@ void winch_event_at(Chain& c, StateVector& y, double t, RunStats& stats) {
 RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progress, const volatile int* stop_flag) {
   RunStats stats;
   stats.integrator = integrator_key(model.sim.integrator);
+  stats.threads = evaluation_threads(model);
   const auto wall0 = std::chrono::steady_clock::now();
   // A steady start can fail or be interrupted: the run then ends before t = 0.
   PhysicalState s0;

@@ -69,7 +69,7 @@ class RosenbrockW {
   bool dense_ = false;       // y0d_, t0d_, hd_ and u_ describe the last accepted step
   std::array<StateVector, kStages> u_;
 
-  std::vector<Vec3> link_hat_;  // link forces at the embedded solution [N, R_g] (storage reused)
+  EvaluationForces hat_;  // tow and link forces at the embedded solution [N, R_g] (storage reused)
 };
 
 }  // namespace towsim

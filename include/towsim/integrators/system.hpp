@@ -15,6 +15,12 @@ namespace towsim {
 
 using StateVector = std::vector<double>;
 
+/// What the force error estimate reads of one evaluation.
+struct EvaluationForces {
+  Vec3 tow_force = Vec3::Zero();  // force of the chain on the tow point [N, R_g]
+  std::vector<Vec3> link_force;   // per body, its link force [N, R_g]
+};
+
 /// One formulation's state space. Implementations: the default (unit vectors
 /// e_k, angular velocities, body quaternion) and the paper's (angles in charts).
 class System {
@@ -70,6 +76,22 @@ class System {
   virtual std::size_t body_rate_row(std::size_t /*b*/) const { return kNoRow; }
   /// Forces of the last derivative() call (tow force, link forces), or null.
   virtual const Accelerations* last_accelerations() const { return nullptr; }
+  /// Two evaluations, two counted: f(y_side, t_side) for its forces only
+  /// (into `side`, when last_accelerations() gives forces), and f(y, t) into
+  /// dy as derivative(y, dy, t), the last one on this system's workspace
+  /// (last_accelerations(), prepare_stage_solve read it). Here one after the
+  /// other, the side one first; a system with a worker thread
+  /// (simulation.threads) runs the side one on it, on a workspace of its own,
+  /// at the same time: the same numbers (tests/unit/test_concurrent_evaluations.cpp).
+  virtual void derivative_with_side_forces(const StateVector& y, StateVector& dy, double t, const StateVector& y_side,
+                                           double t_side, EvaluationForces& side) {
+    derivative(y_side, side_dy_, t_side);
+    if (const Accelerations* acc = last_accelerations())
+      side.tow_force = acc->tow_force, side.link_force = acc->link_force;
+    derivative(y, dy, t);
+  }
+  /// Threads this system evaluates on (1, or 2 with a worker thread) [-].
+  virtual int threads() const { return 1; }
   /// odeint's call signature.
   void operator()(const StateVector& y, StateVector& dy, double t) { derivative(y, dy, t); }
 
@@ -85,10 +107,23 @@ class System {
   }
   double t0_ = -1e300, t1_ = 1e300;  // window of the current step [s]
   mutable PhysicalState view_;       // physical_view's storage
+  StateVector side_dy_;              // derivative_with_side_forces' discarded rates
 };
 
-/// The system of the model's formulation (model.sim.formulation).
+/// The system of the model's formulation (model.sim.formulation), on
+/// evaluation_threads(model) threads.
 std::unique_ptr<System> make_system(const Model& model);
+
+/// Cable elements from which simulation.threads: auto uses a worker thread
+/// (docs/performance.md "Concurrent step-end evaluations (h-pareval)").
+constexpr int kAutoThreadsElements = 200;  // [-]
+
+/// Threads a run of the model evaluates its dynamics on: 2 (the step-end
+/// evaluations of the rosenbrock integrator at the same time) or 1.
+/// model.sim.threads >= 2, or auto (0) with >= kAutoThreadsElements elements
+/// and >= 2 hardware threads: 2 with the rosenbrock integrator and the
+/// default formulation; 1 otherwise.
+int evaluation_threads(const Model& model);
 
 /// Initial physical state of a model (hanging, along a direction; steady via statics).
 PhysicalState initial_state(const Model& model);

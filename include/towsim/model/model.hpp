@@ -218,6 +218,7 @@ struct Simulation {
   Formulation formulation = Formulation::Default;
   bool write_nodes = true;       // write nodes.csv
   double statistics_start = -1;  // sea-state statistics from this time; < 0: half the duration [s]
+  int threads = 0;               // >= 1; 0: auto (evaluation_threads, towsim/integrators/system.hpp) [-]
 };
 
 /// The whole compiled system: a chain of linked parts from the tow point

@@ -260,6 +260,7 @@ struct SimulationSpec {
   Field<std::string> formulation{"default"};  // default | paper
   Field<double> output_interval{0.1};         // [s]
   Field<bool> write_nodes{true};
+  Field<std::string> threads{"auto"};  // an integer >= 1, or auto [-]
 };
 
 /// waves: a regular wave or a spectrum, optionally in finite depth.

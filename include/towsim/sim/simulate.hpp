@@ -94,6 +94,7 @@ struct RunStats {
   long rhs_evaluations = 0;           // evaluations of the dynamics
   double wall_seconds = 0;            // wall-clock time of the integration [s]
   std::string integrator;             // the method used: rk4, dopri5, cash_karp54, rosenbrock
+  int threads = 1;                    // threads the dynamics were evaluated on (evaluation_threads) [-]
   double error_estimate = -1;         // rosenbrock: largest local error estimate of an accepted step,
                                       // relative, state and tow/link forces [-]; < 0: none
   double force_error_estimate = -1;   // rosenbrock: its part from the tow and link forces [-]; < 0: none
