@@ -125,6 +125,9 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
     if (i > 0) {
       for (int j = 0; j < i; ++j)
         if (a_[i][j] != 0) us[idx(nj)] = u_[idx(j)].data(), wj[idx(nj++)] = a_[i][j];
+      // The step's last evaluations, on a worker thread's side (threads 2),
+      // come one evaluation and two stage solves after this one's start.
+      if (i == 1) sys_.expect_side_evaluation();
       yi_.resize(N);
       for (std::size_t q = 0; q < N; ++q) {
         double v = y[q];

@@ -170,6 +170,12 @@ class DefaultSystem final : public System {
     if (error) std::rethrow_exception(error);
   }
 
+  void expect_side_evaluation() override {
+    if (threads_ < 2) return;
+    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, s_);
+    side_->worker.expect();
+  }
+
   int threads() const override { return threads_; }
 
   void project(StateVector& y, double t) override {

@@ -2,21 +2,44 @@
 // "Concurrent step-end evaluations (h-pareval)").
 #include "towsim/integrators/worker.hpp"
 
+#include <chrono>
+
 namespace towsim {
 
 namespace {
 
-// Spins before blocking on a counter. A futex wake-up costs ~5-50 us on a
-// loaded machine against ~150 us for one evaluation at n = 1000: the side
-// waiting for the other (both evaluations take about as long) spins this
-// long first, then sleeps; a spin of ~1-2 us (x86, loads from cache) takes
-// no core from other work for longer than a scheduler tick would.
-constexpr int kSpins = 2000;  // [-]
+// A futex wake-up (std::atomic::wait/notify) of an idle vCPU costs ~100 us
+// here, about one evaluation at n = 1000: a side that waits spins first.
+// The helper spins up to kExpectSpin after expect() (the integrator calls it
+// ~300 us ahead of the job at n = 1000), the owner up to kWaitSpin for a job
+// running next to its own work (both take about as long); then they sleep.
+constexpr auto kExpectSpin = std::chrono::microseconds(2000);
+constexpr auto kWaitSpin = std::chrono::microseconds(2000);
 
-/// Wait until `counter` differs from `old` (acquire).
-void await_change(const std::atomic<std::uint32_t>& counter, std::uint32_t old) {
-  for (int i = 0; i < kSpins; ++i)
-    if (counter.load(std::memory_order_acquire) != old) return;
+/// A spin-wait hint to the core (x86 pause), else nothing.
+inline void relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#endif
+}
+
+/// Spin until `counter` differs from `old` (acquire) or `budget` has passed;
+/// true if it changed.
+bool spin_for_change(const std::atomic<std::uint32_t>& counter, std::uint32_t old, std::chrono::microseconds budget) {
+  const auto end = std::chrono::steady_clock::now() + budget;
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (counter.load(std::memory_order_acquire) != old) return true;
+      relax();
+    }
+    if (std::chrono::steady_clock::now() >= end) return false;
+  }
+}
+
+/// Wait until `counter` differs from `old` (acquire): a spin of `budget`,
+/// then a futex wait.
+void await_change(const std::atomic<std::uint32_t>& counter, std::uint32_t old, std::chrono::microseconds budget) {
+  if (spin_for_change(counter, old, budget)) return;
   while (counter.load(std::memory_order_acquire) == old) counter.wait(old, std::memory_order_acquire);
 }
 
@@ -27,14 +50,21 @@ Worker::Worker() : thread_([this] { loop(); }) {}
 Worker::~Worker() {
   stop_.store(true, std::memory_order_relaxed);
   posted_.fetch_add(1, std::memory_order_release);
-  posted_.notify_one();
+  signal_.fetch_add(1, std::memory_order_release);
+  signal_.notify_one();
   thread_.join();
 }
 
 void Worker::start(Job job, void* context) {
   job_ = job, context_ = context, error_ = nullptr;
   posted_.fetch_add(1, std::memory_order_release);  // publishes job_, context_ and the caller's inputs
-  posted_.notify_one();
+  signal_.fetch_add(1, std::memory_order_release);  // after posted_: a helper woken by it sees the job
+  signal_.notify_one();
+}
+
+void Worker::expect() {
+  signal_.fetch_add(1, std::memory_order_release);
+  signal_.notify_one();
 }
 
 void Worker::wait() {
@@ -42,14 +72,18 @@ void Worker::wait() {
   // the wait ends the wait at once (no lost wake-up).
   const std::uint32_t want = posted_.load(std::memory_order_relaxed);
   for (std::uint32_t d = done_.load(std::memory_order_acquire); d != want; d = done_.load(std::memory_order_acquire))
-    await_change(done_, d);
+    await_change(done_, d, kWaitSpin);
   if (error_) std::rethrow_exception(error_);
 }
 
 void Worker::loop() {
-  std::uint32_t seen = 0;
+  std::uint32_t seen = 0, signals = 0;
   for (;;) {
-    await_change(posted_, seen);
+    // Sleep until a post or an expect, then spin for the post a while (a
+    // post after the spin changes signal_ again: no lost wake-up).
+    await_change(signal_, signals, std::chrono::microseconds(2));
+    signals = signal_.load(std::memory_order_acquire);
+    if (!spin_for_change(posted_, seen, kExpectSpin)) continue;
     seen = posted_.load(std::memory_order_acquire);
     if (stop_.load(std::memory_order_relaxed)) return;
     try {
@@ -57,6 +91,9 @@ void Worker::loop() {
     } catch (...) {
       error_ = std::current_exception();
     }
+    // The signals so far are this job's: sleep at the next turn (read before
+    // done_, so the owner's next post, after it, is a change).
+    signals = signal_.load(std::memory_order_acquire);
     done_.store(seen, std::memory_order_release);  // publishes the job's results
     done_.notify_one();
   }

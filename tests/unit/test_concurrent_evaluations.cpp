@@ -182,12 +182,12 @@ TEST(Worker, CarriesExceptionsAndGoesOn) {
 // auto: a worker from kAutoThreadsElements elements (two hardware threads),
 // only with rosenbrock; an explicit count >= 2 runs as 2.
 TEST(ConcurrentEvaluations, AutoRule) {
-  Model m = example_model("paper-3d-turn", {"cable.elements=200"});
+  Model m = example_model("paper-3d-turn", {"cable.elements=1000"});
   ASSERT_EQ(m.sim.threads, 0);  // absent: auto
   ASSERT_EQ(m.sim.integrator, Integrator::Rosenbrock);
   const int hw = std::thread::hardware_concurrency() >= 2 ? 2 : 1;
   EXPECT_EQ(evaluation_threads(m), hw);
-  EXPECT_EQ(evaluation_threads(example_model("paper-3d-turn", {"cable.elements=199"})), 1);
+  EXPECT_EQ(evaluation_threads(example_model("paper-3d-turn", {"cable.elements=999"})), 1);
   EXPECT_EQ(evaluation_threads(example_model("paper-3d-turn", {})), 1);  // 10 elements
   m.sim.threads = 8;
   EXPECT_EQ(evaluation_threads(m), 2);

@@ -90,6 +90,9 @@ class System {
       side.tow_force = acc->tow_force, side.link_force = acc->link_force;
     derivative(y, dy, t);
   }
+  /// A derivative_with_side_forces() call comes soon (a hint: a worker
+  /// thread gets ready for it; nothing else changes).
+  virtual void expect_side_evaluation() {}
   /// Threads this system evaluates on (1, or 2 with a worker thread) [-].
   virtual int threads() const { return 1; }
   /// odeint's call signature.
@@ -116,7 +119,7 @@ std::unique_ptr<System> make_system(const Model& model);
 
 /// Cable elements from which simulation.threads: auto uses a worker thread
 /// (docs/performance.md "Concurrent step-end evaluations (h-pareval)").
-constexpr int kAutoThreadsElements = 200;  // [-]
+constexpr int kAutoThreadsElements = 1000;  // [-]
 
 /// Threads a run of the model evaluates its dynamics on: 2 (the step-end
 /// evaluations of the rosenbrock integrator at the same time) or 1.

@@ -10,8 +10,10 @@
 namespace towsim {
 
 /// One helper thread, started once and kept for the owner's lifetime. The
-/// owner hands it a job, does its own work, then waits for the job: a short
-/// spin, then a futex wait (std::atomic::wait); no thread made per job.
+/// owner hands it a job, does its own work, then waits for the job; no
+/// thread made per job. Idle, the helper sleeps on a futex
+/// (std::atomic::wait); expect() wakes it ahead of a job, to spin for it:
+/// on a VM, waking a sleeping thread takes about as long as the job.
 class Worker {
  public:
   using Job = void (*)(void* context);
@@ -24,6 +26,9 @@ class Worker {
   /// Run job(context) on the helper thread; returns at once. At most one
   /// job at a time: wait() before the next start().
   void start(Job job, void* context);
+  /// A job comes soon: the helper leaves its sleep now and spins for it
+  /// (for at most kExpectSpin, then sleeps again).
+  void expect();
   /// Wait until the job started last has ended; rethrows what it threw.
   void wait();
 
@@ -35,6 +40,7 @@ class Worker {
   std::exception_ptr error_;              // the last job's exception (written by the helper before done_)
   std::atomic<std::uint32_t> posted_{0};  // jobs handed over [-]
   std::atomic<std::uint32_t> done_{0};    // jobs ended [-]
+  std::atomic<std::uint32_t> signal_{0};  // posts and expects: what the sleeping helper waits on [-]
   std::atomic<bool> stop_{false};
   std::thread thread_;  // last: started once the members above exist
 };
