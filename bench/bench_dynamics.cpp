@@ -39,14 +39,7 @@ constexpr double kTime = 3.7;
 
 /// The benchmark cable: paper 5.2 per-metre values, 10 m elements, Pode f = 0.02.
 Model bench_model(int n, bool body) {
-  testing::CableSpec spec;
-  spec.n = n;
-  spec.length = 10.0 * n;
-  spec.mass_per_length = 0.14;
-  spec.diameter = 0.010;
-  spec.cd = 1.9;
-  spec.tangential = 0.02;
-  Model m = testing::cable_model(spec);
+  Model m = testing::cable_model(testing::paper52_cable(n, 10.0 * n, 0.02));
   if (body) testing::add_sphere_body(m);
   m.tow.pieces.push_back(Ramp{Vec3(1, 0, 0), 1.57, 15.0});
   return m;

@@ -9,7 +9,7 @@
 //                          the sweeps repeat while the depths move
 #include <benchmark/benchmark.h>
 
-#include "models.hpp"  // tests/support: cable_model, add_sphere_body
+#include "models.hpp"  // tests/support: cable_model, paper52_cable, add_sphere_body
 #include "towsim/sim/statics.hpp"
 
 namespace {
@@ -17,14 +17,7 @@ namespace {
 using namespace towsim;
 
 Model statics_model(int n, bool body, bool shear) {
-  testing::CableSpec spec;
-  spec.n = n;
-  spec.length = 1000;
-  spec.mass_per_length = 0.14;
-  spec.diameter = 0.010;
-  spec.cd = 1.9;
-  spec.tangential = 0.02;
-  Model m = testing::cable_model(spec);
+  Model m = testing::cable_model(testing::paper52_cable(n, 1000, 0.02));
   if (body) testing::add_sphere_body(m);
   if (shear) {
     m.fluid.current_depth = {0, 300};

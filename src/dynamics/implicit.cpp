@@ -46,16 +46,21 @@ void body_bias(const Body& body, const BodyWork& bw, const Vec3& Fb, const Vec3&
   iw.bbQ[b] = iw.bC[b].transpose() * iw.bPhi[b] * iw.brhs[b] + hl - Fb;
 }
 
-/// Symmetric part of A with its negative eigenvalues dropped (a damping or a
-/// stiffness the W-method may use: never one that feeds energy in).
+/// psd_part for N = 3 or 6.
 template <int N>
-Eigen::Matrix<double, N, N> psd_part(const Eigen::Matrix<double, N, N>& A) {
+Eigen::Matrix<double, N, N> psd_part_n(const Eigen::Matrix<double, N, N>& A) {
   Eigen::Matrix<double, N, N> S = 0.5 * (A + A.transpose());
   // Positive semi-definite (a pivoted LDL^T with no negative pivot): nothing
   // to drop, no eigensolve (the common case: drag damping, hanging bodies).
   const Eigen::LDLT<Eigen::Matrix<double, N, N>> ldlt(S);
   if (ldlt.info() == Eigen::Success && ldlt.isPositive()) return S;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> es(S);
+  // 3x3: the closed form (roots of the characteristic cubic; ~sqrt(eps) |S|
+  // near a double eigenvalue, tests/unit/test_psd_part.cpp); 6x6: QR iteration.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> es;
+  if constexpr (N == 3)
+    es.computeDirect(S);
+  else
+    es.compute(S);
   const Eigen::Matrix<double, N, 1> l = es.eigenvalues().cwiseMax(0.0);
   return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
 }
@@ -149,6 +154,9 @@ Mat3 turned_gradient(const Vec3& O, const Vec3& c, Field&& field) {
 
 }  // namespace
 
+Mat3 psd_part(const Mat3& A) { return psd_part_n<3>(A); }
+Mat6 psd_part(const Mat6& A) { return psd_part_n<6>(A); }
+
 void body_load_derivatives(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& D, Mat3& KO) {
   D.setZero();
   // dM/dtheta (KO = -dM/dtheta). A force F at c = R c_b turning with the
@@ -231,11 +239,11 @@ void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& b
   Mat6 D;
   Mat3 KO;
   body_load_derivatives(fluid, body, bw, t, D, KO);
-  C = psd_part<6>(D);
+  C = psd_part(D);
   // About Q: the loads' resultant F, carried by the arm O_t - Q, adds
   // -(F.rQ) I + F rQ^T (potential -F.x with x - Q = (x - O_t) - rQ).
   const Vec3& F = bw.Fb;
-  K = psd_part<3>(KO - F.dot(bw.rQ) * Mat3::Identity() + F * bw.rQ.transpose());
+  K = psd_part(Mat3(KO - F.dot(bw.rQ) * Mat3::Identity() + F * bw.rQ.transpose()));
 }
 
 void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG, const Vec3& xG,

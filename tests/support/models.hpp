@@ -48,6 +48,31 @@ inline void add_sphere_body(Model& m, double mass = 3.0, double radius = 0.05, d
   finalize_body(b, m.fluid);
 }
 
+/// The paper 5.2 cable (0.14 kg/m, 10 mm, Cd 1.9; Pode f = tangential) in
+/// n elements over `length` [m].
+inline CableSpec paper52_cable(int n, double length, double tangential = 0.0) {
+  CableSpec spec;
+  spec.n = n;
+  spec.length = length;
+  spec.mass_per_length = 0.14;
+  spec.diameter = 0.010;
+  spec.cd = 1.9;
+  spec.tangential = tangential;
+  return spec;
+}
+
+/// The paper 5.2 tow (scenarios/paper-3d-turn.yaml, bench/scenarios/km-*):
+/// paper52_cable(n, length), a sphere at its end (the paper's 3 kg,
+/// r = 0.05 m unless given), and the tow law: the tow point reaches 1.57 m/s
+/// along x in 15 s, then turns to port on a 7.5 m circle.
+inline Model paper52_turn(int n, double length, double body_mass = 3.0, double body_radius = 0.05) {
+  Model m = cable_model(paper52_cable(n, length));
+  add_sphere_body(m, body_mass, body_radius);
+  m.tow.pieces.push_back(Ramp{Vec3::UnitX(), 1.57, 15});
+  m.tow.pieces.push_back(Turn{7.5, 15, true});
+  return m;
+}
+
 /// A body with every load model and off-diagonal terms, for agreement tests.
 inline void add_rich_body(Model& m) {
   m.bodies.emplace_back();

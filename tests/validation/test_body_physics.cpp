@@ -26,16 +26,7 @@ constexpr double kG = 9.81;
 using testing::run_case_param_name;
 
 /// The paper's 5.2 cable, shortened.
-CableSpec light_cable(int n, double length) {
-  CableSpec spec;
-  spec.n = n;
-  spec.length = length;
-  spec.mass_per_length = 0.14;
-  spec.diameter = 0.010;
-  spec.cd = 1.9;
-  spec.tangential = 0.02;
-  return spec;
-}
+CableSpec light_cable(int n, double length) { return testing::paper52_cable(n, length, 0.02); }
 
 // ---------------------------------------------------------------------------
 // 7. A sphere hanging under a still, vertical cable is in equilibrium: it

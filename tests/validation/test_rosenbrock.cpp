@@ -300,16 +300,7 @@ INSTANTIATE_TEST_SUITE_P(BuiltIn, RosenbrockExamples,
 // RK4 stability limit (0.0157 s).
 // ---------------------------------------------------------------------------
 Model km_cable() {
-  CableSpec spec;
-  spec.n = 1000;
-  spec.length = 1000;
-  spec.mass_per_length = 0.14;
-  spec.diameter = 0.010;
-  spec.cd = 1.9;
-  Model m = testing::cable_model(spec);
-  testing::add_sphere_body(m);
-  m.tow.pieces.push_back(testing::ramp_piece(Vec3::UnitX(), 1.57, 15));
-  m.tow.pieces.push_back(testing::turn_piece(7.5, 15));
+  Model m = testing::paper52_turn(1000, 1000);
   m.sim.duration = 12;
   m.sim.output_interval = 1;
   return m;

@@ -34,16 +34,7 @@ struct JacCase {
 /// km-cable-1000's cable (1 m elements, 0.14 kg/m, 10 mm) with n elements
 /// and a sphere, its tow law: ramp to 1.57 m/s in 15 s, then the 7.5 m turn.
 Model km_cable_piece(const JacCase& c) {
-  testing::CableSpec spec;
-  spec.n = c.n;
-  spec.length = c.n;
-  spec.mass_per_length = 0.14;
-  spec.diameter = 0.010;
-  spec.cd = 1.9;
-  Model m = testing::cable_model(spec);
-  testing::add_sphere_body(m, c.body_mass, c.body_radius);
-  m.tow.pieces.push_back(testing::ramp_piece(Vec3::UnitX(), 1.57, 15));
-  m.tow.pieces.push_back(testing::turn_piece(7.5, 15));
+  Model m = testing::paper52_turn(c.n, c.n, c.body_mass, c.body_radius);
   m.sim.integrator = Integrator::Rosenbrock;
   return m;
 }
@@ -129,7 +120,7 @@ TEST_P(RosenbrockJacobian, StageSolveMatchesFiniteDifferencesOnTheStiffModes) {
 
   // The stiffest modes of J (the rocking of the top elements): W on them.
   const Eigen::EigenSolver<Eigen::MatrixXd> es(J);
-  const Eigen::VectorXcd lam = es.eigenvalues();
+  const Eigen::VectorXcd& lam = es.eigenvalues();
   std::vector<int> order(static_cast<std::size_t>(M));
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(lam[a]) > std::abs(lam[b]); });

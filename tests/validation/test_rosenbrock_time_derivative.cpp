@@ -28,19 +28,9 @@ namespace towsim {
 namespace {
 
 /// paper-3d-turn (scenarios/paper-3d-turn.yaml) as a Model: 300 m of cable
-/// in 10 elements, 0.14 kg/m, 10 mm, Cd 1.9, the 3 kg sphere; the tow point
-/// reaches 1.57 m/s in 15 s, then turns on a 7.5 m circle.
+/// in 10 elements, the 3 kg sphere, the ramp and the 7.5 m turn.
 Model paper_turn() {
-  testing::CableSpec spec;
-  spec.n = 10;
-  spec.length = 300;
-  spec.mass_per_length = 0.14;
-  spec.diameter = 0.010;
-  spec.cd = 1.9;
-  Model m = testing::cable_model(spec);
-  testing::add_sphere_body(m);
-  m.tow.pieces.push_back(testing::ramp_piece(Vec3::UnitX(), 1.57, 15));
-  m.tow.pieces.push_back(testing::turn_piece(7.5, 15));
+  Model m = testing::paper52_turn(10, 300);
   m.sim.integrator = Integrator::Rosenbrock;
   return m;
 }

@@ -49,6 +49,13 @@ void element_local_jacobian(const Model& model, const Element& el, const Vec3& e
 /// gradients by central differences (docs/theory.md §6.3).
 void body_load_derivatives(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& D, Mat3& KO);
 
+/// Symmetric part of A with its negative eigenvalues dropped: a damping or a
+/// stiffness the W-method may use, never one that feeds energy in. 3x3 by the
+/// closed-form eigen-decomposition (within ~sqrt(eps) |A| of the exact part),
+/// 6x6 by QR iteration.
+Mat3 psd_part(const Mat3& A);
+Mat6 psd_part(const Mat6& A);
+
 /// Per-part hook, body: damping C (6x6 on v_O, omega_B) and rotational
 /// stiffness K about the link point Q, from body_load_derivatives (symmetric
 /// parts, negative eigenvalues dropped). bw: the body's evaluation.
