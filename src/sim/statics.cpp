@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "statics_internal.hpp"
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/hydro/loads.hpp"
 #include "towsim/integrators/rosenbrock.hpp"

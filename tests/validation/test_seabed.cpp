@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 
+#include "../../src/sim/statics_internal.hpp"
 #include "../support/models.hpp"
 #include "../support/physics.hpp"
 #include "towsim/hydro/loads.hpp"

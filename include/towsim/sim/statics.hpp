@@ -41,13 +41,6 @@ Vec3 final_tow_velocity(const Tow& tow);
 /// (result.interrupted, not converged).
 StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile int* stop_flag = nullptr);
 
-/// Newton-Krylov alone (solve_statics' step for large problems with a
-/// seabed) from the configuration `start`, for tests of its compression
-/// guard: `converged` when it reached the residual floor with every element
-/// in tension; `message` "compression" when the guard dropped an
-/// equilibrium with an element in compression (`state`: the start).
-/// tow_force and joint_force at `state`; the sample is left empty.
-StaticsResult newton_krylov_statics(const Model& model, const Vec3& V, const PhysicalState& start);
 /// `model` with a deployed length L: the top section's elements (their
 /// number kept) stretched or shortened together, per-length properties kept,
 /// everything below unchanged. L must exceed the length below the top section.
