@@ -42,6 +42,111 @@ constexpr double kBtheta[4][3] = {{1.0564298455794094, -1.3864882699759573, 0.57
                                   {-1.307599564525376, 7.250979895056055, -4.398120075195578},
                                   {-1.045260255335102, 2.398120075195581, -0.9169932983520199}};
 
+/// Up to kMaxTerms weighted vectors w_l u_l of a combination (below).
+constexpr int kMaxTerms = 4;  // a stage's 3 earlier stages and f_t [-]
+struct Terms {
+  std::array<const double*, kMaxTerms> u{};
+  std::array<double, kMaxTerms> w{};
+  int n = 0;
+  void add(const double* v, double weight) { u[idx(n)] = v, w[idx(n++)] = weight; }
+};
+
+/// out[q] = x[q] (times *s when s is given) + w_0 u_0[q] + w_1 u_1[q] + ...,
+/// added in that order: NL terms unrolled, so that the compiler vectorises
+/// the pass (a loop over a run-time count of terms it does not).
+template <int NL>
+void combine_n(std::size_t n, double* __restrict out, const double* __restrict x, const double* s, const Terms& t) {
+  std::array<const double*, NL + 1> u{};
+  std::array<double, NL + 1> w{};
+  for (std::size_t l = 0; l < NL; ++l) u[l] = t.u[l], w[l] = t.w[l];
+  if (s) {
+    const double sc = *s;
+    for (std::size_t q = 0; q < n; ++q) {
+      double v = sc * x[q];
+      for (std::size_t l = 0; l < NL; ++l) v += w[l] * u[l][q];
+      out[q] = v;
+    }
+  } else {
+    for (std::size_t q = 0; q < n; ++q) {
+      double v = x[q];
+      for (std::size_t l = 0; l < NL; ++l) v += w[l] * u[l][q];
+      out[q] = v;
+    }
+  }
+}
+
+/// combine_n for t's count of terms.
+void combine(std::size_t n, double* out, const double* x, const double* s, const Terms& t) {
+  switch (t.n) {
+    case 0:
+      return combine_n<0>(n, out, x, s, t);
+    case 1:
+      return combine_n<1>(n, out, x, s, t);
+    case 2:
+      return combine_n<2>(n, out, x, s, t);
+    case 3:
+      return combine_n<3>(n, out, x, s, t);
+    default:  // kMaxTerms
+      return combine_n<kMaxTerms>(n, out, x, s, t);
+  }
+}
+
+/// The step's solutions from its start y and its kStages stages u_i with
+/// weights m_i and m_i - mhat_i, one pass.
+struct Solutions {
+  const double *y, *u0, *u1, *u2, *u3;
+  std::array<double, 4> m, dm;
+  /// y1 = y + sum m_i u_i, d = y1 - yhat = sum dm_i u_i (each added in the
+  /// order i = 0, 1, ...) and, WithEmbedded, yhat = y1 - d.
+  template <bool WithEmbedded>
+  void pass(std::size_t n, double* y1, double* d, double* yhat) const {
+    run<WithEmbedded>(n, y, u0, u1, u2, u3, y1, d, yhat);
+  }
+  // Restrict-qualified parameters: the compiler vectorises without run-time
+  // overlap checks (the vectors are distinct).
+  template <bool WithEmbedded>
+  void run(std::size_t n, const double* __restrict y0, const double* __restrict v0, const double* __restrict v1,
+           const double* __restrict v2, const double* __restrict v3, double* __restrict y1, double* __restrict d,
+           double* __restrict yhat) const {
+    for (std::size_t q = 0; q < n; ++q) {
+      double v = y0[q], e = 0.0;
+      v += m[0] * v0[q], e += dm[0] * v0[q];
+      v += m[1] * v1[q], e += dm[1] * v1[q];
+      v += m[2] * v2[q], e += dm[2] * v2[q];
+      v += m[3] * v3[q], e += dm[3] * v3[q];
+      y1[q] = v, d[q] = e;
+      if constexpr (WithEmbedded) yhat[q] = v - e;
+    }
+  }
+};
+
+/// The step-end side evaluation started and not yet finished: cancelled
+/// (waited for, dropped) if the step leaves early by an exception, so that no
+/// worker reads the integrator's vectors after try_step.
+class SideForces {
+ public:
+  explicit SideForces(System& sys) : sys_(sys) {}
+  ~SideForces() { cancel(); }
+  SideForces(const SideForces&) = delete;
+  SideForces& operator=(const SideForces&) = delete;
+  void start(const StateVector& y_side, double t_side, EvaluationForces& out) {
+    sys_.start_side_forces(y_side, t_side, out);
+    started_ = true;
+  }
+  void finish(const StateVector& y, StateVector& dy, double t) {
+    started_ = false;  // finish_side_forces ends it, even by an exception
+    sys_.finish_side_forces(y, dy, t);
+  }
+  void cancel() noexcept {
+    if (started_) sys_.cancel_side_forces();
+    started_ = false;
+  }
+
+ private:
+  System& sys_;
+  bool started_ = false;
+};
+
 }  // namespace
 
 RosenbrockW::RosenbrockW(System& sys, double tol, double force_scale, ForceEstimate force_estimate,
@@ -119,60 +224,61 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
   // order j = 0, 1, ... (the same round-off as a pass per term).
   for (int i = 0; i < kStages; ++i) {
     const StateVector* f = &f0_;
-    std::array<const double*, kStages> us{};  // u_j with a nonzero weight
-    std::array<double, kStages> wj{};         // their weights
-    int nj = 0;
+    Terms terms;
     if (i > 0) {
       for (int j = 0; j < i; ++j)
-        if (a_[i][j] != 0) us[idx(nj)] = u_[idx(j)].data(), wj[idx(nj++)] = a_[i][j];
+        if (a_[i][j] != 0) terms.add(u_[idx(j)].data(), a_[i][j]);
       // The step's last evaluations, on a worker thread's side (threads 2),
       // come one evaluation and two stage solves after this one's start.
       if (i == 1) sys_.expect_side_evaluation();
       yi_.resize(N);
-      for (std::size_t q = 0; q < N; ++q) {
-        double v = y[q];
-        for (int l = 0; l < nj; ++l) v += wj[idx(l)] * us[idx(l)][q];
-        yi_[q] = v;
-      }
+      combine(N, yi_.data(), y.data(), nullptr, terms);
       sys_.derivative(yi_, fi_, t + alpha_[i] * h);
       f = &fi_;
     }
-    nj = 0;
-    for (int j = 0; j < i; ++j) us[idx(nj)] = u_[idx(j)].data(), wj[idx(nj++)] = gamma_ * c_[i][j];
-    const bool with_ft = use_ft_ && gsum_[i] != 0;
-    const double wft = hg * gsum_[i] * h;
+    terms = Terms{};
+    for (int j = 0; j < i; ++j) terms.add(u_[idx(j)].data(), gamma_ * c_[i][j]);
+    if (use_ft_ && gsum_[i] != 0) terms.add(ft_.data(), hg * gsum_[i] * h);  // last, as before
     rhs_.resize(N);
-    for (std::size_t q = 0; q < N; ++q) {
-      double v = hg * (*f)[q];
-      for (int l = 0; l < nj; ++l) v += wj[idx(l)] * us[idx(l)][q];
-      if (with_ft) v += wft * ft_[q];
-      rhs_[q] = v;
-    }
+    combine(N, rhs_.data(), f->data(), &hg, terms);
     sys_.stage_solve(hg, rhs_, u_[i]);
   }
-  // y1 = y + sum m_i u_i and y1 - yhat = sum (m_i - mhat_i) u_i, one pass.
+  // y1 = y + sum m_i u_i and y1 - yhat = sum (m_i - mhat_i) u_i, one pass;
+  // with the embedded force estimate its solution y1 - (y1 - yhat) too.
+  const bool embedded = force_estimate_ == ForceEstimate::Embedded;
   std::array<double, kStages> dm{};
   for (int i = 0; i < kStages; ++i) dm[idx(i)] = m_[i] - mhat_[i];
   y1_.resize(N);
   rhs_.resize(N);
-  for (std::size_t q = 0; q < N; ++q) {
-    double v = y[q], d = 0.0;
-    for (int i = 0; i < kStages; ++i) v += m_[i] * u_[i][q], d += dm[idx(i)] * u_[i][q];
-    y1_[q] = v;
-    rhs_[q] = d;
+  yi_.resize(N);
+  static_assert(kStages == 4, "Solutions is written for four stages");
+  const Solutions sol{y.data(), u_[0].data(), u_[1].data(), u_[2].data(), u_[3].data(), m_, dm};
+  if (embedded)
+    sol.pass<true>(N, y1_.data(), rhs_.data(), yi_.data());
+  else
+    sol.pass<false>(N, y1_.data(), rhs_.data(), nullptr);
+  // The solution whose forces are compared with y1's (below), projected:
+  // the embedded one needs no filter solve, so its evaluation starts now, on
+  // the worker thread when the system has one (simulation.threads), during
+  // the filter solve and the state error, and is dropped if the step is
+  // rejected (speculative, docs/performance.md "Speculative step-end
+  // evaluation"). Serially it only runs with f(y1), below.
+  SideForces side(sys_);
+  if (embedded) {
+    sys_.project(yi_, t1);
+    side.start(yi_, t1, hat_);
   }
   // Filtered error estimate (Shampine): (I - hg J)^-1 (y1 - yhat). The
   // embedded solution is not L-stable (|R(inf)| = 0.48): unfiltered, the
   // damped stiff modes (element rocking) would dominate the estimate.
   sys_.stage_solve(hg, rhs_, scratch_);
-  // The solution whose forces are compared with y1's: the embedded one
-  // itself, y1 - (y1 - yhat), or the filtered one; yhat with it, one pass.
-  const StateVector& dy_force = force_estimate_ == ForceEstimate::Embedded ? rhs_ : scratch_;
+  // yhat = y1 - (filtered y1 - yhat): with the filtered force estimate,
+  // the solution whose forces are compared, evaluated from here on.
   yhat_.resize(N);
-  yi_.resize(N);
-  for (std::size_t q = 0; q < N; ++q) yhat_[q] = y1_[q] - scratch_[q], yi_[q] = y1_[q] - dy_force[q];
-  sys_.project(y1_, t1);
+  for (std::size_t q = 0; q < N; ++q) yhat_[q] = y1_[q] - scratch_[q];
   sys_.project(yhat_, t1);
+  if (!embedded) side.start(yhat_, t1, hat_);
+  sys_.project(y1_, t1);
   // State error: |y1 - yhat| against tol (1 + |y|), max norm.
   double err = 0;
   for (std::size_t q = 0; q < N; ++q) {
@@ -189,11 +295,9 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
   double ferr = 0;
   if (err <= 1) {
     const Accelerations* acc = sys_.last_accelerations();
-    sys_.project(yi_, t1);
-    // The embedded solution's forces and f(y1), the next step's start (last
-    // on the system's workspace): independent, so at the same time on a
-    // worker thread when the system has one (simulation.threads).
-    sys_.derivative_with_side_forces(y1_, fi_, t1, yi_, t1, hat_);
+    // The side evaluation's forces and f(y1), the next step's start (last
+    // on the system's workspace).
+    side.finish(y1_, fi_, t1);
     if (acc) {
       auto rel = [&](const Vec3& a, const Vec3& b) { return (a - b).norm() / (force_scale_ + a.norm()); };
       ferr = rel(acc->tow_force, hat_.tow_force);
@@ -202,6 +306,8 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
     }
     if (!std::isfinite(ferr)) ferr = std::numeric_limits<double>::infinity();
     err = std::max(err, ferr / tol_);
+  } else {
+    side.cancel();  // rejected: as serially, never evaluated (what it threw dropped)
   }
   // Step size: order 2 estimate -> exponent 1/3, safety 0.95, factor in
   // [0.2, 5], no growth right after a rejection. Measured against a PI

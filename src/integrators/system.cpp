@@ -147,17 +147,24 @@ class DefaultSystem final : public System {
     ws_from_s_ = true;
   }
 
-  void derivative_with_side_forces(const StateVector& y, StateVector& dy, double t, const StateVector& y_side,
-                                   double t_side, EvaluationForces& side) override {
+  void start_side_forces(const StateVector& y_side, double t_side, EvaluationForces& side) override {
     if (threads_ < 2) {
-      System::derivative_with_side_forces(y, dy, t, y_side, t_side, side);
+      System::start_side_forces(y_side, t_side, side);
       return;
     }
-    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, s_);
+    SideEvaluation& sv = side_evaluation();
+    sv.y = &y_side, sv.t = t_side, sv.out = &side;
+    sv.worker.start(&side_job, this);
+    sv.running = true;
+  }
+
+  void finish_side_forces(const StateVector& y, StateVector& dy, double t) override {
+    if (threads_ < 2) {
+      System::finish_side_forces(y, dy, t);
+      return;
+    }
     rhs_evaluations += 2;
-    side_->y = &y_side, side_->t = t_side, side_->out = &side;
-    side_->worker.start(&side_job, this);
-    // f(y, t) here meanwhile; the side's failure first (serially it comes first).
+    // f(y, t) here while the side runs; the side's failure first (serially it comes first).
     std::exception_ptr error;
     try {
       ws_from_s_ = false;  // until the evaluation completes
@@ -166,14 +173,22 @@ class DefaultSystem final : public System {
     } catch (...) {
       error = std::current_exception();
     }
+    side_->running = false;
     side_->worker.wait();
     if (error) std::rethrow_exception(error);
   }
 
+  void cancel_side_forces() noexcept override {
+    if (!side_ || !side_->running) return;
+    side_->running = false;
+    try {
+      side_->worker.wait();
+    } catch (...) {  // dropped: serially this evaluation never ran
+    }
+  }
+
   void expect_side_evaluation() override {
-    if (threads_ < 2) return;
-    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, s_);
-    side_->worker.expect();
+    if (threads_ >= 2) side_evaluation().worker.expect();
   }
 
   int threads() const override { return threads_; }
@@ -520,7 +535,7 @@ class DefaultSystem final : public System {
   bool ws_from_s_ = false;    // ws_ holds derivative()'s evaluation at s_
   bool jac_from_s_ = false;   // jws_ holds it at js_ (swapped with ws_from_s_)
 
-  /// The side evaluation of derivative_with_side_forces on the worker: its
+  /// The side evaluation (start_side_forces) on the worker: its
   /// own state and workspace (sized as s_ and ws_; every evaluation rewrites
   /// what it reads of them, the rest is the model's), its inputs and output.
   struct SideEvaluation {
@@ -531,8 +546,14 @@ class DefaultSystem final : public System {
     const StateVector* y = nullptr;
     double t = 0;
     EvaluationForces* out = nullptr;
-    Worker worker;  // last: its thread ends before the rest goes
+    bool running = false;  // started, not finished or cancelled yet
+    Worker worker;         // last: its thread ends before the rest goes
   };
+  /// The side evaluation's storage and worker, made at first use.
+  SideEvaluation& side_evaluation() {
+    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, s_);
+    return *side_;
+  }
   int threads_ = 1;                       // evaluation_threads(model_) [-]
   std::unique_ptr<SideEvaluation> side_;  // made at the first side evaluation with threads_ >= 2
 };

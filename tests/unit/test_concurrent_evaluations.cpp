@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "../support/scenario_files.hpp"
+#include "towsim/integrators/rosenbrock.hpp"
 #include "towsim/integrators/system.hpp"
 #include "towsim/integrators/worker.hpp"
 #include "towsim/scenario/examples.hpp"
@@ -57,8 +58,9 @@ std::vector<double> flat(const Sample& s) {
   return v;
 }
 
-/// The model run with simulation.threads = 1 and = 2: the same samples, steps and evaluations.
-void expect_same_runs(Model m) {
+/// The model run with simulation.threads = 1 and = 2: the same samples,
+/// steps and evaluations; returns the serial run's statistics.
+RunStats expect_same_runs(Model m) {
   m.sim.threads = 1;
   MemorySink one;
   const RunStats a = simulate(m, one);
@@ -74,10 +76,61 @@ void expect_same_runs(Model m) {
   EXPECT_EQ(a.rhs_evaluations, b.rhs_evaluations);
   EXPECT_EQ(a.error_estimate, b.error_estimate);
   EXPECT_EQ(a.force_error_estimate, b.force_error_estimate);
-  ASSERT_EQ(one.samples.size(), two.samples.size());
+  EXPECT_EQ(one.samples.size(), two.samples.size());
+  if (one.samples.size() != two.samples.size()) return a;
   for (std::size_t i = 0; i < one.samples.size(); ++i)
-    ASSERT_EQ(flat(one.samples[i]), flat(two.samples[i])) << "sample " << i << " (t = " << one.samples[i].t << " s)";
+    EXPECT_EQ(flat(one.samples[i]), flat(two.samples[i])) << "sample " << i << " (t = " << one.samples[i].t << " s)";
+  return a;
 }
+
+/// y' = -y on 3 components with the exact stage solve, for the step-end
+/// protocol of RosenbrockW: its side evaluation runs on a Worker, as
+/// DefaultSystem's with threads 2, and throws when told; the calls are
+/// recorded (s: start, f: finish, c: cancel).
+class DecaySystem final : public System {
+ public:
+  bool side_throws = false;
+  std::string calls;
+
+  StateVector initial(const PhysicalState& /*s*/, double /*t*/) override { return StateVector(3, 1.0); }
+  void derivative(const StateVector& y, StateVector& dy, double /*t*/) override {
+    ++rhs_evaluations;
+    dy.resize(y.size());
+    for (std::size_t q = 0; q < y.size(); ++q) dy[q] = -y[q];
+  }
+  void project(StateVector& /*y*/, double /*t*/) override {}
+  double apply_tow_jump(StateVector& /*y*/, double /*t*/) override { return 0; }
+  PhysicalState physical(const StateVector& /*y*/) const override { return {}; }
+  const Workspace& evaluate(const StateVector& /*y*/, double /*t*/) override { throw std::logic_error("not used"); }
+  std::string describe(std::size_t /*i*/) const override { return {}; }
+  bool has_stage_solve() const override { return true; }
+  void stage_solve(double hg, const StateVector& r, StateVector& k) override {
+    k.resize(r.size());
+    for (std::size_t q = 0; q < r.size(); ++q) k[q] = r[q] / (1 + hg);  // J = -I exactly
+  }
+  void start_side_forces(const StateVector& /*y_side*/, double /*t_side*/, EvaluationForces& /*side*/) override {
+    calls += 's';
+    worker_.start(side_throws ? &throwing_job : &quiet_job, this);
+  }
+  void finish_side_forces(const StateVector& y, StateVector& dy, double t) override {
+    calls += 'f';
+    rhs_evaluations += 1;
+    worker_.wait();  // the side's exception first, as serially
+    derivative(y, dy, t);
+  }
+  void cancel_side_forces() noexcept override {
+    calls += 'c';
+    try {
+      worker_.wait();
+    } catch (...) {  // dropped, as DefaultSystem does
+    }
+  }
+
+ private:
+  static void throwing_job(void* /*self*/) { throw std::runtime_error("side evaluation failed"); }
+  static void quiet_job(void* /*self*/) {}
+  Worker worker_;
+};
 
 }  // namespace
 
@@ -158,6 +211,72 @@ TEST(ConcurrentEvaluations, NonFiniteSideEvaluationMatchesSerial) {
   }
   EXPECT_EQ(serial->rhs_evaluations, 4);
   EXPECT_EQ(concurrent->rhs_evaluations, 4);
+}
+
+// Steps rejected after the speculative side evaluation started (dropped
+// with threads 2, never run with threads 1): the same run. Rejections by
+// the state error (the side evaluation started before it is known) and by
+// the force error.
+TEST(ConcurrentEvaluations, RejectedStepsAreBitIdentical) {
+  const Model m = example_model("paper-3d-turn",
+                                {"cable.elements=200", "simulation.duration=10", "simulation.tolerance=1e-3",
+                                 "tow.motion=[{type: ramp, direction: [1, 0, 0], speed: 1.57, ramp_time: 2}, "
+                                 "{type: turn, radius: 7.5, start_time: 2, side: port}]"});
+  const RunStats serial = expect_same_runs(m);
+  EXPECT_EQ(serial.status, "ok") << serial.message;
+  EXPECT_GT(serial.rejected_steps, 0);
+}
+
+// A cancelled side evaluation leaves nothing behind: not counted, the next
+// pair the same as serially (the worker takes the next job).
+TEST(ConcurrentEvaluations, CancelledSideEvaluationLeavesNoTrace) {
+  Model m = example_model("paper-3d-turn", {"cable.elements=200"});
+  m.sim.threads = 1;
+  const auto serial = make_system(m);
+  m.sim.threads = 2;
+  const auto concurrent = make_system(m);
+  const StateVector y = serial->initial(initial_state(m), 0.0);
+  StateVector y_nan = y;
+  y_nan[6 + 3 * 7] = std::numeric_limits<double>::quiet_NaN();
+  StateVector dy1, dy2;
+  EvaluationForces f1, f2;
+  for (System* sys : {serial.get(), concurrent.get()}) {
+    EvaluationForces dropped;
+    sys->start_side_forces(y_nan, 0.5, dropped);
+    sys->cancel_side_forces();
+    EXPECT_EQ(sys->rhs_evaluations, 0);
+  }
+  serial->derivative_with_side_forces(y, dy1, 0.5, y, 0.25, f1);
+  concurrent->derivative_with_side_forces(y, dy2, 0.5, y, 0.25, f2);
+  EXPECT_EQ(dy1, dy2);
+  EXPECT_EQ(f1.tow_force, f2.tow_force);
+  EXPECT_EQ(f1.link_force, f2.link_force);
+  EXPECT_EQ(serial->rhs_evaluations, 2);
+  EXPECT_EQ(concurrent->rhs_evaluations, 2);
+}
+
+// The step-end protocol: the side evaluation starts before the step's error
+// is known; a rejected step cancels it and what it threw is dropped (as
+// serially, where a rejected step never evaluates it); an accepted step
+// finishes it and its exception comes out of try_step.
+TEST(ConcurrentEvaluations, SpeculativeSideExceptionOnlyWhenAccepted) {
+  DecaySystem sys;
+  sys.side_throws = true;
+  RosenbrockW ros(sys, 1e-6, 1.0);
+  StateVector y = sys.initial(PhysicalState{}, 0.0);
+  double t = 0, h = 1.0;  // far too large for tol 1e-6: rejected by the state error
+  EXPECT_FALSE(ros.try_step(y, t, h));
+  EXPECT_EQ(sys.calls, "sc");
+  EXPECT_EQ(t, 0.0);
+  EXPECT_LT(h, 1.0);
+  h = 1e-3;  // local error ~1e-10: accepted, so the side evaluation is finished and throws
+  EXPECT_THROW(ros.try_step(y, t, h), std::runtime_error);
+  EXPECT_EQ(sys.calls, "scsf");
+  sys.side_throws = false;  // the worker takes the next job
+  h = 1e-3;
+  EXPECT_TRUE(ros.try_step(y, t, h));
+  EXPECT_EQ(sys.calls, "scsfsf");
+  EXPECT_EQ(t, 1e-3);
 }
 
 // An exception in the worker's job comes out of wait(), on the caller's

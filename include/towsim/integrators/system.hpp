@@ -83,14 +83,35 @@ class System {
   /// other, the side one first; a system with a worker thread
   /// (simulation.threads) runs the side one on it, on a workspace of its own,
   /// at the same time: the same numbers (tests/unit/test_concurrent_evaluations.cpp).
-  virtual void derivative_with_side_forces(const StateVector& y, StateVector& dy, double t, const StateVector& y_side,
-                                           double t_side, EvaluationForces& side) {
-    derivative(y_side, side_dy_, t_side);
+  /// start_side_forces() then finish_side_forces().
+  void derivative_with_side_forces(const StateVector& y, StateVector& dy, double t, const StateVector& y_side,
+                                   double t_side, EvaluationForces& side) {
+    start_side_forces(y_side, t_side, side);
+    finish_side_forces(y, dy, t);
+  }
+  /// derivative_with_side_forces() in two calls, for a side evaluation
+  /// handed over before it is known to be needed (speculative: the step's
+  /// error is not known yet). y_side and side stay untouched until the
+  /// matching finish_side_forces() or cancel_side_forces(). Here it is only
+  /// recorded; a system with a worker thread starts it on the worker.
+  virtual void start_side_forces(const StateVector& y_side, double t_side, EvaluationForces& side) {
+    pending_ = {&y_side, t_side, &side};
+  }
+  /// The started side evaluation's end, then f(y, t) into dy: as
+  /// derivative_with_side_forces(y, dy, t, y_side, t_side, side), the same
+  /// evaluations in the same order, counted, exceptions the same (the side
+  /// one's first).
+  virtual void finish_side_forces(const StateVector& y, StateVector& dy, double t) {
+    derivative(*pending_.y, side_dy_, pending_.t);
     if (const Accelerations* acc = last_accelerations())
-      side.tow_force = acc->tow_force, side.link_force = acc->link_force;
+      pending_.out->tow_force = acc->tow_force, pending_.out->link_force = acc->link_force;
     derivative(y, dy, t);
   }
-  /// A derivative_with_side_forces() call comes soon (a hint: a worker
+  /// Drop the started side evaluation: as if never started (not counted,
+  /// nothing thrown: what it threw is dropped; `side` may have been written).
+  /// Waits for a worker running it. Serially (here) nothing was evaluated.
+  virtual void cancel_side_forces() noexcept {}
+  /// A side evaluation (start_side_forces) comes soon (a hint: a worker
   /// thread gets ready for it; nothing else changes).
   virtual void expect_side_evaluation() {}
   /// Threads this system evaluates on (1, or 2 with a worker thread) [-].
@@ -110,7 +131,16 @@ class System {
   }
   double t0_ = -1e300, t1_ = 1e300;  // window of the current step [s]
   mutable PhysicalState view_;       // physical_view's storage
-  StateVector side_dy_;              // derivative_with_side_forces' discarded rates
+  StateVector side_dy_;              // the serial side evaluation's discarded rates
+
+ private:
+  /// The side evaluation started last (start_side_forces), serially.
+  struct PendingSide {
+    const StateVector* y = nullptr;
+    double t = 0;  // [s]
+    EvaluationForces* out = nullptr;
+  };
+  PendingSide pending_;
 };
 
 /// The system of the model's formulation (model.sim.formulation), on
