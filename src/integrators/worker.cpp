@@ -3,6 +3,7 @@
 #include "towsim/integrators/worker.hpp"
 
 #include <chrono>
+#include <thread>
 
 namespace towsim {
 
@@ -29,8 +30,10 @@ inline void relax() {
 }
 
 /// Spin until `counter` differs from `old` (acquire) or `budget` has passed;
-/// true if it changed.
-bool spin_for_change(const std::atomic<std::uint32_t>& counter, std::uint32_t old, std::chrono::microseconds budget) {
+/// true if it changed. With `yield`, the core goes to any other runnable
+/// thread every 64 turns (a loaded machine's: the spinner does not hold it).
+bool spin_for_change(const std::atomic<std::uint32_t>& counter, std::uint32_t old, std::chrono::microseconds budget,
+                     bool yield = false) {
   const auto end = std::chrono::steady_clock::now() + budget;
   for (;;) {
     for (int i = 0; i < 64; ++i) {
@@ -38,6 +41,7 @@ bool spin_for_change(const std::atomic<std::uint32_t>& counter, std::uint32_t ol
       relax();
     }
     if (std::chrono::steady_clock::now() >= end) return false;
+    if (yield) std::this_thread::yield();
   }
 }
 
@@ -138,7 +142,7 @@ void Worker::loop() {
       await_change(signal_, signals, std::chrono::microseconds(2));
       signals = signal_.load(std::memory_order_acquire);
     }
-    const bool posted = spin_for_change(posted_, seen, hot ? kLinger : kExpectSpin);
+    const bool posted = spin_for_change(posted_, seen, hot ? kLinger : kExpectSpin, true);
     hot = false;
     if (!posted) continue;
     seen = posted_.load(std::memory_order_acquire);
