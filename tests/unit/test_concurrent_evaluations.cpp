@@ -202,7 +202,7 @@ TEST(ConcurrentEvaluations, AutoRule) {
   ASSERT_EQ(m.sim.integrator, Integrator::Rosenbrock);
   const int hw = std::thread::hardware_concurrency() >= 2 ? 2 : 1;
   EXPECT_EQ(evaluation_threads(m), hw);
-  EXPECT_EQ(evaluation_threads(example_model("paper-3d-turn", {"cable.elements=999"})), 1);
+  EXPECT_EQ(evaluation_threads(example_model("paper-3d-turn", {"cable.elements=299"})), 1);
   EXPECT_EQ(evaluation_threads(example_model("paper-3d-turn", {})), 1);  // 10 elements
   m.sim.threads = 8;
   EXPECT_EQ(evaluation_threads(m), 2);
