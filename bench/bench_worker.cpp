@@ -7,10 +7,16 @@
 //                            (a hanging cable with a sphere, a tow at 1.5 m/s):
 //                            th = 1 the two evaluations one after the other,
 //                            th = 2 the side one on the worker
+//   evaluation/<n>/<fork>    forward_dynamics at n elements (the same cable):
+//                            fork = 0 serial, 1 with the worker as its Fork
+//                            (half of the elements' loads on it from
+//                            kSplitLoadsElements elements; docs/performance.md
+//                            "Loads on two threads (h-loadsplit)")
 #include <benchmark/benchmark.h>
 
 #include "models.hpp"   // tests/support
 #include "physics.hpp"  // tests/support
+#include "towsim/dynamics/dynamics.hpp"
 #include "towsim/integrators/system.hpp"
 #include "towsim/integrators/worker.hpp"
 
@@ -29,14 +35,20 @@ void worker_round_trip(benchmark::State& st) {
 }
 BENCHMARK(worker_round_trip)->UseRealTime();
 
-void step_end_pair(benchmark::State& st) {
+/// A hanging cable of n 1 m elements with a 100 kg sphere, towed at 1.5 m/s.
+Model towed_cable(int n) {
   towsim::testing::CableSpec spec;
-  spec.n = static_cast<int>(st.range(0));
+  spec.n = n;
   spec.length = static_cast<double>(spec.n);
   Model m = towsim::testing::cable_model(spec);
   towsim::testing::add_sphere_body(m, 100.0, 0.3, 0.5);
   m.tow.pieces.push_back(towsim::testing::ramp_piece(Vec3::UnitX(), 1.5, 0));
   m.sim.integrator = Integrator::Rosenbrock;
+  return m;
+}
+
+void step_end_pair(benchmark::State& st) {
+  Model m = towed_cable(static_cast<int>(st.range(0)));
   m.sim.threads = static_cast<int>(st.range(1));
   const auto sys = make_system(m);
   const StateVector y = sys->initial(initial_state(m), 0.0);
@@ -50,6 +62,19 @@ void step_end_pair(benchmark::State& st) {
   st.counters["threads"] = sys->threads();
 }
 BENCHMARK(step_end_pair)->ArgsProduct({{50, 200, 1000}, {1, 2}})->UseRealTime()->Unit(benchmark::kMicrosecond);
+
+void evaluation(benchmark::State& st) {
+  const Model m = towed_cable(static_cast<int>(st.range(0)));
+  const PhysicalState s = initial_state(m);
+  Workspace ws(m);
+  Worker worker;
+  Fork* fork = st.range(1) != 0 ? &worker : nullptr;
+  for (auto _ : st) {
+    forward_dynamics(m, s, 1.0, ws, fork);
+    benchmark::DoNotOptimize(ws.acc.tow_force.data());
+  }
+}
+BENCHMARK(evaluation)->ArgsProduct({{100, 200, 300, 500, 1000}, {0, 1}})->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -306,13 +306,27 @@ void seabed_tipping(const Model& model, const PhysicalState& s, Workspace& ws) {
 
 }  // namespace
 
-void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
+void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws, Fork* fork) {
   const auto& els = model.cable.elements;
-  for (std::size_t k = 0; k < els.size(); ++k) {
-    const Element& el = current_element(model, ws, k);
-    element_loads(model, el, s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
-    ws.Mt[k] = element_mass(el, s.e[k]);
-    ws.elastic[k].T = element_axial_force(els[k], s.length_of(model, k), s.length_rate_of(k));  // + stop
+  // Each element's loads, mass matrix and axial force (+ stop) from its own
+  // kinematics: the elements in [begin, end).
+  auto elements = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Element& el = current_element(model, ws, k);
+      element_loads(model, el, s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
+      ws.Mt[k] = element_mass(el, s.e[k]);
+      ws.elastic[k].T = element_axial_force(els[k], s.length_of(model, k), s.length_rate_of(k));
+    }
+  };
+  const std::size_t n = els.size();
+  if (fork != nullptr && n >= kSplitLoadsElements) {
+    // The upper half on the fork's other thread, the lower one here.
+    const std::size_t m = n / 2;
+    auto upper = [&] { elements(0, m); };
+    auto lower = [&] { elements(m, n); };
+    fork_pair(fork, upper, lower);
+  } else {
+    elements(0, n);
   }
   // The winch's elastic top element: strain of l_1 over the paid-out L_1.
   if (ws.winch && is_elastic(els[0]))
@@ -345,16 +359,16 @@ void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& d
   forward_pass(model, s0, 0.0, ws, &dv);
 }
 
-void forward_dynamics(const Model& model, const PhysicalState& s, double t, Workspace& ws) {
+void forward_dynamics(const Model& model, const PhysicalState& s, double t, Workspace& ws, Fork* fork) {
   check_fits(model, s, ws);
   compute_kinematics(model, s, ws);
-  compute_loads(model, s, t, ws);
+  compute_loads(model, s, t, ws, fork);
   backward_pass(model, s, ws);
   forward_pass(model, s, t, ws);
 }
 
 void forward_dynamics_time_shift(const Model& model, const PhysicalState& s, double t, const Workspace& inertias,
-                                 Workspace& ws) {
+                                 Workspace& ws, Fork* fork) {
   check_fits(model, s, ws);
   if (!inertias.fits(model)) throw std::logic_error("towsim: workspace does not fit the model");
   // The rigid elements' inertia part, as the evaluation at s's directions
@@ -369,7 +383,7 @@ void forward_dynamics_time_shift(const Model& model, const PhysicalState& s, dou
   // Everything that moves with time (the imposed tow motion through r0, v0;
   // current, waves, schedules through the loads): as forward_dynamics.
   compute_kinematics(model, s, ws);
-  compute_loads(model, s, t, ws);
+  compute_loads(model, s, t, ws, fork);
   backward_pass(model, s, ws, true);
   forward_pass(model, s, t, ws);
 }

@@ -143,7 +143,7 @@ class DefaultSystem final : public System {
   void evaluate_at(const StateVector& y, StateVector& dy, double t, bool time_shift) {
     ++rhs_evaluations;
     ws_from_s_ = false;  // until the evaluation completes
-    rates(y, dy, t, s_, ws_, time_shift);
+    rates(y, dy, t, s_, ws_, time_shift, fork());
     ws_from_s_ = true;
   }
 
@@ -192,6 +192,13 @@ class DefaultSystem final : public System {
   }
 
   int threads() const override { return threads_; }
+
+  /// The worker as a Fork for the main thread's evaluations (threads 2),
+  /// else none: it takes half of the elements' loads when it has no side
+  /// evaluation pending (Worker::run_pair).
+  Fork* fork() {
+    return threads_ < 2 ? nullptr : &side_evaluation().worker;
+  }
 
   void project(StateVector& y, double t) override {
     if (model_.tow.mode == Tow::Mode::Motion) {
@@ -423,16 +430,16 @@ class DefaultSystem final : public System {
   }
   /// dy = f(y, t) evaluated on (s, ws): derivative()'s work, on the main
   /// workspace or the worker's. Reads the model and the step's window only.
-  void rates(const StateVector& y, StateVector& dy, double t, PhysicalState& s, Workspace& ws,
-             bool time_shift = false) const {
+  void rates(const StateVector& y, StateVector& dy, double t, PhysicalState& s, Workspace& ws, bool time_shift = false,
+             Fork* fork = nullptr) const {
     unpack(y, s);
     const double tl = law_time(t);
     impose_tow(model_, tl, s.r0, s.v0, ws.course);
     impose_winch(tl, s);
     if (time_shift && inertias_in_jws(s))
-      forward_dynamics_time_shift(model_, s, tl, jws_, ws);
+      forward_dynamics_time_shift(model_, s, tl, jws_, ws, fork);
     else
-      forward_dynamics(model_, s, tl, ws);
+      forward_dynamics(model_, s, tl, ws, fork);
     dy.resize(size_);
     if (elastic_top_)
       dy[winch_offset()] = s.top_unstretched_rate, dy[winch_offset() + 1] = ws.acc.top_length_acc;

@@ -3,6 +3,7 @@
 #include "towsim/integrators/worker.hpp"
 
 #include <chrono>
+#include <thread>
 
 namespace towsim {
 
@@ -13,8 +14,13 @@ namespace {
 // The helper spins up to kExpectSpin after expect() (the integrator calls it
 // ~300 us ahead of the job at n = 1000), the owner up to kWaitSpin for a job
 // running next to its own work (both take about as long); then they sleep.
+// After a job the helper spins kLinger for the next: with run_pair (the
+// loads of every evaluation) jobs come ~100 us apart at n = 1000, so
+// during a run with threads 2 the helper spins through (one core busy);
+// kLinger after the run's last job it sleeps.
 constexpr auto kExpectSpin = std::chrono::microseconds(2000);
 constexpr auto kWaitSpin = std::chrono::microseconds(2000);
+constexpr auto kLinger = std::chrono::microseconds(1000);
 
 /// A spin-wait hint to the core (x86 pause), else nothing.
 inline void relax() {
@@ -24,8 +30,10 @@ inline void relax() {
 }
 
 /// Spin until `counter` differs from `old` (acquire) or `budget` has passed;
-/// true if it changed.
-bool spin_for_change(const std::atomic<std::uint32_t>& counter, std::uint32_t old, std::chrono::microseconds budget) {
+/// true if it changed. With `yield`, the core goes to any other runnable
+/// thread every 64 turns (a loaded machine's: the spinner does not hold it).
+bool spin_for_change(const std::atomic<std::uint32_t>& counter, std::uint32_t old, std::chrono::microseconds budget,
+                     bool yield = false) {
   const auto end = std::chrono::steady_clock::now() + budget;
   for (;;) {
     for (int i = 0; i < 64; ++i) {
@@ -33,6 +41,7 @@ bool spin_for_change(const std::atomic<std::uint32_t>& counter, std::uint32_t ol
       relax();
     }
     if (std::chrono::steady_clock::now() >= end) return false;
+    if (yield) std::this_thread::yield();
   }
 }
 
@@ -56,7 +65,9 @@ Worker::~Worker() {
 }
 
 void Worker::start(Job job, void* context) {
+  drain();
   job_ = job, context_ = context, error_ = nullptr;
+  pending_ = true;
   posted_.fetch_add(1, std::memory_order_release);  // publishes job_, context_ and the caller's inputs
   signal_.fetch_add(1, std::memory_order_release);  // after posted_: a helper woken by it sees the job
   signal_.notify_one();
@@ -73,17 +84,67 @@ void Worker::wait() {
   const std::uint32_t want = posted_.load(std::memory_order_relaxed);
   for (std::uint32_t d = done_.load(std::memory_order_acquire); d != want; d = done_.load(std::memory_order_acquire))
     await_change(done_, d, kWaitSpin);
+  pending_ = false;
   if (error_) std::rethrow_exception(error_);
+}
+
+void Worker::drain() {
+  if (!unconsumed_) return;
+  const std::uint32_t want = posted_.load(std::memory_order_relaxed);
+  for (std::uint32_t d = done_.load(std::memory_order_acquire); d != want; d = done_.load(std::memory_order_acquire))
+    await_change(done_, d, kWaitSpin);
+  unconsumed_ = false;
+}
+
+void Worker::pair_job(void* self) {
+  auto& w = *static_cast<Worker*>(self);
+  if (!w.claimed_.exchange(true, std::memory_order_acq_rel)) w.pair_a_(w.pair_ca_);
+}
+
+void Worker::run_pair(Part a, void* ca, Part b, void* cb) {
+  // Busy with the owner's job, or the last pair's post not taken up yet
+  // (the helper has had no core since): serially, as without a fork.
+  if (pending_ || (unconsumed_ && done_.load(std::memory_order_acquire) != posted_.load(std::memory_order_relaxed))) {
+    a(ca);
+    b(cb);
+    return;
+  }
+  unconsumed_ = false;
+  pair_a_ = a, pair_ca_ = ca;
+  claimed_.store(false, std::memory_order_relaxed);
+  start(&pair_job, this);  // publishes pair_a_, pair_ca_ and claimed_
+  // b here meanwhile; a's failure first (serially it comes first).
+  std::exception_ptr error;
+  try {
+    b(cb);
+  } catch (...) {
+    error = std::current_exception();
+  }
+  if (!claimed_.exchange(true, std::memory_order_acq_rel)) {
+    // The helper has not taken a up: here too (its post, taken up later,
+    // does nothing; drain() before the next start()).
+    pending_ = false;
+    unconsumed_ = true;
+    a(ca);
+  } else {
+    wait();
+  }
+  if (error) std::rethrow_exception(error);
 }
 
 void Worker::loop() {
   std::uint32_t seen = 0, signals = 0;
+  bool hot = false;  // a job just ended: spin kLinger for the next before sleeping
   for (;;) {
     // Sleep until a post or an expect, then spin for the post a while (a
     // post after the spin changes signal_ again: no lost wake-up).
-    await_change(signal_, signals, std::chrono::microseconds(2));
-    signals = signal_.load(std::memory_order_acquire);
-    if (!spin_for_change(posted_, seen, kExpectSpin)) continue;
+    if (!hot) {
+      await_change(signal_, signals, std::chrono::microseconds(2));
+      signals = signal_.load(std::memory_order_acquire);
+    }
+    const bool posted = spin_for_change(posted_, seen, hot ? kLinger : kExpectSpin, true);
+    hot = false;
+    if (!posted) continue;
     seen = posted_.load(std::memory_order_acquire);
     if (stop_.load(std::memory_order_relaxed)) return;
     try {
@@ -96,6 +157,7 @@ void Worker::loop() {
     signals = signal_.load(std::memory_order_acquire);
     done_.store(seen, std::memory_order_release);  // publishes the job's results
     done_.notify_one();
+    hot = true;
   }
 }
 

@@ -1,7 +1,9 @@
 // simulation.threads (docs/performance.md "Concurrent step-end evaluations
 // (h-pareval)"): the rosenbrock step's two final evaluations on two threads
 // give the same run, bit for bit, as on one; the worker hands exceptions
-// back; the key's checks and its auto rule.
+// back; the key's checks and its auto rule. The elements' loads split
+// between the worker and the caller (compute_loads with a Fork, h-loadsplit)
+// give the same loads and results, evaluation by evaluation and run by run.
 //
 // Exact comparisons (EXPECT_EQ on doubles) are right here: with a worker the
 // same evaluations run on the same inputs in the same order of operations,
@@ -12,15 +14,21 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
+#include "../support/models.hpp"
+#include "../support/physics.hpp"
 #include "../support/scenario_files.hpp"
+#include "towsim/dynamics/dynamics.hpp"
 #include "towsim/integrators/rosenbrock.hpp"
 #include "towsim/integrators/system.hpp"
 #include "towsim/integrators/worker.hpp"
+#include "towsim/model/winch.hpp"
 #include "towsim/scenario/examples.hpp"
 #include "towsim/scenario/scenario.hpp"
 #include "towsim/sim/simulate.hpp"
@@ -56,6 +64,13 @@ std::vector<double> flat(const Sample& s) {
     for (const ControlSample& c : b.controls) v.insert(v.end(), {c.deflection_deg, c.rate_deg_s, c.depth_error});
   }
   return v;
+}
+
+/// A scenario text, compiled.
+Model text_model(const std::string& yaml, const std::vector<std::string>& sets = {}) {
+  io::LoadedScenario sc = io::load_scenario_text(yaml, "test.yaml", "test", "", sets);
+  EXPECT_TRUE(sc.ok()) << sc.diags.str();
+  return sc.ok() ? *sc.model : Model{};
 }
 
 /// The model run with simulation.threads = 1 and = 2: the same samples,
@@ -306,7 +321,7 @@ TEST(ConcurrentEvaluations, AutoRule) {
   ASSERT_EQ(m.sim.integrator, Integrator::Rosenbrock);
   const int hw = std::thread::hardware_concurrency() >= 2 ? 2 : 1;
   EXPECT_EQ(evaluation_threads(m), hw);
-  EXPECT_EQ(evaluation_threads(example_model("paper-3d-turn", {"cable.elements=999"})), 1);
+  EXPECT_EQ(evaluation_threads(example_model("paper-3d-turn", {"cable.elements=299"})), 1);
   EXPECT_EQ(evaluation_threads(example_model("paper-3d-turn", {})), 1);  // 10 elements
   m.sim.threads = 8;
   EXPECT_EQ(evaluation_threads(m), 2);
@@ -328,4 +343,211 @@ TEST_F(ThreadsKey, ParsedAndChecked) {
   EXPECT_EQ(s.diags.str(), at("8:12: simulation.threads: expected an integer >= 1 or auto (got '0')"));
   s = load(kCable + kSim, {"simulation.threads=-2"});
   EXPECT_EQ(s.diags.str(), "--set:1:20: simulation.threads: expected an integer >= 1 or auto (got '-2')\n");
+}
+
+// ---- Loads split between the worker and the caller (h-loadsplit) ---------
+
+namespace {
+
+/// Models of every kind of part with kSplitLoadsElements or more elements
+/// (the split runs): a sphere in a turn, an elastic cable in a current, an
+/// imposed winch, an in-line body with attachments, a seabed.
+std::vector<std::pair<std::string, Model>> split_cases() {
+  constexpr int kN = 240;  // elements [-]: >= kSplitLoadsElements, odd halves (120, 120) not required
+  std::vector<std::pair<std::string, Model>> out;
+  towsim::testing::CableSpec spec;
+  spec.n = kN;
+  spec.length = 300;
+  spec.mass_per_length = 0.14;
+  spec.diameter = 0.010;
+  spec.cd = 1.9;
+  {
+    Model m = towsim::testing::cable_model(spec);
+    towsim::testing::add_sphere_body(m);
+    m.tow.pieces.push_back(towsim::testing::ramp_piece(Vec3::UnitX(), 1.57, 15));
+    m.tow.pieces.push_back(towsim::testing::turn_piece(7.5, 15));
+    out.emplace_back("sphere in a turn", m);
+  }
+  {
+    Model m = towsim::testing::cable_model(spec);
+    for (Element& el : m.cable.elements) el.axial_stiffness = 2e5, el.axial_damping = 1e3;
+    towsim::testing::add_sphere_body(m);
+    m.fluid.current_depth = {0.0, 10.0, 50.0};
+    m.fluid.current_velocity = {Vec3(0.8, 0.3, 0), Vec3(0.5, 0.1, 0), Vec3(0.1, -0.2, 0)};
+    m.tow.pieces.push_back(towsim::testing::ramp_piece(Vec3::UnitX(), 1.5, 30));
+    out.emplace_back("elastic cable", m);
+  }
+  {
+    Model m = towsim::testing::cable_model(spec);
+    towsim::testing::add_sphere_body(m);
+    const double Le = spec.length / spec.n;
+    m.cable.sections.push_back({"cable", 0, spec.n, spec.length, 0});
+    m.winch.mode = Winch::Mode::Imposed;
+    m.winch.nominal_length = Le;
+    m.winch.min_length = Le;
+    m.winch.schedule = schedule_from_rate({0.0}, {0.5}, spec.length, m.winch.min_length, m.winch.max_length);
+    m.tow.pieces.push_back(towsim::testing::ramp_piece(Vec3::UnitX(), 1.5, 30));
+    out.emplace_back("winch", m);
+  }
+  {
+    Model m = towsim::testing::two_part_model(kN / 2, kN / 2);
+    m.tow.pieces.push_back(towsim::testing::ramp_piece(Vec3::UnitX(), 1.5, 30));
+    out.emplace_back("in-line body and attachments", m);
+  }
+  {
+    Model m = towsim::testing::cable_model(spec);
+    m.seabed = Seabed::flat(2.0, 1e5, 1e3, 0.5);  // random states cross it
+    m.tow.pieces.push_back(towsim::testing::ramp_piece(Vec3::UnitX(), 0.5, 0));
+    out.emplace_back("seabed", m);
+  }
+  return out;
+}
+
+/// Every load and result of two evaluations equal bit for bit.
+void expect_same_evaluation(const Workspace& a, const Workspace& b) {
+  for (std::size_t k = 0; k < a.F.size(); ++k) {
+    ASSERT_EQ(a.F[k], b.F[k]) << "element " << k;
+    ASSERT_EQ(a.Mom[k], b.Mom[k]) << "element " << k;
+    ASSERT_EQ(a.Mt[k], b.Mt[k]) << "element " << k;
+    ASSERT_EQ(a.elastic[k].T, b.elastic[k].T) << "element " << k;
+    ASSERT_EQ(a.acc.alpha[k], b.acc.alpha[k]) << "element " << k;
+    ASSERT_EQ(a.acc.length_acc[k], b.acc.length_acc[k]) << "element " << k;
+  }
+  for (std::size_t k = 0; k < a.Fa.size(); ++k) {
+    ASSERT_EQ(a.Fa[k], b.Fa[k]) << "joint " << k;
+    ASSERT_EQ(a.Fs[k], b.Fs[k]) << "joint " << k;
+    ASSERT_EQ(a.acc.joint_force[k], b.acc.joint_force[k]) << "joint " << k;
+  }
+  for (std::size_t q = 0; q < a.body.size(); ++q) {
+    EXPECT_EQ(a.body[q].Fb, b.body[q].Fb);
+    EXPECT_EQ(a.body[q].Mb, b.body[q].Mb);
+    EXPECT_EQ(a.acc.alpha_b[q], b.acc.alpha_b[q]);
+    EXPECT_EQ(a.acc.link_force[q], b.acc.link_force[q]);
+    EXPECT_EQ(a.acc.lower_link_force[q], b.acc.lower_link_force[q]);
+  }
+  EXPECT_EQ(a.acc.a0, b.acc.a0);
+  EXPECT_EQ(a.acc.tow_force, b.acc.tow_force);
+  EXPECT_EQ(a.acc.top_length_acc, b.acc.top_length_acc);
+}
+
+}  // namespace
+
+// forward_dynamics and forward_dynamics_time_shift with the worker as their
+// Fork against the same without (nullptr): every load and result the same,
+// on random states (elements anywhere, the seabed crossed); and with a job
+// of the owner's pending, the pair runs on the caller alone, the same.
+TEST(ConcurrentEvaluations, SplitLoadsEqualSerialEvaluation) {
+  std::mt19937 rng(21);
+  Worker worker;
+  constexpr double kT = 20, kDt = 1e-4;  // on the turn; f_t's shift [s]
+  for (auto& [name, m] : split_cases()) {
+    SCOPED_TRACE(name);
+    ASSERT_GE(m.cable.elements.size(), kSplitLoadsElements);
+    for (int r = 0; r < 3; ++r) {
+      PhysicalState s = towsim::testing::random_state(m, rng);
+      if (m.winch.active()) s.length[0] = 0.7 * m.cable.elements[0].length;
+      Workspace serial(m), split(m), shifted(m), shifted_split(m);
+      forward_dynamics(m, s, kT, serial);
+      forward_dynamics(m, s, kT, split, &worker);
+      expect_same_evaluation(serial, split);
+      forward_dynamics_time_shift(m, s, kT + kDt, serial, shifted);
+      forward_dynamics_time_shift(m, s, kT + kDt, serial, shifted_split, &worker);
+      expect_same_evaluation(shifted, shifted_split);
+      // The worker busy with a job of its owner's: both halves here.
+      int ran = 0;
+      worker.start([](void* c) { ++*static_cast<int*>(c); }, &ran);
+      Workspace busy(m);
+      forward_dynamics(m, s, kT, busy, &worker);
+      worker.wait();
+      EXPECT_EQ(ran, 1);
+      expect_same_evaluation(serial, busy);
+    }
+  }
+}
+
+// Whole runs with threads 1 and 2, the loads split at every evaluation with
+// no side evaluation pending: an elastic cable with a sled in a turn, a
+// cable dragged on the bottom with an attachment, an in-line depressor with
+// attachments, a winch paying out (the split events' new systems).
+TEST(ConcurrentEvaluations, SplitLoadsRunsAreBitIdentical) {
+  const std::string sled = R"(name: elastic-sled
+environment: {water_density: 1025, gravity: 9.81}
+cable:
+  length: 1000
+  elements: 200
+  mass_per_length: 1.12
+  diameter: 0.0173
+  normal_drag: 1.5
+  tangential_drag: {law: skin, ct: 0.01}
+  added_mass: 1.0
+  axial_stiffness: 1.27e7
+body:
+  mass: 1135
+  inertia: [61.5, 61.5, 61.5]
+  link_point: [0, 0, 0.368]
+  volume: 0.2336
+  spheres:
+    - {center: [0, 0, 0], radius: 0.368, drag: 0.77, added_mass: 0.5}
+tow:
+  mode: motion
+  motion:
+    - {type: ramp, direction: [1, 0, 0], speed: 3.084, ramp_time: 0}
+    - {type: turn, radius: 294.5, start_time: 1, angle_deg: 360, side: port}
+initial: steady
+simulation: {duration: 3, time_step: 0.01, integrator: rosenbrock, tolerance: 1.0e-4, output_interval: 0.5}
+)";
+  expect_same_runs(text_model(sled));
+  const std::string dragged = R"(name: dragged
+environment:
+  water_density: 1025
+  gravity: 9.81
+  seabed: {depth: 110, stiffness: 1.0e5, damping: 1.0e3, friction: 0.5}
+cable:
+  length: 400
+  elements: 200
+  mass_per_length: 1.5
+  diameter: 0.019
+  normal_drag: 1.8
+  tangential_drag: {law: pode, f: 0.0}
+  added_mass: 1.0
+  added_mass_model: ideal_fluid
+  attachments:
+    - {at: 100, mass: 50, volume: 0.005, drag_area: 0.1, added_mass: 10}
+tow:
+  mode: motion
+  motion:
+    - {type: ramp, direction: [1, 0, 0], speed: 0.5, ramp_time: 0}
+    - {type: turn, radius: 100, start_time: 0.5, angle_deg: 90, side: port}
+initial: steady
+simulation: {duration: 2, time_step: 0.01, integrator: rosenbrock, tolerance: 1.0e-4, output_interval: 0.5}
+)";
+  const Model seabed = text_model(dragged);
+  ASSERT_TRUE(seabed.seabed.has_value());
+  ASSERT_EQ(seabed.cable.attachments.size(), 1u);
+  expect_same_runs(seabed);
+  // two-part-tow's sections at 150 and 60 elements.
+  const io::Example* ex = io::find_example("two-part-tow");
+  ASSERT_NE(ex, nullptr);
+  std::string two_yaml = ex->yaml;
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"elements: 30,", "elements: 150,"},
+                                 std::pair<std::string, std::string>{"elements: 10,", "elements: 60,"}}) {
+    const std::size_t at = two_yaml.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    two_yaml.replace(at, from.size(), to);
+  }
+  const std::size_t cable = two_yaml.find("\ncable:\n");
+  ASSERT_NE(cable, std::string::npos);
+  two_yaml.insert(cable + 8,
+                  "  attachments:\n    - {at: 300, mass: 50, volume: 0.005, drag_area: 0.1, added_mass: 10}\n"
+                  "    - {at: 1000, mass: 20, volume: 0.01, drag_area: 0.05, added_mass: 5}\n");
+  const Model two = text_model(two_yaml, {"simulation.duration=4",
+                                          "tow.motion=[{type: ramp, direction: [1, 0, 0], speed_kn: 5, ramp_time: 0}, "
+                                          "{type: turn, radius: 500, start_time: 1, angle_deg: 90, side: starboard}]"});
+  ASSERT_GE(two.cable.elements.size(), kSplitLoadsElements);
+  ASSERT_EQ(two.cable.attachments.size(), 2u);
+  expect_same_runs(two);
+  const Model winch = example_model("fish-depth-change", {"cable.elements=200", "simulation.duration=10",
+                                                          "winch.rate=[[0, 0], [1, 0], [7, 1.2], [10, 1.2]]"});
+  ASSERT_TRUE(winch.winch.active());
+  expect_same_runs(winch);
 }
