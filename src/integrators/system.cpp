@@ -148,7 +148,7 @@ class DefaultSystem final : public System {
   }
 
   void start_side_forces(const StateVector& y_side, double t_side, EvaluationForces& side) override {
-    if (threads_ < 2) {
+    if (!use_worker()) {
       System::start_side_forces(y_side, t_side, side);
       return;
     }
@@ -159,7 +159,7 @@ class DefaultSystem final : public System {
   }
 
   void finish_side_forces(const StateVector& y, StateVector& dy, double t) override {
-    if (threads_ < 2) {
+    if (!side_ || !side_->running) {  // started serially
       System::finish_side_forces(y, dy, t);
       return;
     }
@@ -188,7 +188,7 @@ class DefaultSystem final : public System {
   }
 
   void expect_side_evaluation() override {
-    if (threads_ >= 2) side_evaluation().worker.expect();
+    if (use_worker()) side_evaluation().worker.expect();
   }
 
   int threads() const override { return threads_; }
@@ -196,9 +196,7 @@ class DefaultSystem final : public System {
   /// The worker as a Fork for the main thread's evaluations (threads 2),
   /// else none: it takes half of the elements' loads when it has no side
   /// evaluation pending (Worker::run_pair).
-  Fork* fork() {
-    return threads_ < 2 ? nullptr : &side_evaluation().worker;
-  }
+  Fork* fork() { return use_worker() ? &side_evaluation().worker : nullptr; }
 
   void project(StateVector& y, double t) override {
     if (model_.tow.mode == Tow::Mode::Motion) {
@@ -556,6 +554,18 @@ class DefaultSystem final : public System {
     bool running = false;  // started, not finished or cancelled yet
     Worker worker;         // last: its thread ends before the rest goes
   };
+  /// The worker (threads 2) unless it has stalled kMaxWorkerStalls times,
+  /// in at least 1 of 32 waits: another process holds the second core, and
+  /// each wait for a job the helper cannot run costs a scheduler slice
+  /// (threads 2 ran 3x slower than threads 1 next to one busy process). The
+  /// run then goes on without it: the same results, every path being
+  /// bit-identical.
+  bool use_worker() const {
+    if (threads_ < 2) return false;
+    if (!side_) return true;
+    const int stalls = side_->worker.stalls();
+    return stalls < kMaxWorkerStalls || 32L * stalls < side_->worker.waits();
+  }
   /// The side evaluation's storage and worker, made at first use.
   SideEvaluation& side_evaluation() {
     if (!side_) side_ = std::make_unique<SideEvaluation>(model_, s_);

@@ -21,6 +21,9 @@ namespace {
 constexpr auto kExpectSpin = std::chrono::microseconds(2000);
 constexpr auto kWaitSpin = std::chrono::microseconds(2000);
 constexpr auto kLinger = std::chrono::microseconds(1000);
+// A wait longer than this for a job is a stall: a job takes ~0.05-0.3 ms at
+// n = 1000; a helper without a core waits for a scheduler slice (~3 ms).
+constexpr auto kStallWait = std::chrono::microseconds(1000);
 
 /// A spin-wait hint to the core (x86 pause), else nothing.
 inline void relax() {
@@ -82,8 +85,14 @@ void Worker::wait() {
   // Each wait is on the value just seen: a job ending between the check and
   // the wait ends the wait at once (no lost wake-up).
   const std::uint32_t want = posted_.load(std::memory_order_relaxed);
-  for (std::uint32_t d = done_.load(std::memory_order_acquire); d != want; d = done_.load(std::memory_order_acquire))
-    await_change(done_, d, kWaitSpin);
+  ++waits_;
+  if (done_.load(std::memory_order_acquire) != want) {
+    // Not done yet: wait, timed (a long wait counts as a stall).
+    const auto since = std::chrono::steady_clock::now();
+    for (std::uint32_t d = done_.load(std::memory_order_acquire); d != want; d = done_.load(std::memory_order_acquire))
+      await_change(done_, d, kWaitSpin);
+    if (std::chrono::steady_clock::now() - since > kStallWait) ++stalls_;
+  }
   pending_ = false;
   if (error_) std::rethrow_exception(error_);
 }

@@ -12,6 +12,7 @@
 // in the last bit, would mean state shared between the two evaluations.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -311,6 +312,30 @@ TEST(Worker, CarriesExceptionsAndGoesOn) {
     w.wait();
   }
   EXPECT_EQ(ran, 5000);
+}
+
+// A wait for a job that runs long after the owner got there is a stall
+// (what DefaultSystem counts to do without a worker that has no core); a
+// wait for a job already done is not. The slow job sleeps 20 ms, 20 times
+// kStallWait (1 ms): a stall whatever the machine's load. The owner gets to
+// the quick job's wait (an increment) after sleeping 50 ms itself: more than
+// a scheduler's latency with a few runnable threads per core (~12 ms), so
+// the helper has run it by then.
+TEST(Worker, CountsWaitsAndStalls) {
+  Worker w;
+  EXPECT_EQ(w.waits(), 0);
+  EXPECT_EQ(w.stalls(), 0);
+  w.start([](void*) { std::this_thread::sleep_for(std::chrono::milliseconds(20)); }, nullptr);
+  w.wait();
+  EXPECT_EQ(w.waits(), 1);
+  EXPECT_EQ(w.stalls(), 1);
+  int ran = 0;
+  w.start([](void* c) { ++*static_cast<int*>(c); }, &ran);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  w.wait();
+  EXPECT_EQ(ran, 1);
+  EXPECT_EQ(w.waits(), 2);
+  EXPECT_EQ(w.stalls(), 1);
 }
 
 // auto: a worker from kAutoThreadsElements elements (two hardware threads),

@@ -152,6 +152,9 @@ std::unique_ptr<System> make_system(const Model& model);
 /// on two threads (h-loadsplit)": with the loads split, 2 threads won 13 % at
 /// 300 elements and tied at 200).
 constexpr int kAutoThreadsElements = 300;  // [-]
+/// Stalled waits for the worker (Worker::stalls) after which a system runs
+/// on without it [-] (docs/performance.md "Next to a busy process").
+constexpr int kMaxWorkerStalls = 8;
 
 /// Threads a run of the model evaluates its dynamics on: 2 (the step-end
 /// evaluations of the rosenbrock integrator at the same time) or 1.

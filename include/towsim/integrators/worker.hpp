@@ -40,6 +40,12 @@ class Worker final : public Fork {
   void wait();
   /// A job started and not waited for yet (the owner's view) [-].
   bool pending() const { return pending_; }
+  /// Waits for a job that lasted over kStallWait after the owner got there
+  /// (the helper had no core: another process holds it) [-]. The owner may
+  /// then do without the helper (DefaultSystem: results are the same).
+  int stalls() const { return stalls_; }
+  /// Waits for a job so far (wait(), run_pair's included) [-].
+  long waits() const { return waits_; }
   /// Fork: a on the helper, b on the caller, at once. The caller runs a
   /// too (after b) when the helper has not taken a up by then, and both
   /// (a, then b) while a job is pending or the helper has not yet taken up
@@ -57,6 +63,8 @@ class Worker final : public Fork {
   Job job_ = nullptr;
   void* context_ = nullptr;
   bool pending_ = false;     // a job started and not waited for (the owner's) [-]
+  int stalls_ = 0;           // waits over kStallWait (the owner's) [-]
+  long waits_ = 0;           // waits for a job (the owner's) [-]
   bool unconsumed_ = false;  // a run_pair's post the caller did not wait for (the owner's) [-]
   Part pair_a_ = nullptr;    // run_pair's a and its context
   void* pair_ca_ = nullptr;
