@@ -3,9 +3,11 @@
 
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "towsim/dynamics/state.hpp"
 #include "towsim/model/model.hpp"
+#include "towsim/model/winch.hpp"
 
 namespace towsim::testing {
 
@@ -46,6 +48,19 @@ inline void add_sphere_body(Model& m, double mass = 3.0, double radius = 0.05, d
   b.link_point = Vec3(0, 0, radius);
   b.spheres.push_back({Vec3::Zero(), radius, cd, ca});
   finalize_body(b, m.fluid);
+}
+
+/// The whole cable of m (n elements, `length` [m]) on an imposed winch:
+/// one section, the element length as nominal and minimum top length, the
+/// pay-out rates [m/s] from `times` [s] (piecewise constant).
+inline void impose_winch(Model& m, int n, double length, const std::vector<double>& times,
+                         const std::vector<double>& rates) {
+  const double Le = length / n;
+  m.cable.sections.push_back({"cable", 0, n, length, 0});
+  m.winch.mode = Winch::Mode::Imposed;
+  m.winch.nominal_length = Le;
+  m.winch.min_length = Le;
+  m.winch.schedule = schedule_from_rate(times, rates, length, m.winch.min_length, m.winch.max_length);
 }
 
 /// The paper 5.2 cable (0.14 kg/m, 10 mm, Cd 1.9; Pode f = tangential) in

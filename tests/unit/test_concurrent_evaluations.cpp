@@ -405,12 +405,7 @@ std::vector<std::pair<std::string, Model>> split_cases() {
   {
     Model m = towsim::testing::cable_model(spec);
     towsim::testing::add_sphere_body(m);
-    const double Le = spec.length / spec.n;
-    m.cable.sections.push_back({"cable", 0, spec.n, spec.length, 0});
-    m.winch.mode = Winch::Mode::Imposed;
-    m.winch.nominal_length = Le;
-    m.winch.min_length = Le;
-    m.winch.schedule = schedule_from_rate({0.0}, {0.5}, spec.length, m.winch.min_length, m.winch.max_length);
+    towsim::testing::impose_winch(m, spec.n, spec.length, {0.0}, {0.5});
     m.tow.pieces.push_back(towsim::testing::ramp_piece(Vec3::UnitX(), 1.5, 30));
     out.emplace_back("winch", m);
   }

@@ -76,12 +76,7 @@ std::vector<Case> cases() {
   {  // imposed winch paying out: l_1 moves with time
     Model m = testing::cable_model(spec);
     testing::add_sphere_body(m);
-    const double Le = spec.length / spec.n;
-    m.cable.sections.push_back({"cable", 0, spec.n, spec.length, 0});
-    m.winch.mode = Winch::Mode::Imposed;
-    m.winch.nominal_length = Le;
-    m.winch.min_length = Le;
-    m.winch.schedule = schedule_from_rate({0.0}, {0.5}, spec.length, m.winch.min_length, m.winch.max_length);
+    testing::impose_winch(m, spec.n, spec.length, {0.0}, {0.5});
     m.tow.pieces.push_back(testing::ramp_piece(Vec3::UnitX(), 1.5, 30));
     out.push_back({"winch", m});
   }

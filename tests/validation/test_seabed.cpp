@@ -503,12 +503,7 @@ TEST(SeabedPayOut, VerticalPayOutLandsAndLies) {
     Model m = testing::cable_model(cs);
     m.seabed = Seabed::flat(h, 1e5, 1e3, 0.5);
     m.tow.mode = Tow::Mode::Motion;  // no pieces: the tow point stays at the origin
-    m.cable.sections.push_back({"cable", 0, cs.n, cs.length, 0});
-    m.winch.mode = Winch::Mode::Imposed;
-    m.winch.nominal_length = Le;
-    m.winch.min_length = Le;
-    m.winch.schedule = schedule_from_rate({0.0, 60.0, 61.0}, {0.5, 0.5, 0.0}, cs.length, m.winch.min_length,
-                                          m.winch.max_length);
+    testing::impose_winch(m, cs.n, cs.length, {0.0, 60.0, 61.0}, {0.5, 0.5, 0.0});  // Le = cs.length / cs.n
     m.sim.integrator = integ;
     m.sim.time_step = 1e-3;  // rk4's step; rosenbrock's first
     m.sim.duration = 150;
