@@ -55,6 +55,15 @@ void await_change(const std::atomic<std::uint32_t>& counter, std::uint32_t old, 
   while (counter.load(std::memory_order_acquire) == old) counter.wait(old, std::memory_order_acquire);
 }
 
+/// Wait until `counter` reads `want` (acquire). Each wait is on the value
+/// just seen: a change between the check and the wait ends it at once (no
+/// lost wake-up).
+void await_value(const std::atomic<std::uint32_t>& counter, std::uint32_t want) {
+  for (std::uint32_t d = counter.load(std::memory_order_acquire); d != want;
+       d = counter.load(std::memory_order_acquire))
+    await_change(counter, d, kWaitSpin);
+}
+
 }  // namespace
 
 Worker::Worker() : thread_([this] { loop(); }) {}
@@ -82,15 +91,12 @@ void Worker::expect() {
 }
 
 void Worker::wait() {
-  // Each wait is on the value just seen: a job ending between the check and
-  // the wait ends the wait at once (no lost wake-up).
   const std::uint32_t want = posted_.load(std::memory_order_relaxed);
   ++waits_;
   if (done_.load(std::memory_order_acquire) != want) {
     // Not done yet: wait, timed (a long wait counts as a stall).
     const auto since = std::chrono::steady_clock::now();
-    for (std::uint32_t d = done_.load(std::memory_order_acquire); d != want; d = done_.load(std::memory_order_acquire))
-      await_change(done_, d, kWaitSpin);
+    await_value(done_, want);
     if (std::chrono::steady_clock::now() - since > kStallWait) ++stalls_;
   }
   pending_ = false;
@@ -99,9 +105,7 @@ void Worker::wait() {
 
 void Worker::drain() {
   if (!unconsumed_) return;
-  const std::uint32_t want = posted_.load(std::memory_order_relaxed);
-  for (std::uint32_t d = done_.load(std::memory_order_acquire); d != want; d = done_.load(std::memory_order_acquire))
-    await_change(done_, d, kWaitSpin);
+  await_value(done_, posted_.load(std::memory_order_relaxed));
   unconsumed_ = false;
 }
 
