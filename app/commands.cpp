@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "towsim/integrators/system.hpp"
+#include "towsim/output/async_sink.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/scenario/examples.hpp"
 #include "towsim/sim/simulate.hpp"
@@ -62,7 +64,7 @@ class ProgressBar {
 };
 
 /// Run the simulation into `writer`; exceptions become a failed run.
-RunStats simulate_safely(const Model& model, RunWriter& writer, const RunOptions& opts, std::ostream& err,
+RunStats simulate_safely(const Model& model, OutputSink& writer, const RunOptions& opts, std::ostream& err,
                          const volatile int* stop_flag) {
   ProgressBar bar(err, model.sim.duration);
   ProgressFn progress;
@@ -176,7 +178,15 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
   try {
     remove_run_outputs(opts.out_dir);  // no stale file of a previous run
     RunWriter writer(opts.out_dir, model, model.sim.write_nodes);
-    const RunStats stats = simulate_safely(model, writer, opts, err, stop_flag);
+    RunStats stats;
+    if (evaluation_threads(model) > 1) {
+      stats = simulate_safely(model, writer, opts, err, stop_flag);  // the second core evaluates
+    } else {
+      // The files are formatted and written on a thread of their own;
+      // simulate_safely's last flush() waits for them.
+      AsyncSink async(writer);
+      stats = simulate_safely(model, async, opts, err, stop_flag);
+    }
     auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, model.sim.write_nodes);
     if (has_sea(model)) {
       summary["statistics"] = writer.sea_statistics().json();
