@@ -150,6 +150,38 @@ TEST(RosenbrockTimeDerivative, ExtrapolatedColumnKeepsOrderThreeAndAccuracy) {
   EXPECT_LT(ex_1, 0.5 * no_1);
 }
 
+// A rejected try's column: a difference is kept for the retry (as with a
+// difference on every step), an extrapolated one is not, the retry takes
+// the difference. Counted by the system's evaluations on the paper 5.2
+// ramp: an accepted try costs its 3 stage evaluations, the embedded
+// solution's and f(y1), and the difference when it takes one.
+TEST(RosenbrockTimeDerivative, RejectedExtrapolatedColumnIsRetriedWithADifference) {
+  const Model m = paper_turn();
+  auto sys = make_system(m);
+  StateVector y = sys->initial(initial_state(m), 0.0);
+  RosenbrockW ros(*sys, 1e-5, 1.0, RosenbrockW::ForceEstimate::Embedded, RosenbrockW::TimeDerivative::Extrapolated);
+  constexpr double kSmall = 0.01;  // accepted at tol 1e-5 in the ramp (its steps are ~0.1 s) [s]
+  constexpr double kLarge = 5;     // rejected: a third of the ramp [s]
+  double t = 0;
+  const auto accepted_try = [&] {
+    const auto n0 = sys->rhs_evaluations;
+    double h = kSmall;
+    EXPECT_TRUE(ros.try_step(y, t, h));
+    return sys->rhs_evaluations - n0;
+  };
+  const auto rejected_try = [&] {
+    double h = kLarge;
+    EXPECT_FALSE(ros.try_step(y, t, h));
+  };
+  EXPECT_EQ(accepted_try(), 1 + 3 + 1 + 2);  // f(y0) first, then the difference
+  EXPECT_EQ(accepted_try(), 3 + 1 + 2);      // the second difference
+  rejected_try();                            // extrapolated
+  EXPECT_EQ(accepted_try(), 3 + 1 + 2);      // retried with the difference
+  EXPECT_EQ(accepted_try(), 3 + 2);          // extrapolated
+  rejected_try();                            // a difference
+  EXPECT_EQ(accepted_try(), 3 + 2);          // ... kept
+}
+
 /// fish-depth-change (scenarios/fish-depth-change.yaml) from its steady tow
 /// at t = 50 s to 76 s: the winch starts paying out at 60 s (l_1'' = 0.1
 /// m/s^2 until 70 s, then 1 m/s); no split before 80 s (the top element
