@@ -470,8 +470,11 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     // error, ~tol per step and of one sign, adds up (link tension 2.8x less
     // accurate); between them max_step binds, f_t only costs (6 % more
     // evaluations). More evaluations for equal accuracy at every tolerance.
+    // Without a winch: by a difference on every other step, extrapolated
+    // between (6-8 % fewer evaluations, docs/performance.md "W's time
+    // column extrapolated").
     const auto td = model.winch.active() ? RosenbrockW::TimeDerivative::None
-                                         : RosenbrockW::TimeDerivative::FiniteDifference;
+                                         : RosenbrockW::TimeDerivative::Extrapolated;
     ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model),
                                         RosenbrockW::ForceEstimate::Embedded, td);
   };

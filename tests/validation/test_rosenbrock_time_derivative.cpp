@@ -89,6 +89,99 @@ TEST(RosenbrockTimeDerivative, MoreAccurateOnTheDrivenCableAndOrderThree) {
   EXPECT_GT(with_1 / with_2, 5.0);
 }
 
+/// As tow_force, the steps run on without invalidate() (as in simulate():
+/// f_t's history kept) but at the law's breakpoint; the tow force from a
+/// second system. evaluations: the stepping system's count.
+std::vector<double> tow_force_run_on(double h, RosenbrockW::TimeDerivative td, long& evaluations) {
+  const Model m = paper_turn();
+  auto sys = make_system(m), probe = make_system(m);
+  StateVector y = sys->initial(initial_state(m), 0.0), k1;
+  RosenbrockW ros(*sys, 1e10, 1.0, RosenbrockW::ForceEstimate::Embedded, td);  // error control off
+  std::vector<double> out;
+  const int per_sample = static_cast<int>(std::lround(kSample / h));
+  const int steps = static_cast<int>(std::lround(kEnd / h));
+  for (int s = 0; s <= steps; ++s) {
+    const double t = s * h;
+    if (s % per_sample == 0) {
+      probe->set_window(t, t);
+      probe->derivative(y, k1, t);
+      out.push_back(probe->last_accelerations()->tow_force.norm());
+    }
+    if (s == steps) break;
+    if (std::abs(t - kBreak) < 1e-9) ros.invalidate();  // the law's acceleration jumps (simulate() does so)
+    double tt = t, hh = h;
+    EXPECT_TRUE(ros.try_step(y, tt, hh));
+  }
+  evaluations = static_cast<long>(sys->rhs_evaluations);
+  return out;
+}
+
+// W's time column extrapolated on every other step (simulate()'s default
+// without a winch, docs/performance.md "W's time column extrapolated"):
+// one evaluation fewer on each such step, the order kept (any column is
+// part of W) and the error that of the difference on every step.
+TEST(RosenbrockTimeDerivative, ExtrapolatedColumnKeepsOrderThreeAndAccuracy) {
+  using TD = RosenbrockW::TimeDerivative;
+  const std::vector<double> ref = tow_force(1e-3, TD::None, true);
+  long n_fd1 = 0, n_fd2 = 0, n_ex1 = 0, n_ex2 = 0, n_no1 = 0;
+  const double fd_1 = max_error(tow_force_run_on(0.1, TD::FiniteDifference, n_fd1), ref);
+  const double fd_2 = max_error(tow_force_run_on(0.05, TD::FiniteDifference, n_fd2), ref);
+  const double ex_1 = max_error(tow_force_run_on(0.1, TD::Extrapolated, n_ex1), ref);
+  const double ex_2 = max_error(tow_force_run_on(0.05, TD::Extrapolated, n_ex2), ref);
+  const double no_1 = max_error(tow_force_run_on(0.1, TD::None, n_no1), ref);
+  std::cout << "[measured] tow force error, h = 0.1 / 0.05 s: difference every step " << fd_1 << " / " << fd_2 << " ("
+            << n_fd1 << " / " << n_fd2 << " evaluations), extrapolated between " << ex_1 << " / " << ex_2 << " ("
+            << n_ex1 << " / " << n_ex2 << "), none " << no_1 << " (" << n_no1 << ")\n";
+  // The evaluations: 300 / 600 steps, f_t by a difference on each (none
+  // with the column left out); extrapolated on the 3rd, 5th, ... steps of
+  // each of the law's 2 pieces (n steps: (n - 2) / 2 of them), the first two
+  // after invalidate() by differences.
+  EXPECT_EQ(n_fd1 - n_no1, 300);
+  EXPECT_EQ(n_fd1 - n_ex1, 2 * ((150 - 2) / 2));
+  EXPECT_EQ(n_fd2 - n_ex2, 2 * ((300 - 2) / 2));
+  // Order 3 halving h: 8x; 5 as the difference's own test above.
+  EXPECT_GT(ex_1 / ex_2, 5.0);
+  // As accurate as the difference on every step (measured: the same to
+  // 1e-5 relative at both steps; 5 % is far above a platform's round-off),
+  // far more than without the column (3.0x).
+  constexpr double kExtrapolationLoss = 1.05;  // [-]
+  EXPECT_LT(ex_1, kExtrapolationLoss * fd_1);
+  EXPECT_LT(ex_2, kExtrapolationLoss * fd_2);
+  EXPECT_LT(ex_1, 0.5 * no_1);
+}
+
+// A rejected try's column: a difference is kept for the retry (as with a
+// difference on every step), an extrapolated one is not, the retry takes
+// the difference. Counted by the system's evaluations on the paper 5.2
+// ramp: an accepted try costs its 3 stage evaluations, the embedded
+// solution's and f(y1), and the difference when it takes one.
+TEST(RosenbrockTimeDerivative, RejectedExtrapolatedColumnIsRetriedWithADifference) {
+  const Model m = paper_turn();
+  auto sys = make_system(m);
+  StateVector y = sys->initial(initial_state(m), 0.0);
+  RosenbrockW ros(*sys, 1e-5, 1.0, RosenbrockW::ForceEstimate::Embedded, RosenbrockW::TimeDerivative::Extrapolated);
+  constexpr double kSmall = 0.01;  // accepted at tol 1e-5 in the ramp (its steps are ~0.1 s) [s]
+  constexpr double kLarge = 5;     // rejected: a third of the ramp [s]
+  double t = 0;
+  const auto accepted_try = [&] {
+    const auto n0 = sys->rhs_evaluations;
+    double h = kSmall;
+    EXPECT_TRUE(ros.try_step(y, t, h));
+    return sys->rhs_evaluations - n0;
+  };
+  const auto rejected_try = [&] {
+    double h = kLarge;
+    EXPECT_FALSE(ros.try_step(y, t, h));
+  };
+  EXPECT_EQ(accepted_try(), 1 + 3 + 1 + 2);  // f(y0) first, then the difference
+  EXPECT_EQ(accepted_try(), 3 + 1 + 2);      // the second difference
+  rejected_try();                            // extrapolated
+  EXPECT_EQ(accepted_try(), 3 + 1 + 2);      // retried with the difference
+  EXPECT_EQ(accepted_try(), 3 + 2);          // extrapolated
+  rejected_try();                            // a difference
+  EXPECT_EQ(accepted_try(), 3 + 2);          // ... kept
+}
+
 /// fish-depth-change (scenarios/fish-depth-change.yaml) from its steady tow
 /// at t = 50 s to 76 s: the winch starts paying out at 60 s (l_1'' = 0.1
 /// m/s^2 until 70 s, then 1 m/s); no split before 80 s (the top element

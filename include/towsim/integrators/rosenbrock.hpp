@@ -21,9 +21,11 @@ class RosenbrockW {
 
   /// The explicit time dependence of f (tow law, waves, winch schedule):
   /// f_t by a forward difference at each step's start, one evaluation, in
-  /// the stages' term gamma_i h^2 f_t (runs), or left out (a relaxation at
-  /// fixed inputs). docs/theory.md §6.3.
-  enum class TimeDerivative { FiniteDifference, None };
+  /// the stages' term gamma_i h^2 f_t; or so on every other accepted step
+  /// and, between, extrapolated linearly from the last two differences (no
+  /// evaluation; runs); or left out (a relaxation at fixed inputs). Any
+  /// column keeps the order (it is part of W). docs/theory.md §6.3.
+  enum class TimeDerivative { FiniteDifference, Extrapolated, None };
 
   /// tol: relative and absolute tolerance [-]; force_scale: absolute force
   /// floor of the force error norm [N] (the system's apparent weight).
@@ -36,7 +38,7 @@ class RosenbrockW {
 
   /// The state was changed from outside (a tow velocity jump, a breakpoint):
   /// the cached derivative at the step's start is stale.
-  void invalidate() { have_f0_ = false, have_ft_ = false, ft_zero_ = false; }
+  void invalidate() { have_f0_ = false, have_ft_ = false, ft_zero_ = false, ft_held_ = 0; }
 
   /// Dense output: the state at t inside the last accepted step [t0, t1]
   /// (the method's continuous extension, docs/theory.md §6.3), projected.
@@ -63,6 +65,12 @@ class RosenbrockW {
   bool use_ft_ = false;   // ... and it is nonzero (a difference was taken)
   bool ft_zero_ = false;  // f_t was exactly zero since the last invalidate(): not evaluated
   StateVector ft_;        // df/dt at fixed y at the step's start [state units / s^2]
+  // Extrapolated: the last two differences (ftb_ at t_ftb_ the later) since
+  // the last invalidate(), how many are held, and whether ft_ is extrapolated.
+  StateVector fta_, ftb_;         // [state units / s^2]
+  double t_fta_ = 0, t_ftb_ = 0;  // their step starts [s]
+  int ft_held_ = 0;
+  bool ft_extrapolated_ = false;
   StateVector f0_, fi_, yi_, rhs_, y1_, yhat_, scratch_;
   StateVector y0d_;          // start of the last accepted step (dense output)
   double t0d_ = 0, hd_ = 0;  // its start and size [s]
