@@ -57,6 +57,9 @@ void body_articulated(const Body& body, BodyWork& bw, const Mat3* K2, const Vec3
 /// The rotation equation lives in the plane normal to e_k: it is solved in a
 /// tangent basis T, where the element's own inertia is isotropic
 /// (T^T Mt T = (m + ma) I, Mt e = m e).
+/// kSymmetric: Kk is exactly symmetric (an element's K below, mirrored), so
+/// its symmetric part is Kk itself (0.5 (a + a) = a in floating point).
+template <bool kSymmetric>
 void element_inertia(const Element& el, const Vec3& e, const Mat3& Kk, std::size_t k, Workspace& ws) {
   const double L = ws.L[k], m = el.mass, ma = el.added_mass, mn = m + ma;
   // Tangent basis normal to e.
@@ -88,8 +91,10 @@ void element_inertia(const Element& el, const Vec3& e, const Mat3& Kk, std::size
   ws.H[k].col(1) = idet * a2;
   Mat3& K = ws.K[k];
   for (int r = 0; r < 3; ++r)
-    for (int q = r; q < 3; ++q)
-      K(r, q) = K(q, r) = (0.5 * (Kk(r, q) + Kk(q, r)) - ma * e[r] * e[q] + (r == q ? mn : 0.0)) - idet * S(r, q);
+    for (int q = r; q < 3; ++q) {
+      const double ks = kSymmetric ? Kk(r, q) : 0.5 * (Kk(r, q) + Kk(q, r));
+      K(r, q) = K(q, r) = (ks - ma * e[r] * e[q] + (r == q ? mn : 0.0)) - idet * S(r, q);
+    }
 }
 
 /// One element's backward step, its bias part: b_{k-1} at the top joint of
@@ -117,9 +122,14 @@ void element_bias(const Element& el, const Vec3& e, const Vec3& w, const Mat3& K
 /// lengths: only their bias part runs (elastic elements and bodies: all).
 void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws, bool inertias_known = false) {
   const std::size_t n = model.cable.elements.size();
+  // Point loads and inertias at the joints exist only with attachments or a
+  // seabed; else Ma and Fa are +0 (attachment_loads) and adding them changes
+  // no bit: skipped.
+  const bool joints = !model.cable.attachments.empty() || model.seabed.has_value();
   // Nothing hangs below the cable's end but its attachments.
   ws.K[n] = ws.Ma[n];
   ws.b[n] = -ws.Fa[n];
+  bool symmetric = true;  // K[k+1] exactly symmetric (Ma[n]; a rigid element's K, mirrored)
   for (std::size_t k = n; k-- > 0;) {
     // What the bottom joint of element k+1 carries: a body, or joint k+1.
     const int bi = ws.body_at[k + 1];
@@ -130,21 +140,27 @@ void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws, bo
       body_articulated(model.bodies[idx(bi)], bw, Kk, bk);
       Kk = &bw.KQ;
       bk = &bw.bQ;
+      symmetric = false;
     }
     if (is_elastic(model.cable.elements[k])) {
       elastic_backward(s.e[k], s.length_of(model, k), ws.Mt[k], ws.F[k], ws.Mom[k], *Kk, *bk, ws.elastic[k], ws.K[k],
                        ws.b[k]);
       ws.K[k] += ws.Ma[k];
+      symmetric = false;
     } else {
       const Element& el = current_element(model, ws, k);
       if (!inertias_known || (k == 0 && ws.winch)) {  // the winch's top: its length moves with time
-        element_inertia(el, s.e[k], *Kk, k, ws);
-        ws.K[k] += ws.Ma[k];
+        if (symmetric)
+          element_inertia<true>(el, s.e[k], *Kk, k, ws);
+        else
+          element_inertia<false>(el, s.e[k], *Kk, k, ws);
+        if (joints) ws.K[k] += ws.Ma[k];
       }
       element_bias(el, s.e[k], s.w[k], *Kk, *bk, k, ws);
+      symmetric = true;
     }
     // An attachment at joint k moves with it: its inertia (above) and loads add on.
-    ws.b[k] -= ws.Fa[k];
+    if (joints) ws.b[k] -= ws.Fa[k];
   }
 }
 

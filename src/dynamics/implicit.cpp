@@ -511,6 +511,8 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
   if (drum) dv += r.winch_dlr * s.e[0], dx += r.winch_dl * s.e[0];
   iw.drum = drum;
   iw.drum_rhs = drum ? -hg * model.winch.damping * r.winch_dlr : 0.0;
+  // The joints' increments are read only by the joint terms.
+  const bool joints = !model.cable.attachments.empty() || model.seabed.has_value();
   iw.dvP[0] = dv;
   iw.dxP[0] = dx;
   for (std::size_t k = 0; k < n; ++k) {
@@ -562,23 +564,23 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
         dx = dxO + r.rotb[b].cross(bw.rQ2);
       }
     }
-    iw.dvP[k + 1] = dv;
-    iw.dxP[k + 1] = dx;
+    if (joints) iw.dvP[k + 1] = dv, iw.dxP[k + 1] = dx;
   }
-  // Joint terms exist only with attachments or a seabed (else zero: skipped).
-  if (!model.cable.attachments.empty() || model.seabed.has_value())
+  // Joint terms exist only with attachments or a seabed (else Fa stays +0,
+  // as constructed, and the bias sweep skips it).
+  if (joints)
     for (std::size_t k = 0; k <= n; ++k)
       iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]) -
                  hg * (jac.joint_stiffness[k] * (hg * iw.dvP[k] + iw.dxP[k]));
-  else
-    for (Vec3& f : iw.Fa) f.setZero();
 }
 
 /// Bias sweep up the chain.
 void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws, ImplicitWorkspace& iw) {
   const auto& els = model.cable.elements;
   const std::size_t n = els.size();
-  // Bias sweep up the chain (the inertias are factorised).
+  // Bias sweep up the chain (the inertias are factorised). Without joint
+  // terms Fa is +0 and x - 0 = x: not subtracted.
+  const bool joints = !model.cable.attachments.empty() || model.seabed.has_value();
   iw.b[n] = -iw.Fa[n];
   for (std::size_t k = n; k-- > 0;) {
     const int bi = ws.body_at[k + 1];
@@ -591,7 +593,8 @@ void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws,
     }
     if (is_elastic(els[k])) {
       iw.Er[k] = 0.5 * iw.F[k] + iw.Fd[k] - *bk;
-      iw.b[k] = iw.EG[k] * (iw.EAinv[k] * iw.Er[k]) + *bk - iw.F[k] - iw.Fa[k];
+      iw.b[k] = iw.EG[k] * (iw.EAinv[k] * iw.Er[k]) + *bk - iw.F[k];
+      if (joints) iw.b[k] -= iw.Fa[k];
       continue;
     }
     // b = H T^T r0 + b_below - F - Fa, r0 = r0' - L b_below: the part
@@ -601,7 +604,8 @@ void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws,
     const Vec3 t1 = iw.T[k].col(0), t2 = iw.T[k].col(1);
     const Vec3& h1 = iw.H[k].col(0);
     const Vec3& h2 = iw.H[k].col(1);
-    iw.b[k] = (t1.dot(r0p) * h1 + t2.dot(r0p) * h2 - iw.F[k] - iw.Fa[k]) + (*bk - L * (iw.TH[k].transpose() * *bk));
+    const Vec3 loads = t1.dot(r0p) * h1 + t2.dot(r0p) * h2 - iw.F[k];
+    iw.b[k] = (joints ? Vec3(loads - iw.Fa[k]) : loads) + (*bk - L * (iw.TH[k].transpose() * *bk));
     const Vec3 r0 = r0p - L * *bk;
     iw.Tr0[k] = Eigen::Vector2d(t1.dot(r0), t2.dot(r0));
     iw.q[k] = iw.T[k] * (iw.Phi[k] * iw.Tr0[k]);
