@@ -32,13 +32,18 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   else
     F -= el.drag_factor * un.norm() * un;
 
-  // Tangential friction: the table f_t(phi), Pode/Landweber (paper 2.43) or skin friction.
-  if (faired != nullptr && !faired->tangential_loading.empty())
+  // Tangential friction: the table f_t(phi), Pode/Landweber (paper 2.43) or
+  // skin friction. Without friction (friction_factor 0) the default laws
+  // would subtract a signed zero, which leaves F as it is but for the sign of
+  // an exactly zero component: skipped (a square root and a division).
+  if (faired != nullptr && !faired->tangential_loading.empty()) {
     F += faired->tangential_loading.tangential_force(el.drag_factor, un, ue, e, v_s);
-  else if (model.cable.tangential_law == TangentialLaw::Pode)
-    F -= el.friction_factor * u.squaredNorm() * smooth_sign(ue, v_s) * e;
-  else
-    F -= el.friction_factor * std::abs(ue) * ue * e;
+  } else if (el.friction_factor != 0) {
+    if (model.cable.tangential_law == TangentialLaw::Pode)
+      F -= el.friction_factor * u.squaredNorm() * smooth_sign(ue, v_s) * e;
+    else
+      F -= el.friction_factor * std::abs(ue) * ue * e;
+  }
 
   // Added mass: the relative velocity also changes as G moves through a
   // non-uniform flow, du/dt = a_G - rate seen by G; that rate is known here.
