@@ -254,6 +254,17 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   }
   acc.joint_force[0] = acc.tow_force;
   Vec3 a = acc.a0 + a_extra + a_pay;
+  // The arrays' data through local pointers: the compiler cannot tell that
+  // the stores into them leave the vectors alone, and would reload each
+  // one's start per element.
+  const Eigen::Matrix<double, 3, 2>*T = ws.T.data(), *GT = ws.GT.data();
+  const Eigen::Matrix2d* Phi = ws.Phi.data();
+  const Eigen::Vector2d* Tr0 = ws.Tr0.data();
+  const Vec3 *c = ws.c.data(), *e = s.e.data(), *bs = ws.b.data();
+  const double* Ls = ws.L.data();
+  const Mat3* Ks = ws.K.data();
+  const int* body_at = ws.body_at.data();
+  Vec3 *alpha = acc.alpha.data(), *joint_force = acc.joint_force.data();
   for (std::size_t k = 0; k < els.size(); ++k) {
     if (k == 0 && elastic_top) {
       // The winch's elastic element: its top is the material at the sheave.
@@ -264,13 +275,13 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
       a += elastic_forward(ws.elastic[k], s.e[k], s.w[k], s.length_of(model, k), s.length_rate_of(k), a, acc.alpha[k],
                            acc.length_acc[k]);
     } else {
-      const Vec3 beta = ws.T[k] * (ws.Phi[k] * (ws.Tr0[k] - ws.GT[k].transpose() * a));  // alpha x e
-      acc.alpha[k] = s.e[k].cross(beta);
-      a += ws.L[k] * (beta + ws.c[k]);
+      const Vec3 beta = T[k] * (Phi[k] * (Tr0[k] - GT[k].transpose() * a));  // alpha x e
+      alpha[k] = e[k].cross(beta);
+      a += Ls[k] * (beta + c[k]);
     }
-    const int bi = ws.body_at[k + 1];
+    const int bi = body_at[k + 1];
     if (bi < 0) {
-      acc.joint_force[k + 1] = ws.K[k + 1] * a + ws.b[k + 1];
+      joint_force[k + 1] = Ks[k + 1] * a + bs[k + 1];
       continue;
     }
     const Body& body = model.bodies[idx(bi)];
