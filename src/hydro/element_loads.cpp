@@ -16,8 +16,9 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   M.setZero();
   if (fluid.rho == 0) return;
 
-  // Velocity relative to the water, split along and across the element.
-  const Vec3 u = vG - fluid.velocity(xG, t);
+  // Velocity relative to the water, split along and across the element (in
+  // still water, no current nor waves, the water's velocity is +0: u = vG).
+  const Vec3 u = fluid.has_current() || fluid.waves ? Vec3(vG - fluid.velocity(xG, t)) : vG;
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
 
