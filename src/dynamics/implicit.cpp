@@ -256,8 +256,9 @@ void element_local_jacobian(const Model& model, const Element& el, const Vec3& e
   C.setZero();
   const Fluid& fluid = model.fluid;
   if (fluid.rho == 0) return;
-  // Drag damping -dF/du (u: velocity relative to the water at G).
-  const Vec3 u = vG - fluid.velocity(xG, t);
+  // Drag damping -dF/du (u: velocity relative to the water at G; in still
+  // water the water's velocity is +0, u = vG, as element_loads).
+  const Vec3 u = fluid.has_current() || fluid.waves ? Vec3(vG - fluid.velocity(xG, t)) : vG;
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
   const double unn = un.norm();
