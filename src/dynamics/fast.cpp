@@ -50,6 +50,32 @@ void body_articulated(const Body& body, BodyWork& bw, const Mat3* K2, const Vec3
   bw.bQ = Mll * bw.wcent + bw.C.transpose() * bw.Phi * (bw.rhs - bw.C * bw.wcent) + hl - bw.Fb;
 }
 
+/// The backward pass's per-element arrays of a Workspace, as pointers taken
+/// once per pass: the compiler cannot tell that the stores into them leave
+/// the vectors alone, and would reload each one's start per element.
+struct ElementArrays {
+  explicit ElementArrays(Workspace& ws)
+      : L(ws.L.data()),
+        F(ws.F.data()),
+        Mom(ws.Mom.data()),
+        T(ws.T.data()),
+        GT(ws.GT.data()),
+        Phi(ws.Phi.data()),
+        H(ws.H.data()),
+        K(ws.K.data()),
+        b(ws.b.data()),
+        c(ws.c.data()),
+        Tr0(ws.Tr0.data()) {}
+  const double* L;
+  const Vec3 *F, *Mom;
+  Eigen::Matrix<double, 3, 2>*T, *GT;
+  Eigen::Matrix2d* Phi;
+  Eigen::Matrix<double, 3, 2>* H;
+  Mat3* K;
+  Vec3 *b, *c;
+  Eigen::Vector2d* Tr0;
+};
+
 /// One element's backward step, its inertia part: the articulated inertia
 /// K_{k-1} seen at the top joint of element k from Kk at its bottom joint,
 /// and what the bias step and the forward pass read (T, G T, Phi, H). It
@@ -57,7 +83,10 @@ void body_articulated(const Body& body, BodyWork& bw, const Mat3* K2, const Vec3
 /// The rotation equation lives in the plane normal to e_k: it is solved in a
 /// tangent basis T, where the element's own inertia is isotropic
 /// (T^T Mt T = (m + ma) I, Mt e = m e).
-void element_inertia(const Element& el, const Vec3& e, const Mat3& Kk, std::size_t k, Workspace& ws) {
+/// kSymmetric: Kk is exactly symmetric (an element's K below, mirrored), so
+/// its symmetric part is Kk itself (0.5 (a + a) = a in floating point).
+template <bool kSymmetric>
+void element_inertia(const Element& el, const Vec3& e, const Mat3& Kk, std::size_t k, const ElementArrays& ws) {
   const double L = ws.L[k], m = el.mass, ma = el.added_mass, mn = m + ma;
   // Tangent basis normal to e.
   ws.T[k] = tangent_basis(e);
@@ -88,15 +117,17 @@ void element_inertia(const Element& el, const Vec3& e, const Mat3& Kk, std::size
   ws.H[k].col(1) = idet * a2;
   Mat3& K = ws.K[k];
   for (int r = 0; r < 3; ++r)
-    for (int q = r; q < 3; ++q)
-      K(r, q) = K(q, r) = (0.5 * (Kk(r, q) + Kk(q, r)) - ma * e[r] * e[q] + (r == q ? mn : 0.0)) - idet * S(r, q);
+    for (int q = r; q < 3; ++q) {
+      const double ks = kSymmetric ? Kk(r, q) : 0.5 * (Kk(r, q) + Kk(q, r));
+      K(r, q) = K(q, r) = (ks - ma * e[r] * e[q] + (r == q ? mn : 0.0)) - idet * S(r, q);
+    }
 }
 
 /// One element's backward step, its bias part: b_{k-1} at the top joint of
 /// element k from (Kk, bk) at its bottom joint and the element's loads, with
 /// the inertia part's T and H (element_inertia).
 void element_bias(const Element& el, const Vec3& e, const Vec3& w, const Mat3& Kk, const Vec3& bk, std::size_t k,
-                  Workspace& ws) {
+                  const ElementArrays& ws) {
   const double L = ws.L[k], m = el.mass;
   const Vec3 t1 = ws.T[k].col(0), t2 = ws.T[k].col(1);
   const Vec3 c = -w.squaredNorm() * e;  // Mt c = m c
@@ -117,34 +148,49 @@ void element_bias(const Element& el, const Vec3& e, const Vec3& w, const Mat3& K
 /// lengths: only their bias part runs (elastic elements and bodies: all).
 void backward_pass(const Model& model, const PhysicalState& s, Workspace& ws, bool inertias_known = false) {
   const std::size_t n = model.cable.elements.size();
+  // Point loads and inertias at the joints exist only with attachments or a
+  // seabed; else Ma and Fa are +0 (attachment_loads) and adding them changes
+  // no bit: skipped.
+  const bool joints = !model.cable.attachments.empty() || model.seabed.has_value();
   // Nothing hangs below the cable's end but its attachments.
   ws.K[n] = ws.Ma[n];
   ws.b[n] = -ws.Fa[n];
+  bool symmetric = true;  // K[k+1] exactly symmetric (Ma[n]; a rigid element's K, mirrored)
+  const ElementArrays arrays(ws);
+  const int* body_at = ws.body_at.data();
+  const Element* els = model.cable.elements.data();
+  const Vec3 *e = s.e.data(), *w = s.w.data();
   for (std::size_t k = n; k-- > 0;) {
     // What the bottom joint of element k+1 carries: a body, or joint k+1.
-    const int bi = ws.body_at[k + 1];
-    const Mat3* Kk = &ws.K[k + 1];
-    const Vec3* bk = &ws.b[k + 1];
+    const int bi = body_at[k + 1];
+    const Mat3* Kk = arrays.K + k + 1;
+    const Vec3* bk = arrays.b + k + 1;
     if (bi >= 0) {
       BodyWork& bw = ws.body[idx(bi)];
       body_articulated(model.bodies[idx(bi)], bw, Kk, bk);
       Kk = &bw.KQ;
       bk = &bw.bQ;
+      symmetric = false;
     }
-    if (is_elastic(model.cable.elements[k])) {
+    if (is_elastic(els[k])) {
       elastic_backward(s.e[k], s.length_of(model, k), ws.Mt[k], ws.F[k], ws.Mom[k], *Kk, *bk, ws.elastic[k], ws.K[k],
                        ws.b[k]);
       ws.K[k] += ws.Ma[k];
+      symmetric = false;
     } else {
-      const Element& el = current_element(model, ws, k);
-      if (!inertias_known || (k == 0 && ws.winch)) {  // the winch's top: its length moves with time
-        element_inertia(el, s.e[k], *Kk, k, ws);
-        ws.K[k] += ws.Ma[k];
+      const Element& el = k == 0 && ws.winch ? ws.top : els[k];  // current_element
+      if (!inertias_known || (k == 0 && ws.winch)) {             // the winch's top: its length moves with time
+        if (symmetric)
+          element_inertia<true>(el, e[k], *Kk, k, arrays);
+        else
+          element_inertia<false>(el, e[k], *Kk, k, arrays);
+        if (joints) ws.K[k] += ws.Ma[k];
       }
-      element_bias(el, s.e[k], s.w[k], *Kk, *bk, k, ws);
+      element_bias(el, e[k], w[k], *Kk, *bk, k, arrays);
+      symmetric = true;
     }
     // An attachment at joint k moves with it: its inertia (above) and loads add on.
-    ws.b[k] -= ws.Fa[k];
+    if (joints) ws.b[k] -= ws.Fa[k];
   }
 }
 
@@ -238,6 +284,17 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
   }
   acc.joint_force[0] = acc.tow_force;
   Vec3 a = acc.a0 + a_extra + a_pay;
+  // The arrays' data through local pointers: the compiler cannot tell that
+  // the stores into them leave the vectors alone, and would reload each
+  // one's start per element.
+  const Eigen::Matrix<double, 3, 2>*T = ws.T.data(), *GT = ws.GT.data();
+  const Eigen::Matrix2d* Phi = ws.Phi.data();
+  const Eigen::Vector2d* Tr0 = ws.Tr0.data();
+  const Vec3 *c = ws.c.data(), *e = s.e.data(), *bs = ws.b.data();
+  const double* Ls = ws.L.data();
+  const Mat3* Ks = ws.K.data();
+  const int* body_at = ws.body_at.data();
+  Vec3 *alpha = acc.alpha.data(), *joint_force = acc.joint_force.data();
   for (std::size_t k = 0; k < els.size(); ++k) {
     if (k == 0 && elastic_top) {
       // The winch's elastic element: its top is the material at the sheave.
@@ -248,13 +305,13 @@ void forward_pass(const Model& model, const PhysicalState& s, double t, Workspac
       a += elastic_forward(ws.elastic[k], s.e[k], s.w[k], s.length_of(model, k), s.length_rate_of(k), a, acc.alpha[k],
                            acc.length_acc[k]);
     } else {
-      const Vec3 beta = ws.T[k] * (ws.Phi[k] * (ws.Tr0[k] - ws.GT[k].transpose() * a));  // alpha x e
-      acc.alpha[k] = s.e[k].cross(beta);
-      a += ws.L[k] * (beta + ws.c[k]);
+      const Vec3 beta = T[k] * (Phi[k] * (Tr0[k] - GT[k].transpose() * a));  // alpha x e
+      alpha[k] = e[k].cross(beta);
+      a += Ls[k] * (beta + c[k]);
     }
-    const int bi = ws.body_at[k + 1];
+    const int bi = body_at[k + 1];
     if (bi < 0) {
-      acc.joint_force[k + 1] = ws.K[k + 1] * a + ws.b[k + 1];
+      joint_force[k + 1] = Ks[k + 1] * a + bs[k + 1];
       continue;
     }
     const Body& body = model.bodies[idx(bi)];

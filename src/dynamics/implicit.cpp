@@ -256,8 +256,9 @@ void element_local_jacobian(const Model& model, const Element& el, const Vec3& e
   C.setZero();
   const Fluid& fluid = model.fluid;
   if (fluid.rho == 0) return;
-  // Drag damping -dF/du (u: velocity relative to the water at G).
-  const Vec3 u = vG - fluid.velocity(xG, t);
+  // Drag damping -dF/du (u: velocity relative to the water at G; in still
+  // water the water's velocity is +0, u = vG, as element_loads).
+  const Vec3 u = fluid.has_current() || fluid.waves ? Vec3(vG - fluid.velocity(xG, t)) : vG;
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
   const double unn = un.norm();
@@ -421,9 +422,16 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
     return joints ? Mat3(hg * jac.joint_damping[k] + hg * hg * jac.joint_stiffness[k]) : Mat3::Zero().eval();
   };
   iw.K[n] = ws.Ma[n] + joint_terms(n);
+  // The arrays' data through local pointers (as stage_loads).
+  const Mat3 *Mts = ws.Mt.data(), *Cs = jac.element_damping.data();
+  const double* Krs = jac.element_stiffness.data();
+  const int* body_at = ws.body_at.data();
+  Mat3 *Ks = iw.K.data(), *THs = iw.TH.data();
+  Eigen::Matrix<double, 3, 2>*Ts = iw.T.data(), *Hs = iw.H.data();
+  Eigen::Matrix2d* Phis = iw.Phi.data();
   for (std::size_t k = n; k-- > 0;) {
-    const int bi = ws.body_at[k + 1];
-    const Mat3* Kk = &iw.K[k + 1];
+    const int bi = body_at[k + 1];
+    const Mat3* Kk = Ks + k + 1;
     if (bi >= 0) {
       const std::size_t b = idx(bi);
       Mat6 Me = ws.body[b].Mw + hg * jac.body_damping[b];
@@ -433,9 +441,9 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
       iw.bKQ[b] += hg * jac.bodyq_damping[b] + hg * hg * jac.bodyq_stiffness[b];  // seabed at Q
       Kk = &iw.bKQ[b];
     }
-    const Element& el = current_element(model, ws, k);
+    const Element& el = k == 0 && ws.winch ? ws.top : els[k];  // current_element
     const double L = el.length;
-    const Mat3 Mt = ws.Mt[k] + hg * jac.element_damping[k];
+    const Mat3 Mt = Mts[k] + hg * Cs[k];
     if (is_elastic(els[k])) {
       // Elastic element (elastic.cpp's step on d_k = l e): A = Mdd + Kk + S,
       // S = (hg c_a + hg^2 EA/L) e e^T + hg^2 K_rock / l^2 (I - e e^T) (the
@@ -460,30 +468,30 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
       iw.K[k] += ws.Ma[k] + joint_terms(k);
       continue;
     }
-    const auto& T = iw.T[k] = ws.T[k];  // tangent_basis(s.e[k]): the evaluation at s computed it
+    const auto& T = Ts[k] = ws.T[k];  // tangent_basis(s.e[k]): the evaluation at s computed it
     const Vec3 t1 = T.col(0), t2 = T.col(1);
     // G T = L (Mt/2 + K) T and D = T^T (L^2/4 Mt + L^2 K) T + Ir + hg^2 K_rock
     // (Mt and K symmetric: D symmetric, inverted in closed form).
     const Mat3 A = 0.5 * Mt + *Kk, B = 0.25 * Mt + *Kk;
     const Vec3 g1 = L * (A * t1), g2 = L * (A * t2), v2 = B * t2;
-    const double L2 = L * L, dd = element_rot_inertia(el) + hg * hg * jac.element_stiffness[k];
+    const double L2 = L * L, dd = element_rot_inertia(el) + hg * hg * Krs[k];
     const double d11 = L2 * t1.dot(B * t1) + dd, d22 = L2 * t2.dot(v2) + dd, d12 = L2 * t1.dot(v2);
     const double idet = 1.0 / (d11 * d22 - d12 * d12);
     const double p11 = d22 * idet, p22 = d11 * idet, p12 = -d12 * idet;
-    iw.Phi[k](0, 0) = p11;
-    iw.Phi[k](0, 1) = iw.Phi[k](1, 0) = p12;
-    iw.Phi[k](1, 1) = p22;
+    Phis[k](0, 0) = p11;
+    Phis[k](0, 1) = Phis[k](1, 0) = p12;
+    Phis[k](1, 1) = p22;
     const Vec3 h1 = p11 * g1 + p12 * g2, h2 = p12 * g1 + p22 * g2;  // H = G T Phi
-    iw.H[k].col(0) = h1;
-    iw.H[k].col(1) = h2;
-    iw.TH[k].noalias() = t1 * h1.transpose() + t2 * h2.transpose();
+    Hs[k].col(0) = h1;
+    Hs[k].col(1) = h2;
+    THs[k].noalias() = t1 * h1.transpose() + t2 * h2.transpose();
     // K = Mt + K_below - H (G T)^T, symmetric: the upper triangle, mirrored.
-    Mat3& Kn = iw.K[k];
+    // Ma (+0 without joint terms) and the joint terms only with attachments or a seabed.
+    Mat3& Kn = Ks[k];
     for (int r = 0; r < 3; ++r)
       for (int q = r; q < 3; ++q)
         Kn(r, q) = Kn(q, r) = 0.5 * (Mt(r, q) + Mt(q, r) + (*Kk)(r, q) + (*Kk)(q, r)) - (h1[r] * g1[q] + h2[r] * g2[q]);
-    Kn += ws.Ma[k];
-    if (joints) Kn += joint_terms(k);
+    if (joints) Kn += ws.Ma[k], Kn += joint_terms(k);
   }
   iw.hg = hg;
 }
@@ -511,13 +519,23 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
   if (drum) dv += r.winch_dlr * s.e[0], dx += r.winch_dl * s.e[0];
   iw.drum = drum;
   iw.drum_rhs = drum ? -hg * model.winch.damping * r.winch_dlr : 0.0;
+  // The joints' increments are read only by the joint terms.
+  const bool joints = !model.cable.attachments.empty() || model.seabed.has_value();
   iw.dvP[0] = dv;
   iw.dxP[0] = dx;
+  // The arrays' data through local pointers: the compiler cannot tell that
+  // the stores into them leave the vectors alone, and would reload each
+  // one's start per element.
+  const Vec3 *es = s.e.data(), *rdw = r.dw.data(), *rrot = r.rot.data();
+  const Mat3* Cs = jac.element_damping.data();
+  const double* Ks = jac.element_stiffness.data();
+  const int* body_at = ws.body_at.data();
+  Vec3 *Fs = iw.F.data(), *Moms = iw.Mom.data();
   for (std::size_t k = 0; k < n; ++k) {
-    const Vec3& e = s.e[k];
-    const double L = current_element(model, ws, k).length;
-    const Vec3 dw = r.dw[k] - r.dw[k].dot(e) * e;
-    const Vec3 rot = r.rot[k] - r.rot[k].dot(e) * e;
+    const Vec3& e = es[k];
+    const double L = k == 0 && ws.winch ? ws.top.length : els[k].length;  // current_element
+    const Vec3 dw = rdw[k] - rdw[k].dot(e) * e;
+    const Vec3 rot = rrot[k] - rrot[k].dot(e) * e;
     const Vec3 de = dw.cross(e);
     if (is_elastic(els[k])) {
       // Increments of d' and d: the stretch's along e, the rotation's normal to it.
@@ -535,12 +553,12 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
       dv += ddv;
       dx += ddx;
     } else {
-      iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * L * de));
-      iw.Mom[k] = -hg * jac.element_stiffness[k] * (hg * dw + rot);
+      Fs[k] = -hg * (Cs[k] * (dv + 0.5 * L * de));
+      Moms[k] = -hg * Ks[k] * (hg * dw + rot);
       dv += L * de;
       dx += L * rot.cross(e);
     }
-    const int bi = ws.body_at[k + 1];
+    const int bi = body_at[k + 1];
     if (bi >= 0) {
       const std::size_t b = idx(bi);
       const BodyWork& bw = ws.body[b];
@@ -562,27 +580,35 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
         dx = dxO + r.rotb[b].cross(bw.rQ2);
       }
     }
-    iw.dvP[k + 1] = dv;
-    iw.dxP[k + 1] = dx;
+    if (joints) iw.dvP[k + 1] = dv, iw.dxP[k + 1] = dx;
   }
-  // Joint terms exist only with attachments or a seabed (else zero: skipped).
-  if (!model.cable.attachments.empty() || model.seabed.has_value())
+  // Joint terms exist only with attachments or a seabed (else Fa stays +0,
+  // as constructed, and the bias sweep skips it).
+  if (joints)
     for (std::size_t k = 0; k <= n; ++k)
       iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]) -
                  hg * (jac.joint_stiffness[k] * (hg * iw.dvP[k] + iw.dxP[k]));
-  else
-    for (Vec3& f : iw.Fa) f.setZero();
 }
 
 /// Bias sweep up the chain.
 void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws, ImplicitWorkspace& iw) {
   const auto& els = model.cable.elements;
   const std::size_t n = els.size();
-  // Bias sweep up the chain (the inertias are factorised).
+  // Bias sweep up the chain (the inertias are factorised). Without joint
+  // terms Fa is +0 and x - 0 = x: not subtracted.
+  const bool joints = !model.cable.attachments.empty() || model.seabed.has_value();
   iw.b[n] = -iw.Fa[n];
+  // The arrays' data through local pointers (as stage_loads).
+  const Vec3 *es = s.e.data(), *Fs = iw.F.data(), *Moms = iw.Mom.data();
+  const Eigen::Matrix<double, 3, 2>*Ts = iw.T.data(), *Hs = iw.H.data();
+  const Eigen::Matrix2d* Phis = iw.Phi.data();
+  const Mat3* THs = iw.TH.data();
+  const int* body_at = ws.body_at.data();
+  Vec3 *bs = iw.b.data(), *qs = iw.q.data();
+  Eigen::Vector2d* Tr0s = iw.Tr0.data();
   for (std::size_t k = n; k-- > 0;) {
-    const int bi = ws.body_at[k + 1];
-    const Vec3* bk = &iw.b[k + 1];
+    const int bi = body_at[k + 1];
+    const Vec3* bk = bs + k + 1;
     if (bi >= 0) {
       const std::size_t b = idx(bi);
       body_bias(model.bodies[b], ws.body[b], iw.Fb[b], iw.Mb[b], bk, b, iw);
@@ -591,20 +617,22 @@ void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws,
     }
     if (is_elastic(els[k])) {
       iw.Er[k] = 0.5 * iw.F[k] + iw.Fd[k] - *bk;
-      iw.b[k] = iw.EG[k] * (iw.EAinv[k] * iw.Er[k]) + *bk - iw.F[k] - iw.Fa[k];
+      iw.b[k] = iw.EG[k] * (iw.EAinv[k] * iw.Er[k]) + *bk - iw.F[k];
+      if (joints) iw.b[k] -= iw.Fa[k];
       continue;
     }
     // b = H T^T r0 + b_below - F - Fa, r0 = r0' - L b_below: the part
     // through b_below as one 3x3 product (H T^T = TH^T), off the rest.
-    const double L = current_element(model, ws, k).length;
-    const Vec3 r0p = 0.5 * L * iw.F[k] - s.e[k].cross(iw.Mom[k]);  // r0 without the bias below
-    const Vec3 t1 = iw.T[k].col(0), t2 = iw.T[k].col(1);
-    const Vec3& h1 = iw.H[k].col(0);
-    const Vec3& h2 = iw.H[k].col(1);
-    iw.b[k] = (t1.dot(r0p) * h1 + t2.dot(r0p) * h2 - iw.F[k] - iw.Fa[k]) + (*bk - L * (iw.TH[k].transpose() * *bk));
+    const double L = k == 0 && ws.winch ? ws.top.length : els[k].length;  // current_element
+    const Vec3 r0p = 0.5 * L * Fs[k] - es[k].cross(Moms[k]);              // r0 without the bias below
+    const Vec3 t1 = Ts[k].col(0), t2 = Ts[k].col(1);
+    const Vec3& h1 = Hs[k].col(0);
+    const Vec3& h2 = Hs[k].col(1);
+    const Vec3 loads = t1.dot(r0p) * h1 + t2.dot(r0p) * h2 - Fs[k];
+    bs[k] = (joints ? Vec3(loads - iw.Fa[k]) : loads) + (*bk - L * (THs[k].transpose() * *bk));
     const Vec3 r0 = r0p - L * *bk;
-    iw.Tr0[k] = Eigen::Vector2d(t1.dot(r0), t2.dot(r0));
-    iw.q[k] = iw.T[k] * (iw.Phi[k] * iw.Tr0[k]);
+    Tr0s[k] = Eigen::Vector2d(t1.dot(r0), t2.dot(r0));
+    qs[k] = Ts[k] * (Phis[k] * Tr0s[k]);
   }
 }
 
@@ -625,6 +653,12 @@ void stage_accelerations(const Model& model, const PhysicalState& s, const Works
     iw.z_winch = (iw.drum_rhs - e1.dot(iw.b[0])) / (w.drum_inertia + iw.hg * w.damping + e1.dot(iw.K[0] * e1));
     a = iw.z_winch * e1;
   }
+  // The arrays' data through local pointers (as stage_loads).
+  const Vec3 *es = s.e.data(), *qs = iw.q.data();
+  const Mat3* THs = iw.TH.data();
+  const int* body_at = ws.body_at.data();
+  Vec3* alphas = iw.alpha.data();
+  double* zls = iw.zl.data();
   for (std::size_t k = 0; k < n; ++k) {
     if (is_elastic(els[k])) {
       // z_d = A^-1 (r - G a): its part along e is l', normal to it l (alpha x e).
@@ -634,12 +668,12 @@ void stage_accelerations(const Model& model, const PhysicalState& s, const Works
       iw.alpha[k] = e.cross(zd) / s.length_of(model, k);
       a += zd;
     } else {
-      iw.zl[k] = 0;
-      const Vec3 beta = iw.q[k] - iw.TH[k] * a;  // T Phi (T^T r0 - (G T)^T a)
-      iw.alpha[k] = s.e[k].cross(beta);
-      a += current_element(model, ws, k).length * beta;
+      zls[k] = 0;
+      const Vec3 beta = qs[k] - THs[k] * a;  // T Phi (T^T r0 - (G T)^T a)
+      alphas[k] = es[k].cross(beta);
+      a += (k == 0 && ws.winch ? ws.top.length : els[k].length) * beta;  // current_element's length
     }
-    const int bi = ws.body_at[k + 1];
+    const int bi = body_at[k + 1];
     if (bi < 0) continue;
     const std::size_t b = idx(bi);
     const BodyWork& bw = ws.body[b];

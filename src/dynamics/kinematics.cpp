@@ -116,32 +116,46 @@ void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& w
     ws.top = scaled_element(els[0], element_length(model, s, 0));
     ws.v_top = s.v0 + element_length_rate(s, 0) * s.e[0];
   }
+  // The arrays' data through local pointers, the joint above in locals: the
+  // compiler cannot tell that the vectors' stores leave the vectors
+  // themselves alone, and would reload each one's start per element.
+  Vec3 *P = ws.P.data(), *vP = ws.vP.data(), *G = ws.G.data(), *vG = ws.vG.data(), *edot = ws.edot.data();
+  double* Ls = ws.L.data();
+  const Vec3 *e = s.e.data(), *w = s.w.data();
+  const int* body_at = ws.body_at.data();
+  const double* lengths = s.length.data();
+  const double* rates = s.length_rate.data();
+  const std::size_t n_lengths = s.length.size(), n_rates = s.length_rate.size();
+  Vec3 p = P[0], vp = vP[0];  // P_k, its velocity [m], [m/s]
   for (std::size_t i = 0; i < els.size(); ++i) {
-    const double L = ws.L[i] = s.length_of(model, i), Ld = s.length_rate_of(i);
-    ws.edot[i] = s.w[i].cross(s.e[i]);
-    const Vec3 dd = L * ws.edot[i] + Ld * s.e[i];  // d_k'
-    ws.G[i] = ws.P[i] + 0.5 * L * s.e[i];
+    // s.length_of(model, i) and s.length_rate_of(i).
+    const double L = Ls[i] = i < n_lengths ? lengths[i] : els[i].length, Ld = i < n_rates ? rates[i] : 0.0;
+    const Vec3 ed = edot[i] = w[i].cross(e[i]);
+    const Vec3 dd = L * ed + Ld * e[i];  // d_k'
+    G[i] = p + 0.5 * L * e[i];
+    Vec3 vp1;  // vP_{k+1}
     if (i == 0 && elastic_top) {
       // Winch, elastic: material velocity linear from the sheave's to P_1's.
-      ws.vP[i + 1] = ws.vP[i] + dd;
-      ws.vG[i] = 0.5 * (ws.v_top + ws.vP[i + 1]);
+      vp1 = vp + dd;
+      vG[i] = 0.5 * (ws.v_top + vp1);
     } else if (i == 0 && ws.winch) {
       // Winch: material moves rigidly with the bottom joint (not stretched).
-      ws.vG[i] = ws.v_top + 0.5 * L * ws.edot[i];
-      ws.vP[i + 1] = ws.v_top + L * ws.edot[i];
+      vG[i] = ws.v_top + 0.5 * L * ed;
+      vp1 = ws.v_top + L * ed;
     } else {
-      ws.vG[i] = ws.vP[i] + 0.5 * dd;
-      ws.vP[i + 1] = ws.vP[i] + dd;
+      vG[i] = vp + 0.5 * dd;
+      vp1 = vp + dd;
     }
-    ws.P[i + 1] = ws.P[i] + L * s.e[i];
-    const int b = ws.body_at[i + 1];
+    vP[i + 1] = vp = vp1;
+    P[i + 1] = p = p + L * e[i];
+    const int b = body_at[i + 1];
     if (b < 0) continue;
     BodyWork& bw = ws.body[static_cast<std::size_t>(b)];
     body_kinematics(model.bodies[static_cast<std::size_t>(b)], s.bodies[static_cast<std::size_t>(b)], ws.P[i + 1],
                     ws.vP[i + 1], bw);
     if (!model.bodies[static_cast<std::size_t>(b)].inline_body) continue;
-    ws.P[i + 1] = bw.O + bw.rQ2;
-    ws.vP[i + 1] = bw.vO + bw.w.cross(bw.rQ2);
+    P[i + 1] = p = bw.O + bw.rQ2;
+    vP[i + 1] = vp = bw.vO + bw.w.cross(bw.rQ2);
   }
 }
 

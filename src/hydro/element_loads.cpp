@@ -16,8 +16,9 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   M.setZero();
   if (fluid.rho == 0) return;
 
-  // Velocity relative to the water, split along and across the element.
-  const Vec3 u = vG - fluid.velocity(xG, t);
+  // Velocity relative to the water, split along and across the element (in
+  // still water, no current nor waves, the water's velocity is +0: u = vG).
+  const Vec3 u = fluid.has_current() || fluid.waves ? Vec3(vG - fluid.velocity(xG, t)) : vG;
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
 
@@ -32,13 +33,18 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   else
     F -= el.drag_factor * un.norm() * un;
 
-  // Tangential friction: the table f_t(phi), Pode/Landweber (paper 2.43) or skin friction.
-  if (faired != nullptr && !faired->tangential_loading.empty())
+  // Tangential friction: the table f_t(phi), Pode/Landweber (paper 2.43) or
+  // skin friction. Without friction (friction_factor 0) the default laws
+  // would subtract a signed zero, which leaves F as it is but for the sign of
+  // an exactly zero component: skipped (a square root and a division).
+  if (faired != nullptr && !faired->tangential_loading.empty()) {
     F += faired->tangential_loading.tangential_force(el.drag_factor, un, ue, e, v_s);
-  else if (model.cable.tangential_law == TangentialLaw::Pode)
-    F -= el.friction_factor * u.squaredNorm() * smooth_sign(ue, v_s) * e;
-  else
-    F -= el.friction_factor * std::abs(ue) * ue * e;
+  } else if (el.friction_factor != 0) {
+    if (model.cable.tangential_law == TangentialLaw::Pode)
+      F -= el.friction_factor * u.squaredNorm() * smooth_sign(ue, v_s) * e;
+    else
+      F -= el.friction_factor * std::abs(ue) * ue * e;
+  }
 
   // Added mass: the relative velocity also changes as G moves through a
   // non-uniform flow, du/dt = a_G - rate seen by G; that rate is known here.

@@ -85,7 +85,7 @@ struct ImplicitWorkspace {
   LocalJacobian jac;
   // Right-hand side of one stage solve, as loads (built from the increments):
   std::vector<Vec3> F, Mom;  // per element: force at G [N] and couple [N m], R_g
-  std::vector<Vec3> Fa;      // per joint (attachments) [N, R_g]
+  std::vector<Vec3> Fa;      // per joint (attachments, seabed; else +0) [N, R_g]
   std::vector<Vec3> Fb, Mb;  // per body: force and moment about O_t [N], [N m], R_g
   std::vector<Vec3> FQ;      // per body: seabed force at its link point Q [N, R_g]
   std::vector<Vec3> Fd;      // per elastic element: spring and axial damper force on d_k [N, R_g]
@@ -107,8 +107,8 @@ struct ImplicitWorkspace {
   std::vector<Eigen::Vector2d> Tr0;  // T^T r_0 [N m]
   std::vector<Vec3> q;               // T Phi T^T r_0, beta at zero joint acceleration [rad/s]
   std::vector<Vec3> brhs, bbQ;       // per body [N m], [N]
-  std::vector<Vec3> dvP;             // velocity increments of the joints [m/s]
-  std::vector<Vec3> dxP;             // position increments of the joints [m]
+  std::vector<Vec3> dvP;             // velocity increments of the joints [m/s] (with joint terms only)
+  std::vector<Vec3> dxP;             // position increments of the joints [m] (with joint terms only)
   // Solution: tow point (Force mode) and angular increments (z below).
   Vec3 a0 = Vec3::Zero();     // [m/s] (0 in Motion mode)
   std::vector<Vec3> alpha;    // per element, normal to e_k [rad/s]
