@@ -187,72 +187,128 @@ RosenbrockW::RosenbrockW(System& sys, double tol, double force_scale, ForceEstim
 }
 
 bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
-  const std::size_t N = y.size();
   const double t1 = t + h, hg = h * gamma_;
   dense_ = false;  // u_ is about to change
   sys_.set_window(t, t1);
-  if (!have_f0_) {
-    sys_.derivative(y, f0_, t);
-    sys_.prepare_stage_solve(t);
-    have_f0_ = true;
+  // f0 = f(y, t) and the stage solve's factors, unless held from the last step.
+  start_derivative(y, t);
+  // W's time column f_t at the step's start: a difference, extrapolated, or none.
+  if (time_derivative_ != TimeDerivative::None && !have_ft_ && !ft_zero_) time_column(y, t, h);
+  // Stages u_i: one evaluation and one O(n) solve each.
+  stages(y, t, h, hg);
+  // y1, y1 - yhat and (embedded force estimate) the embedded solution, one pass.
+  const bool embedded = force_estimate_ == ForceEstimate::Embedded;
+  solutions(y, embedded);
+  // The solution whose forces are compared with y1's, projected: the embedded
+  // one needs no filter solve, so its evaluation starts now, on the worker
+  // thread when the system has one (simulation.threads), during the filter
+  // solve and the state error, and is dropped if the step is rejected
+  // (speculative, docs/performance.md "Speculative step-end evaluation").
+  // Serially it only runs with f(y1), below.
+  SideForces side(sys_);
+  if (embedded) {
+    sys_.project(yi_, t1);
+    side.start(yi_, t1, hat_);
   }
-  // The explicit time dependence (tow law, waves, winch schedule): time as a
-  // state whose column in W is f_t, here (f(y, t + dt) - f0) / dt at the
-  // step's start (ROW form, Hairer & Wanner IV.7: the stages get
-  // gamma_i h^2 f_t). W's time column may be anything without losing the
-  // order (it is part of W); left out (zero, as before), paper-3d-turn took
-  // 4367 steps at tol 1e-5 instead of 1836, its tow force 3.5x less
-  // accurate (docs/performance.md "W's time column").
-  // Exactly zero (a steady tow: the inputs do not change on this piece of
-  // the tow law) it is not evaluated again before the next invalidate(), the
-  // law's next breakpoint; were the inputs to change meanwhile, W's time
-  // column would be zero, as without it: the order holds either way.
-  // Extrapolated: on every other accepted step (the one after a difference,
-  // two differences held since the last invalidate(), the tow law's last
-  // breakpoint) the column is f_t extrapolated linearly in time from the
-  // last two differences, without an evaluation: O(h^2) from f_t along the
-  // solution where a stale column is O(h) off. Measured (docs/performance.md
-  // "W's time column extrapolated"): a column one step stale multiplied
-  // the rejected tries 6-14x; extrapolated, 6-8 % fewer evaluations at the
-  // same accuracy. A rejected try's difference is kept for the retry, an
-  // extrapolated column is not (below).
-  if (time_derivative_ != TimeDerivative::None && !have_ft_ && !ft_zero_) {
-    const bool extrapolated = time_derivative_ == TimeDerivative::Extrapolated;
-    if (extrapolated && ft_held_ == 2 && !ft_extrapolated_ && use_ft_) {
-      const double s = (t - t_ftb_) / (t_ftb_ - t_fta_);  // [-]
-      for (std::size_t q = 0; q < N; ++q) ft_[q] = ftb_[q] + s * (ftb_[q] - fta_[q]);
-      ft_extrapolated_ = true;
-    } else {
-      const double dt = kTimeDifference * h;
-      use_ft_ = dt > 1e-9 * std::max(1.0, std::abs(t));  // else law_time's shift would dominate: no column
-      if (use_ft_) {
-        sys_.derivative_time_shift(y, scratch_, t + dt);  // y's inertias kept (y alone sets them)
-        ft_.resize(N);
-        for (std::size_t q = 0; q < N; ++q) ft_[q] = (scratch_[q] - f0_[q]) / dt;
-        ft_zero_ = std::all_of(ft_.begin(), ft_.end(), [](double v) { return v == 0; });
-        use_ft_ = !ft_zero_;
-      }
-      // The last two differences, in order; none here (no column): the
-      // extrapolation spans consecutive differences only.
-      if (extrapolated && use_ft_) {
-        fta_.swap(ftb_);
-        ftb_ = ft_;
-        t_fta_ = t_ftb_, t_ftb_ = t;
-        ft_held_ = std::min(ft_held_ + 1, 2);
-      } else {
-        ft_held_ = 0;
-      }
-      ft_extrapolated_ = false;
+  // Filtered error estimate: yhat = y1 - (I - hg J)^-1 (y1 - yhat), projected;
+  // with the filtered force estimate, the solution whose forces are compared.
+  filtered_solution(hg, t1);
+  if (!embedded) side.start(yhat_, t1, hat_);
+  sys_.project(y1_, t1);
+  // State error: |y1 - yhat| against tol (1 + |y|), max norm.
+  double err = state_error(y);
+  // Force error (only if the state error passes): the side evaluation's
+  // forces and f(y1), the next step's start (last on the system's
+  // workspace), then y1's tow and link forces against the side's.
+  double ferr = 0;
+  if (err <= 1) {
+    const Accelerations* acc = sys_.last_accelerations();
+    side.finish(y1_, fi_, t1);
+    ferr = force_error(acc);
+    err = std::max(err, ferr / tol_);
+  } else {
+    side.cancel();  // rejected: as serially, never evaluated (what it threw dropped)
+  }
+  // Step size control: rejected, a smaller h; accepted, the step's end.
+  const double fac = step_factor(err);
+  if (!(err <= 1)) {
+    reject(h, fac);
+    return false;
+  }
+  accept(y, t, h, t1, err, ferr, fac);
+  return true;
+}
+
+void RosenbrockW::start_derivative(const StateVector& y, double t) {
+  if (have_f0_) return;
+  sys_.derivative(y, f0_, t);
+  sys_.prepare_stage_solve(t);
+  have_f0_ = true;
+}
+
+// The explicit time dependence (tow law, waves, winch schedule): time as a
+// state whose column in W is f_t, here (f(y, t + dt) - f0) / dt at the
+// step's start (ROW form, Hairer & Wanner IV.7: the stages get
+// gamma_i h^2 f_t). W's time column may be anything without losing the
+// order (it is part of W); left out (zero, as before), paper-3d-turn took
+// 4367 steps at tol 1e-5 instead of 1836, its tow force 3.5x less
+// accurate (docs/performance.md "W's time column").
+// Exactly zero (a steady tow: the inputs do not change on this piece of
+// the tow law) it is not evaluated again before the next invalidate(), the
+// law's next breakpoint; were the inputs to change meanwhile, W's time
+// column would be zero, as without it: the order holds either way.
+// Extrapolated: on every other accepted step (the one after a difference,
+// two differences held since the last invalidate(), the tow law's last
+// breakpoint) the column is f_t extrapolated linearly in time from the
+// last two differences, without an evaluation: O(h^2) from f_t along the
+// solution where a stale column is O(h) off. Measured (docs/performance.md
+// "W's time column extrapolated"): a column one step stale multiplied
+// the rejected tries 6-14x; extrapolated, 6-8 % fewer evaluations at the
+// same accuracy. A rejected try's difference is kept for the retry, an
+// extrapolated column is not (reject()).
+void RosenbrockW::time_column(const StateVector& y, double t, double h) {
+  const std::size_t N = y.size();
+  const bool extrapolated = time_derivative_ == TimeDerivative::Extrapolated;
+  if (extrapolated && ft_held_ == 2 && !ft_extrapolated_ && use_ft_) {
+    // Linear in time through the last two differences.
+    const double s = (t - t_ftb_) / (t_ftb_ - t_fta_);  // [-]
+    for (std::size_t q = 0; q < N; ++q) ft_[q] = ftb_[q] + s * (ftb_[q] - fta_[q]);
+    ft_extrapolated_ = true;
+  } else {
+    // The forward difference over kTimeDifference h, one evaluation.
+    const double dt = kTimeDifference * h;
+    use_ft_ = dt > 1e-9 * std::max(1.0, std::abs(t));  // else law_time's shift would dominate: no column
+    if (use_ft_) {
+      sys_.derivative_time_shift(y, scratch_, t + dt);  // y's inertias kept (y alone sets them)
+      ft_.resize(N);
+      for (std::size_t q = 0; q < N; ++q) ft_[q] = (scratch_[q] - f0_[q]) / dt;
+      ft_zero_ = std::all_of(ft_.begin(), ft_.end(), [](double v) { return v == 0; });
+      use_ft_ = !ft_zero_;
     }
-    have_ft_ = true;
+    // The last two differences, in order; none here (no column): the
+    // extrapolation spans consecutive differences only.
+    if (extrapolated && use_ft_) {
+      fta_.swap(ftb_);
+      ftb_ = ft_;
+      t_fta_ = t_ftb_, t_ftb_ = t;
+      ft_held_ = std::min(ft_held_ + 1, 2);
+    } else {
+      ft_held_ = 0;
+    }
+    ft_extrapolated_ = false;
   }
-  // Stages: one evaluation and one O(n) solve each (stage 1 reuses f0).
-  // Each combination is one pass over the state, its terms added in the
-  // order j = 0, 1, ... (the same round-off as a pass per term).
+  have_ft_ = true;
+}
+
+// Stage 1 reuses f0. Each combination is one pass over the state, its terms
+// added in the order j = 0, 1, ... (the same round-off as a pass per term).
+void RosenbrockW::stages(const StateVector& y, double t, double h, double hg) {
+  const std::size_t N = y.size();
   for (int i = 0; i < kStages; ++i) {
     const StateVector* f = &f0_;
     Terms terms;
     if (i > 0) {
+      // f(y + sum_j a_ij u_j, t + alpha_i h).
       for (int j = 0; j < i; ++j)
         if (a_[i][j] != 0) terms.add(u_[idx(j)].data(), a_[i][j]);
       // The step's last evaluations, on a worker thread's side (threads 2),
@@ -263,6 +319,7 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
       sys_.derivative(yi_, fi_, t + alpha_[i] * h);
       f = &fi_;
     }
+    // (I - hg W) u_i = hg f_i + sum_j gamma c_ij u_j + hg gamma_i h f_t.
     terms = Terms{};
     for (int j = 0; j < i; ++j) terms.add(u_[idx(j)].data(), gamma_ * c_[i][j]);
     if (use_ft_ && gsum_[i] != 0) terms.add(ft_.data(), hg * gsum_[i] * h);  // last, as before
@@ -270,9 +327,10 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
     combine(N, rhs_.data(), f->data(), &hg, terms);
     sys_.stage_solve(hg, rhs_, u_[i]);
   }
-  // y1 = y + sum m_i u_i and y1 - yhat = sum (m_i - mhat_i) u_i, one pass;
-  // with the embedded force estimate its solution y1 - (y1 - yhat) too.
-  const bool embedded = force_estimate_ == ForceEstimate::Embedded;
+}
+
+void RosenbrockW::solutions(const StateVector& y, bool embedded) {
+  const std::size_t N = y.size();
   std::array<double, kStages> dm{};
   for (int i = 0; i < kStages; ++i) dm[idx(i)] = m_[i] - mhat_[i];
   y1_.resize(N);
@@ -284,75 +342,71 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
     sol.pass<true>(N, y1_.data(), rhs_.data(), yi_.data());
   else
     sol.pass<false>(N, y1_.data(), rhs_.data(), nullptr);
-  // The solution whose forces are compared with y1's (below), projected:
-  // the embedded one needs no filter solve, so its evaluation starts now, on
-  // the worker thread when the system has one (simulation.threads), during
-  // the filter solve and the state error, and is dropped if the step is
-  // rejected (speculative, docs/performance.md "Speculative step-end
-  // evaluation"). Serially it only runs with f(y1), below.
-  SideForces side(sys_);
-  if (embedded) {
-    sys_.project(yi_, t1);
-    side.start(yi_, t1, hat_);
-  }
-  // Filtered error estimate (Shampine): (I - hg J)^-1 (y1 - yhat). The
-  // embedded solution is not L-stable (|R(inf)| = 0.48): unfiltered, the
-  // damped stiff modes (element rocking) would dominate the estimate.
+}
+
+// Filtered (Shampine): the embedded solution is not L-stable (|R(inf)| =
+// 0.48); unfiltered, the damped stiff modes (element rocking) would
+// dominate the state error estimate.
+void RosenbrockW::filtered_solution(double hg, double t1) {
+  const std::size_t N = y1_.size();
   sys_.stage_solve(hg, rhs_, scratch_);
-  // yhat = y1 - (filtered y1 - yhat): with the filtered force estimate,
-  // the solution whose forces are compared, evaluated from here on.
   yhat_.resize(N);
   for (std::size_t q = 0; q < N; ++q) yhat_[q] = y1_[q] - scratch_[q];
   sys_.project(yhat_, t1);
-  if (!embedded) side.start(yhat_, t1, hat_);
-  sys_.project(y1_, t1);
-  // State error: |y1 - yhat| against tol (1 + |y|), max norm.
+}
+
+double RosenbrockW::state_error(const StateVector& y) const {
+  const std::size_t N = y.size();
   double err = 0;
   for (std::size_t q = 0; q < N; ++q) {
     const double sc = tol_ * (1 + std::max(std::abs(y[q]), std::abs(y1_[q])));
     err = std::max(err, std::abs(y1_[q] - yhat_[q]) / sc);
   }
   if (!std::isfinite(err)) err = std::numeric_limits<double>::infinity();
-  // Force error: tow and link forces at y1 and at the embedded solution,
-  // UNFILTERED (runs), against tol (scale + |F|). The forces read the stiff
-  // components directly (a rocking element's tension): filtered, their
-  // error is divided by ~hg|lambda| and the estimate is optimistic at large
-  // steps (2.5e-3 of the peak force on km-turn-100 at tol 1e-4 against
-  // 4.4e-4 unfiltered, docs/performance.md "Force error estimate").
+  return err;
+}
+
+// Against the embedded solution UNFILTERED (runs), against tol (scale +
+// |F|). The forces read the stiff components directly (a rocking element's
+// tension): filtered, their error is divided by ~hg|lambda| and the
+// estimate is optimistic at large steps (2.5e-3 of the peak force on
+// km-turn-100 at tol 1e-4 against 4.4e-4 unfiltered, docs/performance.md
+// "Force error estimate").
+double RosenbrockW::force_error(const Accelerations* acc) const {
   double ferr = 0;
-  if (err <= 1) {
-    const Accelerations* acc = sys_.last_accelerations();
-    // The side evaluation's forces and f(y1), the next step's start (last
-    // on the system's workspace).
-    side.finish(y1_, fi_, t1);
-    if (acc) {
-      auto rel = [&](const Vec3& a, const Vec3& b) { return (a - b).norm() / (force_scale_ + a.norm()); };
-      ferr = rel(acc->tow_force, hat_.tow_force);
-      for (std::size_t b = 0; b < hat_.link_force.size(); ++b)
-        ferr = std::max(ferr, rel(acc->link_force[b], hat_.link_force[b]));
-    }
-    if (!std::isfinite(ferr)) ferr = std::numeric_limits<double>::infinity();
-    err = std::max(err, ferr / tol_);
-  } else {
-    side.cancel();  // rejected: as serially, never evaluated (what it threw dropped)
+  if (acc) {
+    auto rel = [&](const Vec3& a, const Vec3& b) { return (a - b).norm() / (force_scale_ + a.norm()); };
+    ferr = rel(acc->tow_force, hat_.tow_force);
+    for (std::size_t b = 0; b < hat_.link_force.size(); ++b)
+      ferr = std::max(ferr, rel(acc->link_force[b], hat_.link_force[b]));
   }
-  // Step size: order 2 estimate -> exponent 1/3, safety 0.95, factor in
-  // [0.2, 5], no growth right after a rejection. Measured against a PI
-  // (Gustafsson) controller and safeties 0.8..1 (docs/performance.md): this
-  // plain controller took the fewest evaluations; 1.0 rejects a third.
-  double fac = err == 0 ? 5.0 : std::clamp(kSafety * std::pow(err, -1.0 / 3.0), 0.2, 5.0);
-  if (!(err <= 1)) {
-    h *= std::min(fac, 0.9);
-    last_rejected_ = true;
-    // An extrapolated column (O(h^2) off f_t) is not kept: the retry takes
-    // the difference (paper-3d-turn: 123 rejected tries against 147 kept).
-    if (ft_extrapolated_) have_ft_ = false;
-    return false;
-  }
+  if (!std::isfinite(ferr)) ferr = std::numeric_limits<double>::infinity();
+  return ferr;
+}
+
+// Order 2 estimate -> exponent 1/3, safety 0.95, factor in [0.2, 5].
+// Measured against a PI (Gustafsson) controller and safeties 0.8..1
+// (docs/performance.md): this plain controller took the fewest
+// evaluations; 1.0 rejects a third.
+double RosenbrockW::step_factor(double err) {
+  return err == 0 ? 5.0 : std::clamp(kSafety * std::pow(err, -1.0 / 3.0), 0.2, 5.0);
+}
+
+void RosenbrockW::reject(double& h, double fac) {
+  h *= std::min(fac, 0.9);
+  last_rejected_ = true;
+  // An extrapolated column (O(h^2) off f_t) is not kept: the retry takes
+  // the difference (paper-3d-turn: 123 rejected tries against 147 kept).
+  if (ft_extrapolated_) have_ft_ = false;
+}
+
+void RosenbrockW::accept(StateVector& y, double& t, double& h, double t1, double err, double ferr, double fac) {
+  // No growth right after a rejection.
   if (last_rejected_) fac = std::min(fac, 1.0);
   last_rejected_ = false;
+  // y1 and f(y1) become the next step's start; y the dense output's.
   y.swap(y1_);
-  y0d_.swap(y1_);  // the step's start, for dense output
+  y0d_.swap(y1_);
   t0d_ = t, hd_ = h, dense_ = true;
   t = t1;
   f0_.swap(fi_);
@@ -361,7 +415,6 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
   max_error = std::max(max_error, err * tol_);
   max_force_error = std::max(max_force_error, ferr);
   h *= fac;
-  return true;
 }
 
 bool RosenbrockW::dense_output(double t, StateVector& out) {

@@ -50,6 +50,33 @@ class RosenbrockW {
 
  private:
   static constexpr int kStages = 4;
+
+  // try_step's passes, in order (docs/theory.md §6.3); y: the step's start
+  // [state units], t its time, h the step and hg = h gamma [s], t1 = t + h [s].
+  /// f0_ = f(y, t) and the stage solve's factors at t, unless held (have_f0_).
+  void start_derivative(const StateVector& y, double t);
+  /// W's time column ft_ [state units / s^2] at the step's start: a forward
+  /// difference (one evaluation) or extrapolated from the last two; use_ft_.
+  void time_column(const StateVector& y, double t, double h);
+  /// The kStages transformed stages u_ [state units], one evaluation and solve each.
+  void stages(const StateVector& y, double t, double h, double hg);
+  /// y1_ = y + sum m_i u_i, rhs_ = y1 - yhat and, embedded, yi_ = yhat [state units].
+  void solutions(const StateVector& y, bool embedded);
+  /// yhat_ = y1_ - (I - hg W)^-1 rhs_ [state units], projected at t1.
+  void filtered_solution(double hg, double t1);
+  /// max_q |y1 - yhat|_q / (tol (1 + max(|y|_q, |y1|_q))) [-]; inf if not finite.
+  double state_error(const StateVector& y) const;
+  /// max over tow and link forces of |F(y1) - F_hat| / (force_scale + |F(y1)|) [-]
+  /// (acc: y1's accelerations, or none: 0); inf if not finite.
+  double force_error(const Accelerations* acc) const;
+  /// The step size factor for the error err [-]: 0.95 err^(-1/3) in [0.2, 5].
+  static double step_factor(double err);
+  /// Rejected: h [s] shrunk by fac (at most 0.9), an extrapolated column dropped.
+  void reject(double& h, double fac);
+  /// Accepted: y, t advanced to y1_, t1, f(y1) the next start, dense output
+  /// kept, error maxima updated (err, ferr [-]), h [s] grown by fac.
+  void accept(StateVector& y, double& t, double& h, double t1, double err, double ferr, double fac);
+
   System& sys_;
   double tol_, force_scale_;
   ForceEstimate force_estimate_;
