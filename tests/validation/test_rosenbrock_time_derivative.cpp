@@ -39,33 +39,48 @@ constexpr double kEnd = 30;      // ramp and half a turn [s]
 constexpr double kBreak = 15;    // the tow law's breakpoint: steps land on it [s]
 constexpr double kSample = 0.1;  // tow force compared every 0.1 s [s]
 
+/// At fixed steps h from 0 to kEnd (h a divisor of kSample): sample(t)
+/// every kSample, then step(t) but at the end.
+template <class SampleFn, class StepFn>
+void fixed_steps(double h, SampleFn sample, StepFn step) {
+  const int per_sample = static_cast<int>(std::lround(kSample / h));
+  const int steps = static_cast<int>(std::lround(kEnd / h));
+  for (int s = 0; s <= steps; ++s) {
+    const double t = s * h;
+    if (s % per_sample == 0) sample(t);
+    if (s == steps) break;
+    step(t);
+  }
+}
+
+/// |F_R| of state y at time t, evaluated on `sys`.
+double tow_force_at(System& sys, const StateVector& y, double t) {
+  StateVector dy;
+  sys.set_window(t, t);
+  sys.derivative(y, dy, t);
+  return sys.last_accelerations()->tow_force.norm();
+}
+
 /// |F_R| every kSample from 0 to kEnd: Rosenbrock-W at fixed steps h (a
 /// divisor of kSample), with or without f_t, or RK4 at h (rk4 = true).
 std::vector<double> tow_force(double h, RosenbrockW::TimeDerivative td, bool rk4 = false) {
   const Model m = paper_turn();
   auto sys = make_system(m);
-  StateVector y = sys->initial(initial_state(m), 0.0), k1;
+  StateVector y = sys->initial(initial_state(m), 0.0);
   testing::Rk4Scratch rk;
   RosenbrockW ros(*sys, 1e10, 1.0, RosenbrockW::ForceEstimate::Embedded, td);  // error control off
   std::vector<double> out;
-  const int per_sample = static_cast<int>(std::lround(kSample / h));
-  const int steps = static_cast<int>(std::lround(kEnd / h));
-  for (int s = 0; s <= steps; ++s) {
-    const double t = s * h;
-    if (s % per_sample == 0) {
-      sys->set_window(t, t);
-      sys->derivative(y, k1, t);
-      out.push_back(sys->last_accelerations()->tow_force.norm());
-    }
-    if (s == steps) break;
-    if (rk4) {
-      testing::rk4_step(*sys, y, t, h, rk);
-    } else {
-      double tt = t, hh = h;
-      ros.invalidate();  // the output evaluation above moved the system's last evaluation
-      EXPECT_TRUE(ros.try_step(y, tt, hh));
-    }
-  }
+  fixed_steps(
+      h, [&](double t) { out.push_back(tow_force_at(*sys, y, t)); },
+      [&](double t) {
+        if (rk4) {
+          testing::rk4_step(*sys, y, t, h, rk);
+        } else {
+          double tt = t, hh = h;
+          ros.invalidate();  // the output evaluation above moved the system's last evaluation
+          EXPECT_TRUE(ros.try_step(y, tt, hh));
+        }
+      });
   return out;
 }
 
@@ -95,23 +110,16 @@ TEST(RosenbrockTimeDerivative, MoreAccurateOnTheDrivenCableAndOrderThree) {
 std::vector<double> tow_force_run_on(double h, RosenbrockW::TimeDerivative td, long& evaluations) {
   const Model m = paper_turn();
   auto sys = make_system(m), probe = make_system(m);
-  StateVector y = sys->initial(initial_state(m), 0.0), k1;
+  StateVector y = sys->initial(initial_state(m), 0.0);
   RosenbrockW ros(*sys, 1e10, 1.0, RosenbrockW::ForceEstimate::Embedded, td);  // error control off
   std::vector<double> out;
-  const int per_sample = static_cast<int>(std::lround(kSample / h));
-  const int steps = static_cast<int>(std::lround(kEnd / h));
-  for (int s = 0; s <= steps; ++s) {
-    const double t = s * h;
-    if (s % per_sample == 0) {
-      probe->set_window(t, t);
-      probe->derivative(y, k1, t);
-      out.push_back(probe->last_accelerations()->tow_force.norm());
-    }
-    if (s == steps) break;
-    if (std::abs(t - kBreak) < 1e-9) ros.invalidate();  // the law's acceleration jumps (simulate() does so)
-    double tt = t, hh = h;
-    EXPECT_TRUE(ros.try_step(y, tt, hh));
-  }
+  fixed_steps(
+      h, [&](double t) { out.push_back(tow_force_at(*probe, y, t)); },
+      [&](double t) {
+        if (std::abs(t - kBreak) < 1e-9) ros.invalidate();  // the law's acceleration jumps (simulate() does so)
+        double tt = t, hh = h;
+        EXPECT_TRUE(ros.try_step(y, tt, hh));
+      });
   evaluations = static_cast<long>(sys->rhs_evaluations);
   return out;
 }
