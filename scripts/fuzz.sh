@@ -25,6 +25,8 @@ if ! command -v "$CXX_BIN" >/dev/null; then
   exit 2
 fi
 
+# shellcheck source=scripts/compiler-cache.sh
+source scripts/compiler-cache.sh
 mkdir -p "$BUILD"
 cmake -S . -B "$BUILD" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DTOWSIM_FUZZ=ON -DTOWSIM_BUILD_TESTS=OFF -DTOWSIM_BUILD_BENCH=OFF >"$BUILD/configure.log" 2>&1 ||

@@ -23,6 +23,8 @@ else
   EXCLUDE="${SANITIZE_EXCLUDE:-$(long_tests)}"
 fi
 
+# shellcheck source=scripts/compiler-cache.sh
+source scripts/compiler-cache.sh
 mkdir -p "$BUILD"
 # The Python module is left out: an ASan-instrumented extension cannot load
 # into an uninstrumented interpreter; the main run tests it.

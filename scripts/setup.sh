@@ -3,11 +3,12 @@
 # are missing (apt-get through sudo when not root). Debian 12 (bookworm).
 set -euo pipefail
 
-packages=(build-essential cmake libeigen3-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+packages=(build-essential cmake ccache libeigen3-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev libboost-dev gnuplot-nox
           chromium                       # chromium: the headless-browser test of towsim report
           python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-distributed
           python3-pytest)                # python3-*: the Python module and its tests
+# ccache: scripts/compiler-cache.sh (builds of unchanged sources are cache hits).
 # Node.js and npm bundle the 3-D view of towsim report (npm ci at build time);
 # Debian's only when no npm is on PATH (a newer Node.js may be installed already).
 if ! command -v npm >/dev/null 2>&1; then

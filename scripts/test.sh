@@ -5,6 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
+# shellcheck source=scripts/compiler-cache.sh
+source scripts/compiler-cache.sh
 werror=OFF
 [[ "${CI:-}" == true ]] && werror=ON
 # shellcheck disable=SC2086  # TOWSIM_CMAKE_ARGS is a list of arguments
