@@ -90,6 +90,11 @@ void describe_elements(const Cable& c, const Section* sec, const Element& e, int
              fmt_num(axial_wave_speed(e)) + " m/s, rk4 step <= " + fmt_num(rk4_axial_step_limit(e)) + " s");
   else
     line(out, "axial stiffness", "inextensible");
+  // Bending: the joint spring between two such elements (only when given).
+  if (e.bending_stiffness > 0)
+    line(out, "bending stiffness",
+         "EI = " + fmt_num(e.bending_stiffness) + " N m^2; joint spring EI/L = " +
+             fmt_num(e.bending_stiffness / e.length) + " N m/rad");
 }
 
 /// Arc length from the tow point to joint k [m].

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "towsim/dynamics/bending.hpp"
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/hydro/loads.hpp"
 
@@ -388,6 +389,7 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
   // The winch's elastic top element: strain of l_1 over the paid-out L_1.
   if (ws.winch && is_elastic(els[0]))
     ws.elastic[0].T = paid_out_tension(ws.top, s.length_of(model, 0), s.length_rate_of(0), s.top_unstretched_rate);
+  bending_loads(model, s, ws);  // couples of the bending springs at the joints
   attachment_loads(model, t, ws);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     body_inertia(model.fluid, model.bodies[b], ws.body[b], t);

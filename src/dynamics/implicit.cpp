@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "towsim/dynamics/bending.hpp"
 #include "towsim/dynamics/elastic.hpp"
 #include "towsim/hydro/loads.hpp"
 #include "towsim/model/table.hpp"
@@ -329,6 +330,7 @@ void local_jacobian(const Model& model, const PhysicalState& s, const Workspace&
     element_local_jacobian(model, current_element(model, ws, k), s.e[k], ws.vG[k], ws.G[k], t, ws.F[k], fb,
                            jac.element_damping[k], jac.element_stiffness[k]);
   }
+  bending_local_stiffness(model, ws, jac.element_stiffness);  // the bending springs' own rotations
   for (auto& C : jac.joint_damping) C.setZero();
   for (const Attachment& a : model.cable.attachments) {
     const auto k = idx(a.joint);
@@ -408,7 +410,62 @@ ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
   dxP.assign(n + 1, Vec3::Zero());
   alpha.assign(n, Vec3::Zero());
   alpha_b.assign(nb, Vec3::Zero());
+  kappa.assign(n + 1, 0.0);
+  for (auto* v : {&Qb, &Rb, &Sb}) v->assign(n + 1, Mat3::Zero());
+  qb.assign(n + 1, Vec3::Zero());
+  coupled.assign(n, 0);
+  PG.assign(n, Eigen::Matrix<double, 2, 3>::Zero());
+  PE.assign(n, Eigen::Matrix<double, 2, 3>::Zero());
+  zr.assign(n, Eigen::Vector2d::Zero());
 }
+
+namespace {
+
+/// E = [t2, -t1] = T J: alpha = E z for beta = alpha x e = T z (alpha normal to e).
+Eigen::Matrix<double, 3, 2> rotation_basis(const Eigen::Matrix<double, 3, 2>& T) {
+  Eigen::Matrix<double, 3, 2> E;
+  E.col(0) = T.col(1);
+  E.col(1) = -T.col(0);
+  return E;
+}
+
+/// A rigid element whose rotation a bending spring couples to a neighbour's
+/// (docs/theory.md §6.3 "Bending in the stage solve"), factor step: from the
+/// part below's response at its bottom joint (K, Qb, Rb, Sb at k+1, spring
+/// kappa_b) and its own modified inertias (Mt' [kg], Ir' [kg m^2]), the
+/// response at its top joint, with kappa_t the spring above it.
+struct CoupledBelow {
+  const Mat3& K;
+  const Mat3& Q;
+  const Mat3& R;
+  const Mat3& S;
+};
+void coupled_element_factor(const Eigen::Matrix<double, 3, 2>& T, double L, const Mat3& Mt, double Ir,
+                            const CoupledBelow& below, double kappa_b, double kappa_t, double hg, std::size_t k,
+                            ImplicitWorkspace& iw) {
+  const Eigen::Matrix<double, 3, 2> E = rotation_basis(T);
+  const double cb = hg * hg * kappa_b, ct = hg * hg * kappa_t;  // the springs in the stage [N m s^2/rad]
+  // The rotation equation D z = r0' - G~ a + ct E^T alpha_above (2x2).
+  const Eigen::Matrix<double, 2, 3> Gt =
+      0.5 * L * T.transpose() * Mt + L * T.transpose() * below.K + cb * E.transpose() * below.R;
+  const Eigen::Matrix2d D = Ir * Eigen::Matrix2d::Identity() + 0.25 * L * L * T.transpose() * Mt * T +
+                            L * L * T.transpose() * below.K * T + L * T.transpose() * below.Q * E +
+                            cb * L * E.transpose() * below.R * T - cb * E.transpose() * below.S * E;
+  const Eigen::Matrix2d Phi = D.inverse();
+  // The force through the top joint: f = (Mt' + K) a + H' z - F + b.
+  const Eigen::Matrix<double, 3, 2> Hp = 0.5 * L * Mt * T + L * below.K * T + below.Q * E;
+  iw.Phi[k] = Phi;
+  iw.H[k] = Hp * Phi;
+  iw.PG[k] = Phi * Gt;
+  iw.PE[k] = Phi * E.transpose();
+  const Mat3 Kn = Mt + below.K - iw.H[k] * Gt;
+  iw.K[k] = 0.5 * (Kn + Kn.transpose());
+  iw.Qb[k] = ct * iw.H[k] * E.transpose();
+  iw.Rb[k] = E * iw.PG[k];
+  iw.Sb[k] = ct * E * iw.PE[k];
+}
+
+}  // namespace
 
 void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
                      ImplicitWorkspace& iw) {
@@ -422,6 +479,14 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
     return joints ? Mat3(hg * jac.joint_damping[k] + hg * hg * jac.joint_stiffness[k]) : Mat3::Zero().eval();
   };
   iw.K[n] = ws.Ma[n] + joint_terms(n);
+  // Bending springs between rigid elements: those elements' rotations are
+  // eliminated together with their neighbours' (coupled_element_factor).
+  bending_stage_couplings(model, ws, iw.kappa);
+  const bool was_coupled = iw.any_coupled;
+  iw.any_coupled = std::any_of(iw.kappa.begin(), iw.kappa.end(), [](double x) { return x > 0; });
+  if (iw.any_coupled || was_coupled)
+    for (std::size_t k = 0; k < n; ++k) iw.coupled[k] = iw.kappa[k] > 0 || iw.kappa[k + 1] > 0;
+  const Mat3 zero = Mat3::Zero();
   // The arrays' data through local pointers (as stage_loads).
   const Mat3 *Mts = ws.Mt.data(), *Cs = jac.element_damping.data();
   const double* Krs = jac.element_stiffness.data();
@@ -466,6 +531,16 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
       const Mat3 Kn = Mdd + S - N * iw.EAinv[k] * N;
       iw.K[k] = 0.5 * (Kn + Kn.transpose());
       iw.K[k] += ws.Ma[k] + joint_terms(k);
+      continue;
+    }
+    if (iw.coupled[k]) {
+      Ts[k] = ws.T[k];
+      const bool body = bi >= 0;  // a body's link is a ball joint: no spring, no coupling
+      const CoupledBelow below{*Kk, body ? zero : iw.Qb[k + 1], body ? zero : iw.Rb[k + 1],
+                               body ? zero : iw.Sb[k + 1]};
+      coupled_element_factor(ws.T[k], L, Mt, element_rot_inertia(el) + hg * hg * Krs[k], below, iw.kappa[k + 1],
+                             iw.kappa[k], hg, k, iw);
+      if (joints) Ks[k] += ws.Ma[k], Ks[k] += joint_terms(k);
       continue;
     }
     const auto& T = Ts[k] = ws.T[k];  // tangent_basis(s.e[k]): the evaluation at s computed it
@@ -582,6 +657,17 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
     }
     if (joints) iw.dvP[k + 1] = dv, iw.dxP[k + 1] = dx;
   }
+  // Bending springs coupling two rigid elements: the off-diagonal terms of
+  // -hg K (hg dw + rot), a couple on each element from its neighbour's turn.
+  for (std::size_t j = 1; j < n && iw.any_coupled; ++j) {
+    if (!(iw.kappa[j] > 0)) continue;
+    auto turn = [&](std::size_t k) {
+      const Vec3 u = hg * rdw[k] + rrot[k];
+      return Vec3(u - u.dot(es[k]) * es[k]);
+    };
+    Moms[j - 1] += hg * iw.kappa[j] * turn(j);
+    Moms[j] += hg * iw.kappa[j] * turn(j - 1);
+  }
   // Joint terms exist only with attachments or a seabed (else Fa stays +0,
   // as constructed, and the bias sweep skips it).
   if (joints)
@@ -619,6 +705,21 @@ void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws,
       iw.Er[k] = 0.5 * iw.F[k] + iw.Fd[k] - *bk;
       iw.b[k] = iw.EG[k] * (iw.EAinv[k] * iw.Er[k]) + *bk - iw.F[k];
       if (joints) iw.b[k] -= iw.Fa[k];
+      continue;
+    }
+    if (iw.coupled[k]) {
+      // Coupled by a bending spring: r0' = E^T Mom + L/2 T^T F - L T^T b_below
+      // + cb E^T q_below; z at zero inputs Phi r0', b = H' Phi r0' - F + b_below.
+      const double L = k == 0 && ws.winch ? ws.top.length : els[k].length;  // current_element
+      const Eigen::Matrix<double, 3, 2> E = rotation_basis(Ts[k]);
+      const double cb = bi >= 0 ? 0.0 : iw.hg * iw.hg * iw.kappa[k + 1];
+      const Vec3 qk = cb > 0 ? iw.qb[k + 1] : Vec3::Zero().eval();
+      const Eigen::Vector2d r0 = E.transpose() * Moms[k] + Ts[k].transpose() * (0.5 * L * Fs[k] - L * *bk) +
+                                 cb * (E.transpose() * qk);
+      iw.zr[k] = Phis[k] * r0;
+      bs[k] = Hs[k] * r0 - Fs[k] + *bk;
+      if (joints) bs[k] -= iw.Fa[k];
+      iw.qb[k] = E * iw.zr[k];
       continue;
     }
     // b = H T^T r0 + b_below - F - Fa, r0 = r0' - L b_below: the part
@@ -667,6 +768,15 @@ void stage_accelerations(const Model& model, const PhysicalState& s, const Works
       iw.zl[k] = e.dot(zd);
       iw.alpha[k] = e.cross(zd) / s.length_of(model, k);
       a += zd;
+    } else if (iw.coupled[k]) {
+      // z = Phi (r0' - G~ a + ct E^T alpha_above), alpha = E z, beta = T z.
+      zls[k] = 0;
+      const double ct = iw.hg * iw.hg * iw.kappa[k];
+      Eigen::Vector2d z = iw.zr[k] - iw.PG[k] * a;
+      if (ct > 0) z += ct * (iw.PE[k] * alphas[k - 1]);
+      const Eigen::Matrix<double, 3, 2>& T = iw.T[k];
+      alphas[k] = z[0] * T.col(1) - z[1] * T.col(0);  // E z
+      a += (k == 0 && ws.winch ? ws.top.length : els[k].length) * (T * z);
     } else {
       zls[k] = 0;
       const Vec3 beta = qs[k] - THs[k] * a;  // T Phi (T^T r0 - (G T)^T a)

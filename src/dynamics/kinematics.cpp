@@ -37,7 +37,7 @@ bool lengths_in_state(const Model& model) {
 Workspace::Workspace(const Model& model) {
   const std::size_t n = model.cable.elements.size();
   // Every entry starts at zero: no evaluation ever reads an unset value.
-  for (auto* v : {&P, &vP, &b, &Fa, &Fs}) v->assign(n + 1, Vec3::Zero());
+  for (auto* v : {&P, &vP, &b, &Fa, &Fs, &bend}) v->assign(n + 1, Vec3::Zero());
   ls.assign(n + 1, 0.0);
   for (auto* v : {&G, &vG, &edot, &F, &Mom, &c}) v->assign(n, Vec3::Zero());
   L.assign(n, 0.0);

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "towsim/dynamics/bending.hpp"
 #include "towsim/version.hpp"
 
 namespace towsim::io {
@@ -488,6 +489,7 @@ void raw_node_values(const Model* model, const Sample& s, std::size_t k, std::ve
   if (model == nullptr) return;
   if (!s.utilisation.empty()) out.push_back(k < s.utilisation.size() ? s.utilisation[k] : nan);
   if (model->seabed) out.push_back(k < s.node_seabed.size() ? s.node_seabed[k].norm() : nan);
+  if (has_bending(*model)) out.push_back(k < s.bending.size() ? s.bending[k] : nan);
 }
 
 }  // namespace
@@ -504,6 +506,7 @@ std::vector<std::string> node_columns(const Model& model) {
                   [](const Section& sec) { return sec.breaking_load > 0; }))
     c.push_back("utilisation");
   if (model.seabed) c.push_back("seabed_force");
+  if (has_bending(model)) c.push_back("bending_moment");
   return c;
 }
 

@@ -26,6 +26,7 @@ struct Resolved {
   Field<double> mass_per_length, diameter, normal_drag, tangential_coef, added_mass, breaking_load;
   Field<std::string> tangential_law;
   Field<double> axial_stiffness, axial_damping;
+  Field<double> bending_stiffness;  // EI [N m^2]
   // Faired cable: the laws' tables (rows {phi [deg], f}), empty with the default laws.
   Field<std::string> normal_law;
   const std::vector<RowSpec>* normal_table = nullptr;
@@ -44,7 +45,7 @@ std::vector<Resolved> resolve(const CableSpec& c) {
   if (c.sections.empty() && c.item_body.empty()) {
     out.push_back({c.where, "cable", c.length, c.elements, c.mass_per_length, c.diameter, c.normal_drag,
                    c.tangential_coef, c.added_mass, c.breaking_load, c.tangential_law, c.axial_stiffness,
-                   c.axial_damping, c.normal_law, &c.normal_table, &c.tangential_table});
+                   c.axial_damping, c.bending_stiffness, c.normal_law, &c.normal_table, &c.tangential_table});
     return out;
   }
   for (std::size_t i = 0; i < c.sections.size(); ++i) {
@@ -62,6 +63,7 @@ std::vector<Resolved> resolve(const CableSpec& c) {
                pick(s.tangential_law, c.tangential_law),
                pick(s.axial_stiffness, c.axial_stiffness),
                pick(s.axial_damping, c.axial_damping),
+               pick(s.bending_stiffness, c.bending_stiffness),
                pick(s.normal_law, c.normal_law),
                s.normal_law.given ? &s.normal_table : &c.normal_table,
                s.tangential_law.given ? &s.tangential_table : &c.tangential_table};
@@ -122,6 +124,7 @@ void check_section(const Resolved& s, Diagnostics& d, bool sectioned) {
   check_positive(s.breaking_load, d);
   check_positive(s.axial_stiffness, d);
   check_non_negative(s.axial_damping, d);
+  check_non_negative(s.bending_stiffness, d);
 }
 
 /// v with `digits` significant digits, rounded down (a bound users can copy) or to nearest.
@@ -309,6 +312,7 @@ void build_chain(const CableSpec& c, const BodySpec& end_body, Model& m) {
         el.axial_stiffness = s.axial_stiffness.value;
         el.axial_damping = s.axial_damping.value;
       }
+      el.bending_stiffness = s.bending_stiffness.value;
       cable.elements.push_back(el);
     }
     ++section;

@@ -176,6 +176,7 @@ void parse_section(MapReader& r, SectionSpec& sec, Diagnostics& d) {
   r.read("added_mass", sec.added_mass);
   r.read("axial_stiffness", sec.axial_stiffness);
   r.read("axial_damping", sec.axial_damping);
+  r.read("bending_stiffness", sec.bending_stiffness);
   r.read("breaking_load", sec.breaking_load);
 }
 
@@ -205,6 +206,7 @@ void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {
   r.read("breaking_load", cable.breaking_load);
   r.read("axial_stiffness", cable.axial_stiffness);
   r.read("axial_damping", cable.axial_damping);
+  r.read("bending_stiffness", cable.bending_stiffness);
   if (const YNode* n = r.get("sections"))
     cable.sections_where = r.where(*n, "sections");  // after the single form's keys
   // Sections top to bottom; an item {body: {...}} is an in-line body.

@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 
+#include "towsim/dynamics/bending.hpp"
 #include "towsim/dynamics/implicit.hpp"
 #include "towsim/hydro/loads.hpp"
 #include "towsim/integrators/rosenbrock.hpp"
@@ -129,11 +130,13 @@ void make_sample(const Model& model, const PhysicalState& s, const Workspace& ws
   // A node: position, velocity, force through it onto the part below, that
   // force along the adjacent element el's axis e (tension pulls the part
   // below back along -e), el's strain and, with breaking loads, the node's
-  // utilisation from el's section; fs: the seabed's force there.
+  // utilisation from el's section; fs: the seabed's force there; M: the
+  // bending spring's moment there.
   const auto& els = model.cable.elements;
   const bool strength = std::any_of(model.cable.sections.begin(), model.cable.sections.end(),
                                     [](const Section& sec) { return sec.breaking_load > 0; });
-  auto node = [&](const Vec3& p, const Vec3& v, const Vec3& f, std::size_t el, const Vec3& fs) {
+  const bool bending = has_bending(model);
+  auto node = [&](const Vec3& p, const Vec3& v, const Vec3& f, std::size_t el, const Vec3& fs, const Vec3& M) {
     out.node_pos.push_back(p);
     out.node_vel.push_back(v);
     out.tension.push_back(f.norm());
@@ -147,9 +150,10 @@ void make_sample(const Model& model, const PhysicalState& s, const Workspace& ws
       out.utilisation.push_back(limit > 0 ? f.norm() / limit : 0.0);
     }
     if (model.seabed) out.node_seabed.push_back(fs);
+    if (bending) out.bending.push_back(M.norm());
   };
   for (auto* v : {&out.node_pos, &out.node_vel, &out.node_seabed}) v->clear();
-  for (auto* v : {&out.tension, &out.axial, &out.strain, &out.utilisation}) v->clear();
+  for (auto* v : {&out.tension, &out.axial, &out.strain, &out.utilisation, &out.bending}) v->clear();
   out.contact_length = 0;
   const std::size_t n = els.size();
   for (std::size_t k = 0; k <= n; ++k) {
@@ -157,11 +161,11 @@ void make_sample(const Model& model, const PhysicalState& s, const Workspace& ws
     const std::size_t above = k == 0 ? 0 : k - 1;
     if (b >= 0 && model.bodies[static_cast<std::size_t>(b)].inline_body) {
       const BodyWork& bw = ws.body[static_cast<std::size_t>(b)];
-      node(bw.Q, bw.vQ, ws.acc.link_force[static_cast<std::size_t>(b)], above, bw.Fs_q);
-      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], k, ws.Fs[k]);
+      node(bw.Q, bw.vQ, ws.acc.link_force[static_cast<std::size_t>(b)], above, bw.Fs_q, Vec3::Zero());
+      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], k, ws.Fs[k], Vec3::Zero());
       out.contact_length += bw.ls_q;
     } else {
-      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], above, ws.Fs[k]);
+      node(ws.P[k], ws.vP[k], ws.acc.joint_force[k], above, ws.Fs[k], ws.bend[k]);
     }
     out.contact_length += ws.ls[k];
   }
@@ -198,6 +202,7 @@ void make_sample(const Model& model, const PhysicalState& s, const Workspace& ws
 double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* element, double* tension) {
   double best = std::numeric_limits<double>::infinity();
   const auto& els = model.cable.elements;
+  const bool bending = has_bending(model);
   for (std::size_t k = 0; k < els.size(); ++k) {
     const Element& el = current_element(model, ws, k);
     const int b = ws.body_at[k + 1];
@@ -218,7 +223,10 @@ double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* el
     eig.computeDirect(P * C * P, Eigen::EigenvaluesOnly);
     const double sn = eig.eigenvalues().maxCoeff() / mn;
     const double sigma = std::max(sn, e.dot(C * e) / el.mass);
-    const double w2 = 12 * T / (mn * el.length) + 0.25 * sigma * sigma;
+    double w2 = 12 * T / (mn * el.length) + 0.25 * sigma * sigma;
+    // Bending springs: the zig-zag mode turns each element about G against
+    // twice its self-stiffness (each joint's angle is twice the turn).
+    if (bending) w2 += 2 * element_bending_stiffness(model, ws, k) / element_rot_inertia(el);
     if (!(w2 > 0)) continue;
     const double h = 2 * std::sqrt(2.0) / std::sqrt(w2);
     if (h < best) {

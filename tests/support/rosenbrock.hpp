@@ -3,8 +3,12 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <complex>
 #include <cstddef>
+#include <numeric>
+#include <vector>
 
 #include "towsim/integrators/system.hpp"
 #include "towsim/model/model.hpp"
@@ -59,6 +63,71 @@ inline Eigen::MatrixXd stage_W(System& sys, std::size_t N, double hg) {
     for (std::size_t i = 0; i < N; ++i) S(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = k[i];
   }
   return (Eigen::MatrixXd::Identity(S.rows(), S.cols()) - S.inverse()) / hg;
+}
+
+/// The elements' tangent coordinates of a flat state y (n elements; the
+/// state layout's e block at 6 and omega block at 6 + 3n): per element two
+/// angles (de = t_a, omega kept normal to the turned e) in columns 2k + a and
+/// two rates in columns 2n + 2k + a of P (flat perturbation per coordinate),
+/// and Q's matching rows (projections of flat rates on t_a).
+inline void element_tangent_maps(const StateVector& y, int n, Eigen::MatrixXd& P, Eigen::MatrixXd& Q) {
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Index ie = 6 + 3 * k, iw = 6 + 3 * n + 3 * k;
+    const Vec3 e(y[ie], y[ie + 1], y[ie + 2]), w(y[iw], y[iw + 1], y[iw + 2]);
+    const auto T = tangent_basis(e);
+    for (int a = 0; a < 2; ++a) {
+      const Vec3 ta = T.col(a);
+      for (int d = 0; d < 3; ++d) {
+        P(ie + d, 2 * k + a) = ta[d];
+        P(iw + d, 2 * k + a) = -w.dot(ta) * e[d];  // omega stays normal to the turned e
+        P(iw + d, 2 * n + 2 * k + a) = ta[d];
+        Q(2 * k + a, ie + d) = ta[d];
+        Q(2 * n + 2 * k + a, iw + d) = ta[d];
+      }
+    }
+  }
+}
+
+/// The dynamics' Jacobian in the reduced coordinates of P and Q (Q df/dy P)
+/// at (y, t), by central differences of step eps along P's columns.
+inline Eigen::MatrixXd reduced_jacobian(System& sys, const StateVector& y, double t, const Eigen::MatrixXd& P,
+                                        const Eigen::MatrixXd& Q, double eps) {
+  const std::size_t N = y.size();
+  Eigen::MatrixXd J(Q.rows(), P.cols());
+  for (Eigen::Index j = 0; j < P.cols(); ++j) {
+    StateVector yp = y, ym = y, fp, fm;
+    for (std::size_t i = 0; i < N; ++i) {
+      yp[i] += eps * P(static_cast<Eigen::Index>(i), j);
+      ym[i] -= eps * P(static_cast<Eigen::Index>(i), j);
+    }
+    sys.derivative(yp, fp, t);
+    sys.derivative(ym, fm, t);
+    Eigen::VectorXd d(static_cast<Eigen::Index>(N));
+    for (std::size_t i = 0; i < N; ++i) d[static_cast<Eigen::Index>(i)] = (fp[i] - fm[i]) / (2 * eps);
+    J.col(j) = Q * d;
+  }
+  return J;
+}
+
+/// How well W captures J's stiffest modes: max |(W - J) v| / |J v| over the
+/// `count` eigenvectors v of J with the largest |lambda|; J's largest |lambda|
+/// and W's in lmax and wmax [1/s].
+inline double stiff_mode_mismatch(const Eigen::MatrixXd& J, const Eigen::MatrixXd& W, int count, double& lmax,
+                                  double& wmax) {
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(J);
+  const Eigen::VectorXcd& lam = es.eigenvalues();
+  std::vector<int> order(static_cast<std::size_t>(J.rows()));
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(lam[a]) > std::abs(lam[b]); });
+  const Eigen::MatrixXcd Jc = J.cast<std::complex<double>>(), Wc = W.cast<std::complex<double>>();
+  double worst = 0;
+  for (int i = 0; i < count; ++i) {
+    const Eigen::VectorXcd v = es.eigenvectors().col(order[static_cast<std::size_t>(i)]);
+    worst = std::max(worst, (Wc * v - Jc * v).norm() / (Jc * v).norm());
+  }
+  lmax = std::abs(lam[order[0]]);
+  wmax = Eigen::EigenSolver<Eigen::MatrixXd>(W, false).eigenvalues().cwiseAbs().maxCoeff();
+  return worst;
 }
 
 }  // namespace towsim::testing

@@ -71,21 +71,7 @@ TEST_P(RosenbrockJacobian, StageSolveMatchesFiniteDifferencesOnTheStiffModes) {
   const std::size_t ob = 6 + 6 * static_cast<std::size_t>(n);  // the body's block
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(N), M);
   Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(M, static_cast<Eigen::Index>(N));
-  for (int k = 0; k < n; ++k) {
-    const Eigen::Index ie = 6 + 3 * k, iw = 6 + 3 * n + 3 * k;
-    const Vec3 e(y[ie], y[ie + 1], y[ie + 2]), w(y[iw], y[iw + 1], y[iw + 2]);
-    const auto T = tangent_basis(e);
-    for (int a = 0; a < 2; ++a) {
-      const Vec3 ta = T.col(a);
-      for (int d = 0; d < 3; ++d) {
-        P(ie + d, 2 * k + a) = ta[d];
-        P(iw + d, 2 * k + a) = -w.dot(ta) * e[d];  // omega stays normal to the turned e
-        P(iw + d, 2 * n + 2 * k + a) = ta[d];
-        Q(2 * k + a, ie + d) = ta[d];
-        Q(2 * n + 2 * k + a, iw + d) = ta[d];
-      }
-    }
-  }
+  testing::element_tangent_maps(y, n, P, Q);
   const Quat q(y[ob], y[ob + 1], y[ob + 2], y[ob + 3]);
   for (int j = 0; j < 3; ++j) {
     const Vec3 u = 0.5 * Vec3::Unit(j);
@@ -102,37 +88,12 @@ TEST_P(RosenbrockJacobian, StageSolveMatchesFiniteDifferencesOnTheStiffModes) {
   }
   // Central differences, step 1e-6 rad (rad/s): truncation ~1e-12 relative,
   // round-off ~1e-10 relative: far below the bounds.
-  Eigen::MatrixXd J(M, M);
-  const double eps = 1e-6;
-  for (int j = 0; j < M; ++j) {
-    StateVector yp = y, ym = y, fp, fm;
-    for (std::size_t i = 0; i < N; ++i) {
-      yp[i] += eps * P(static_cast<Eigen::Index>(i), j);
-      ym[i] -= eps * P(static_cast<Eigen::Index>(i), j);
-    }
-    sys->derivative(yp, fp, t);
-    sys->derivative(ym, fm, t);
-    Eigen::VectorXd d(static_cast<Eigen::Index>(N));
-    for (std::size_t i = 0; i < N; ++i) d[static_cast<Eigen::Index>(i)] = (fp[i] - fm[i]) / (2 * eps);
-    J.col(j) = Q * d;
-  }
+  const Eigen::MatrixXd J = testing::reduced_jacobian(*sys, y, t, P, Q, 1e-6);
   const Eigen::MatrixXd Wr = Q * W * P;
 
   // The stiffest modes of J (the rocking of the top elements): W on them.
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(J);
-  const Eigen::VectorXcd& lam = es.eigenvalues();
-  std::vector<int> order(static_cast<std::size_t>(M));
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(lam[a]) > std::abs(lam[b]); });
-  const Eigen::MatrixXcd Jc = J.cast<std::complex<double>>(), Wc = Wr.cast<std::complex<double>>();
-  double worst = 0;
-  for (int i = 0; i < 16; ++i) {
-    const Eigen::VectorXcd v = es.eigenvectors().col(order[static_cast<std::size_t>(i)]);
-    worst = std::max(worst, (Wc * v - Jc * v).norm() / (Jc * v).norm());
-  }
-  const double lmax = std::abs(lam[order[0]]);
-  const Eigen::VectorXcd lw = Eigen::EigenSolver<Eigen::MatrixXd>(Wr, false).eigenvalues();
-  const double wmax = lw.cwiseAbs().maxCoeff();
+  double lmax = 0, wmax = 0;
+  const double worst = testing::stiff_mode_mismatch(J, Wr, 16, lmax, wmax);
   std::cout << "[measured] " << c.name << ": stiffest |lambda| J " << lmax << " /s, W " << wmax
             << " /s; max |(W - J) v| / |J v| over the 16 stiffest modes " << worst << "\n";
   EXPECT_LT(worst, c.bound);

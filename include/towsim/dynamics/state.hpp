@@ -117,6 +117,10 @@ struct Workspace {
   // Loads on each element at G_k, added-mass acceleration terms excluded
   std::vector<Vec3> F, Mom;  // force [N] and moment about G_k [N m], R_g
   std::vector<Mat3> Mt;      // translational inertia m I + ma (I - ee^T) [kg]
+  // Bending springs (bending_loads; zero without bending stiffness), at P_k
+  // (index k = 0..n): the moment the joint's spring exerts on the element
+  // above it; the element below takes its opposite [N m, R_g].
+  std::vector<Vec3> bend;
   // Attachments: inertia and known force at their joint (index k = 0..n)
   std::vector<Mat3> Ma;  // summed mass + added mass [kg]
   std::vector<Vec3> Fa;  // summed loads [N, R_g]

@@ -49,6 +49,7 @@ struct Element {
   double friction_factor;      // Pode: 1/2 rho Cd f D L; Skin: 1/2 rho pi D L Ct [kg/m]
   double axial_stiffness = 0;  // EA [N]; 0 = inextensible (rigid element, the paper's model)
   double axial_damping = 0;    // c_a [N s]: adds c_a * strain rate to the tension while taut
+  double bending_stiffness = 0;  // EI [N m^2]; 0 = no bending stiffness at its joints (the paper's model)
 };
 
 /// A point load lumped at a cable joint: clump weight, float, sensor.

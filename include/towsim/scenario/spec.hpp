@@ -74,6 +74,7 @@ struct SectionSpec {
   Field<double> added_mass;               // Ca [-]
   Field<double> axial_stiffness;          // EA [N]; absent = inextensible
   Field<double> axial_damping;            // c_a [N s]: tension c_a * strain rate while taut
+  Field<double> bending_stiffness;        // EI [N m^2]; absent or 0 = none
   Field<double> breaking_load;            // [N], for utilisation
 };
 
@@ -108,6 +109,7 @@ struct CableSpec {
   Field<double> breaking_load;                         // [N] (single-section form)
   Field<double> axial_stiffness;                       // EA [N]; absent = inextensible (sections inherit it)
   Field<double> axial_damping{0.0};                    // c_a [N s] (sections inherit it)
+  Field<double> bending_stiffness{0.0};                // EI [N m^2]; 0 = none (sections inherit it)
   // cable.sections: items in order, each a section or an in-line body
   // (index into `inline_bodies`); empty = the single-section form above.
   Where sections_where;

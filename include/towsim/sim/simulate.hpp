@@ -50,6 +50,8 @@ struct Sample {
                                     // given); empty when no section gives a breaking load
   std::vector<Vec3> node_seabed;    // per node: the seabed's contact force on the cable there [N, R_g];
                                     // empty without a seabed
+  std::vector<double> bending;      // per node: |bending moment| of the joint's spring [N m] (0 at the
+                                    // ends and at bodies); empty without bending stiffness
   double contact_length = 0;        // cable length in contact with the seabed [m]
   double seabed_normal = 0;         // sum of |normal force| of the seabed on the cable and the bodies [N]
   double seabed_friction = 0;       // sum of |friction force| [N]
