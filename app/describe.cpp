@@ -93,8 +93,8 @@ void describe_elements(const Cable& c, const Section* sec, const Element& e, int
   // Bending: the joint spring between two such elements (only when given).
   if (e.bending_stiffness > 0)
     line(out, "bending stiffness",
-         "EI = " + fmt_num(e.bending_stiffness) + " N m^2; joint spring EI/L = " +
-             fmt_num(e.bending_stiffness / e.length) + " N m/rad");
+         "EI = " + fmt_num(e.bending_stiffness) +
+             " N m^2; joint spring EI/L = " + fmt_num(e.bending_stiffness / e.length) + " N m/rad");
 }
 
 /// Arc length from the tow point to joint k [m].

@@ -446,8 +446,8 @@ void coupled_element_factor(const Eigen::Matrix<double, 3, 2>& T, double L, cons
   const Eigen::Matrix<double, 3, 2> E = rotation_basis(T);
   const double cb = hg * hg * kappa_b, ct = hg * hg * kappa_t;  // the springs in the stage [N m s^2/rad]
   // The rotation equation D z = r0' - G~ a + ct E^T alpha_above (2x2).
-  const Eigen::Matrix<double, 2, 3> Gt =
-      0.5 * L * T.transpose() * Mt + L * T.transpose() * below.K + cb * E.transpose() * below.R;
+  const Eigen::Matrix<double, 2, 3> Gt = 0.5 * L * T.transpose() * Mt + L * T.transpose() * below.K +
+                                         cb * E.transpose() * below.R;
   const Eigen::Matrix2d D = Ir * Eigen::Matrix2d::Identity() + 0.25 * L * L * T.transpose() * Mt * T +
                             L * L * T.transpose() * below.K * T + L * T.transpose() * below.Q * E +
                             cb * L * E.transpose() * below.R * T - cb * E.transpose() * below.S * E;
@@ -536,8 +536,7 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
     if (iw.coupled[k]) {
       Ts[k] = ws.T[k];
       const bool body = bi >= 0;  // a body's link is a ball joint: no spring, no coupling
-      const CoupledBelow below{*Kk, body ? zero : iw.Qb[k + 1], body ? zero : iw.Rb[k + 1],
-                               body ? zero : iw.Sb[k + 1]};
+      const CoupledBelow below{*Kk, body ? zero : iw.Qb[k + 1], body ? zero : iw.Rb[k + 1], body ? zero : iw.Sb[k + 1]};
       coupled_element_factor(ws.T[k], L, Mt, element_rot_inertia(el) + hg * hg * Krs[k], below, iw.kappa[k + 1],
                              iw.kappa[k], hg, k, iw);
       if (joints) Ks[k] += ws.Ma[k], Ks[k] += joint_terms(k);

@@ -27,12 +27,12 @@
 namespace towsim {
 namespace {
 
-using testing::CableSpec;
 using testing::cable_model;
+using testing::CableSpec;
 
-constexpr double kMass = 2.0;    // beam mass per length [kg/m]
-constexpr double kLength = 10;   // [m]
-constexpr double kEI = 50;       // bending stiffness [N m^2]
+constexpr double kMass = 2.0;   // beam mass per length [kg/m]
+constexpr double kLength = 10;  // [m]
+constexpr double kEI = 50;      // bending stiffness [N m^2]
 
 /// A uniform beam of n elements in vacuum without gravity, pinned at the
 /// (fixed) tow point.

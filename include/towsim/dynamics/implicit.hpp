@@ -107,18 +107,18 @@ struct ImplicitWorkspace {
   // (0 where it does not couple two rigid elements) and the part below's
   // response to the rotation alpha_{j-1} of the element above:
   //   f_j = K_j a_j + Qb_j alpha_{j-1} + b_j,  alpha_j = -Rb_j a_j + Sb_j alpha_{j-1} + qb_j.
-  std::vector<double> kappa;      // [N m/rad]
+  std::vector<double> kappa;  // [N m/rad]
   // In the stage solve's units (a [m/s], alpha [rad/s], f [N s]):
-  std::vector<Mat3> Qb;           // the force's slope on the rotation above [kg m]
-  std::vector<Mat3> Rb;           // alpha's slope on the joint's velocity increment [1/m]
-  std::vector<Mat3> Sb;           // alpha's slope on the rotation above [-]
-  std::vector<Vec3> qb;           // alpha at zero inputs [rad/s]
-  std::vector<char> coupled;      // per element: its rotation is coupled to a neighbour's [-]
-  bool any_coupled = false;       // some kappa > 0 (else the coupling passes are skipped)
+  std::vector<Mat3> Qb;                         // the force's slope on the rotation above [kg m]
+  std::vector<Mat3> Rb;                         // alpha's slope on the joint's velocity increment [1/m]
+  std::vector<Mat3> Sb;                         // alpha's slope on the rotation above [-]
+  std::vector<Vec3> qb;                         // alpha at zero inputs [rad/s]
+  std::vector<char> coupled;                    // per element: its rotation is coupled to a neighbour's [-]
+  bool any_coupled = false;                     // some kappa > 0 (else the coupling passes are skipped)
   std::vector<Eigen::Matrix<double, 2, 3>> PG;  // per coupled element: Phi G~ [1/m]
   std::vector<Eigen::Matrix<double, 2, 3>> PE;  // per coupled element: Phi E^T [1/(kg m^2)]
   std::vector<Eigen::Vector2d> zr;              // per coupled element: Phi r0' (bias sweep) [rad/s]
-  double hg = -1;                              // h gamma of the factorisation [s]; < 0: none
+  double hg = -1;                               // h gamma of the factorisation [s]; < 0: none
   // Right-hand-side sweeps (implicit_stage_solve):
   std::vector<Eigen::Vector2d> Tr0;  // T^T r_0 [N m]
   std::vector<Vec3> q;               // T Phi T^T r_0, beta at zero joint acceleration [rad/s]

@@ -37,18 +37,18 @@ enum class AddedMassModel {
 /// One straight cable element i (1 = top): rigid and inextensible (the
 /// paper's), or elastic when axial_stiffness > 0 (docs/theory.md §5.4).
 struct Element {
-  int section = 0;             // index of the cable section it belongs to (0 = top) [-]
-  double length;               // L_i, joint to joint [m] (the paper's 2l)
-  double mass;                 // m_i in air [kg] (the paper's 3m)
-  double diameter;             // D_i, hydrodynamic and displacement diameter [m]
-  double inertia;              // I_i = m_i L_i^2 / 12 about G_i, perpendicular to e_i [kg m^2]
-  double added_mass;           // ma_i = Ca rho (pi D^2/4) L_i, normal to e_i [kg]
-  double added_inertia;        // Ia_i = ma_i L_i^2 / 12 [kg m^2]
-  double weight;               // apparent weight (m_i - rho A_i L_i) g, along -z [N]
-  double drag_factor;          // 1/2 rho Cd D L, normal drag: F = -k |u_n| u_n [kg/m]
-  double friction_factor;      // Pode: 1/2 rho Cd f D L; Skin: 1/2 rho pi D L Ct [kg/m]
-  double axial_stiffness = 0;  // EA [N]; 0 = inextensible (rigid element, the paper's model)
-  double axial_damping = 0;    // c_a [N s]: adds c_a * strain rate to the tension while taut
+  int section = 0;               // index of the cable section it belongs to (0 = top) [-]
+  double length;                 // L_i, joint to joint [m] (the paper's 2l)
+  double mass;                   // m_i in air [kg] (the paper's 3m)
+  double diameter;               // D_i, hydrodynamic and displacement diameter [m]
+  double inertia;                // I_i = m_i L_i^2 / 12 about G_i, perpendicular to e_i [kg m^2]
+  double added_mass;             // ma_i = Ca rho (pi D^2/4) L_i, normal to e_i [kg]
+  double added_inertia;          // Ia_i = ma_i L_i^2 / 12 [kg m^2]
+  double weight;                 // apparent weight (m_i - rho A_i L_i) g, along -z [N]
+  double drag_factor;            // 1/2 rho Cd D L, normal drag: F = -k |u_n| u_n [kg/m]
+  double friction_factor;        // Pode: 1/2 rho Cd f D L; Skin: 1/2 rho pi D L Ct [kg/m]
+  double axial_stiffness = 0;    // EA [N]; 0 = inextensible (rigid element, the paper's model)
+  double axial_damping = 0;      // c_a [N s]: adds c_a * strain rate to the tension while taut
   double bending_stiffness = 0;  // EI [N m^2]; 0 = no bending stiffness at its joints (the paper's model)
 };
 
