@@ -1,5 +1,5 @@
 // The worker thread of simulation.threads (docs/performance.md "Concurrent
-// step-end evaluations (h-pareval)").
+// step-end evaluations").
 //
 //   worker_round_trip        start() + wait() of an empty job: the hand-off's
 //                            latency (both sides spin first, then block)
@@ -11,7 +11,7 @@
 //                            fork = 0 serial, 1 with the worker as its Fork
 //                            (half of the elements' loads on it from
 //                            kSplitLoadsElements elements; docs/performance.md
-//                            "Loads on two threads (h-loadsplit)")
+//                            "Loads on two threads")
 #include <benchmark/benchmark.h>
 
 #include "models.hpp"   // tests/support

@@ -1,5 +1,5 @@
 // The integrator's helper thread: hand-off by two counters (docs/performance.md
-// "Concurrent step-end evaluations (h-pareval)").
+// "Concurrent step-end evaluations").
 #include "towsim/integrators/worker.hpp"
 
 #include <chrono>

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "statics_internal.hpp"
+#include "towsim/dynamics/bending.hpp"
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/hydro/loads.hpp"
 #include "towsim/integrators/rosenbrock.hpp"
@@ -684,7 +685,9 @@ void solve_rigid(SteadyProblem& p, const volatile int* stop_flag, StaticsResult&
   const auto good = [&p, floor](const Eigen::VectorXd& res) { return good_residual(p, floor, res); };
   // Newton-Krylov first (O(n) per product) with cable on the bottom: above
   // the dense solve's limit, and from the relaxation above kPolishLimit.
-  if (!out.interrupted && p.model.seabed && !good(r) && (N > kDenseLimit || (!p.sweeps && N > kPolishLimit))) {
+  // Bending springs likewise: the sweeps balance each element without them.
+  const bool coupled = p.model.seabed.has_value() || has_bending(p.model);
+  if (!out.interrupted && coupled && !good(r) && (N > kDenseLimit || (!p.sweeps && N > kPolishLimit))) {
     newton_krylov(p, floor, stop_flag, out.iterations);
     r = p.residual(zero);
   }

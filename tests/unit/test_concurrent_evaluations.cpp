@@ -1,8 +1,8 @@
 // simulation.threads (docs/performance.md "Concurrent step-end evaluations
-// (h-pareval)"): the rosenbrock step's two final evaluations on two threads
+//"): the rosenbrock step's two final evaluations on two threads
 // give the same run, bit for bit, as on one; the worker hands exceptions
 // back; the key's checks and its auto rule. The elements' loads split
-// between the worker and the caller (compute_loads with a Fork, h-loadsplit)
+// between the worker and the caller (compute_loads with a Fork)
 // give the same loads and results, evaluation by evaluation and run by run.
 //
 // Exact comparisons (EXPECT_EQ on doubles) are right here: with a worker the
@@ -370,7 +370,7 @@ TEST_F(ThreadsKey, ParsedAndChecked) {
   EXPECT_EQ(s.diags.str(), "--set:1:20: simulation.threads: expected an integer >= 1 or auto (got '-2')\n");
 }
 
-// ---- Loads split between the worker and the caller (h-loadsplit) ---------
+// ---- Loads split between the worker and the caller ---------
 
 namespace {
 

@@ -47,7 +47,7 @@ void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& d
 void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws, Fork* fork = nullptr);
 
 /// Elements from which compute_loads hands half of them to its fork [-]
-/// (docs/performance.md "Loads on two threads (h-loadsplit)"): below, the
+/// (docs/performance.md "Loads on two threads"): below, the
 /// hand-off costs about what the half saves.
 constexpr std::size_t kSplitLoadsElements = 200;
 

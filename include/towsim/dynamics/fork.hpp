@@ -1,5 +1,5 @@
 // Two independent parts of one evaluation, possibly run at the same time
-// (docs/performance.md "Loads on two threads (h-loadsplit)").
+// (docs/performance.md "Loads on two threads").
 #pragma once
 
 namespace towsim {

@@ -148,8 +148,8 @@ class System {
 std::unique_ptr<System> make_system(const Model& model);
 
 /// Cable elements from which simulation.threads: auto uses a worker thread
-/// (docs/performance.md "Concurrent step-end evaluations (h-pareval)", "Loads
-/// on two threads (h-loadsplit)": with the loads split, 2 threads won 13 % at
+/// (docs/performance.md "Concurrent step-end evaluations", "Loads
+/// on two threads": with the loads split, 2 threads won 13 % at
 /// 300 elements and tied at 200).
 constexpr int kAutoThreadsElements = 300;  // [-]
 /// Stalled waits for the worker (Worker::stalls) after which a system runs

@@ -1,5 +1,5 @@
 // A persistent helper thread that runs one job at a time for the integrator
-// (docs/performance.md "Concurrent step-end evaluations (h-pareval)").
+// (docs/performance.md "Concurrent step-end evaluations").
 #pragma once
 
 #include <atomic>
