@@ -485,7 +485,7 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
   const bool was_coupled = iw.any_coupled;
   iw.any_coupled = std::any_of(iw.kappa.begin(), iw.kappa.end(), [](double x) { return x > 0; });
   if (iw.any_coupled || was_coupled)
-    for (std::size_t k = 0; k < n; ++k) iw.coupled[k] = iw.kappa[k] > 0 || iw.kappa[k + 1] > 0;
+    for (std::size_t k = 0; k < n; ++k) iw.coupled[k] = static_cast<char>(iw.kappa[k] > 0 || iw.kappa[k + 1] > 0);
   const Mat3 zero = Mat3::Zero();
   // The arrays' data through local pointers (as stage_loads).
   const Mat3 *Mts = ws.Mt.data(), *Cs = jac.element_damping.data();

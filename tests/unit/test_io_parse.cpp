@@ -194,7 +194,7 @@ TEST_F(ScenarioFile, SeveralErrorsAtOnce) {
                 at("5:13: cable.diameter: must be > 0 (got -0.01)") +
                 at("6:3: cable.colour: unknown key (expected one of: length, elements, mass_per_length, diameter, "
                    "normal_drag, tangential_drag, added_mass, added_mass_model, sign_smoothing_speed, breaking_load, "
-                   "axial_stiffness, axial_damping, sections, attachments)") +
+                   "axial_stiffness, axial_damping, bending_stiffness, sections, attachments)") +
                 at("8:13: simulation.duration: must be > 0 (got 0)") +
                 at("9:15: simulation.integrator: expected one of rk4, dopri5, cash_karp54, rosenbrock (got 'rk5'; did "
                    "you mean "
