@@ -104,6 +104,21 @@ TEST_F(Refusal, TooManyElements) {
   EXPECT_EQ(s.diags.str(), at("3:13: cable.elements: must be <= 100000 (got 1000000000000)"));
 }
 
+// An empty section list was a cable of no element (a crash in check, statics
+// and run); length and elements beside sections were silently ignored.
+TEST_F(Refusal, EmptySectionListAndSingleFormKeysBesideSections) {
+  const auto empty = load("cable: {sections: [], mass_per_length: 1.5, diameter: 0.02}\nsimulation: {duration: 1}\n");
+  EXPECT_EQ(empty.diags.str(),
+            at("1:19: cable.sections: the list is empty (give at least one section, or leave sections out)"));
+  const auto beside = load(
+      "cable:\n  length: 100\n  elements: 5\n  mass_per_length: 1.5\n  diameter: 0.019\n  sections:\n"
+      "    - {length: 60, elements: 6}\n" +
+      kSim);
+  EXPECT_EQ(beside.diags.str(),
+            at("2:11: cable.length: not used with cable.sections (each section gives its own)") +
+                at("3:13: cable.elements: not used with cable.sections (each section gives its own)"));
+}
+
 TEST_F(Refusal, BodyMassesAndSizesMustBePositive) {
   const auto s = load(kCable + kSim +
                       "body:\n  mass: -3\n  inertia: [1, 1, 1]\n  link_point: [0, 0, 0]\n  volume: -1\n"
@@ -346,6 +361,7 @@ TEST_F(Refusal, ProgramExits2AndWritesNothingForEachClass) {
       kCable + kSim + "tow:\n  motion:\n    - {type: turn, radius: 5}\n",                              // turn speed
       "cable: [1, 2\n",                                                                                // YAML syntax
       kCable + kSim + "tow: {mode: force, force: [1, 0, 0]}\ninitial: steady\n",  // between sections
+      "cable: {sections: [], mass_per_length: 1.5, diameter: 0.02}\n" + kSim,     // no section
   };
   for (std::size_t i = 0; i < bad.size(); ++i) {
     const std::string scen = write(bad[i], "bad" + std::to_string(i) + ".yaml");
