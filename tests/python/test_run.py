@@ -109,6 +109,21 @@ def test_scenario_errors_carry_the_cli_messages(tmp_path):
         towsim.run(42)
 
 
+def test_scenario_errors_quoting_other_encodings_and_empty_sections(tmp_path):
+    # A message quoting a byte that is not UTF-8 (once UnicodeDecodeError): U+FFFD in its place.
+    bad = tmp_path / "b.yaml"
+    bad.write_bytes(b'name: "\\\xff"\n')
+    with pytest.raises(towsim.ScenarioError) as e:
+        towsim.run(str(bad))
+    assert e.value.errors[0].startswith(f"{bad}:1:")
+    assert "\ufffd" in str(e.value)
+    # An empty section list (once a crash of the interpreter) is a ScenarioError.
+    with pytest.raises(towsim.ScenarioError) as e:
+        towsim.run("cable: {sections: [], mass_per_length: 1.5, diameter: 0.02}\nsimulation: {duration: 1}\n")
+    assert str(e.value) == ("<string>:1:19: cable.sections: the list is empty "
+                            "(give at least one section, or leave sections out)")
+
+
 def test_numerical_failure_raises_with_the_partial_result(tmp_path):
     path = tmp_path / "unstable.yaml"
     path.write_text(UNSTABLE)
