@@ -278,13 +278,32 @@ double utilisation(const Model& model, const Sample& s) {
 
 void remove_run_outputs(const std::string& dir) {
   namespace fs = std::filesystem;
-  for (const char* name : {"timeseries.csv", "nodes.csv", "summary.json", "report.html", "plots"}) {
+  // Only regular files, never what else may bear a name of towsim's (a
+  // user's folder called summary.json): that is refused, left as it is.
+  const auto remove_file = [](const fs::path& p) {
     std::error_code ec;
-    fs::remove_all(fs::path(dir) / name, ec);
-    if (ec)
-      throw std::runtime_error("cannot remove the previous run's " + (fs::path(dir) / name).string() + ": " +
-                               ec.message());
-  }
+    const fs::file_status st = fs::symlink_status(p, ec);
+    if (st.type() == fs::file_type::not_found) return;
+    if (!ec && st.type() != fs::file_type::regular)
+      throw std::runtime_error(p.string() + " is not a file of towsim's (" +
+                               (st.type() == fs::file_type::directory ? "a directory" : "not a regular file") +
+                               "): move it away or choose another output directory");
+    if (!ec) fs::remove(p, ec);
+    if (ec) throw std::runtime_error("cannot remove the previous run's " + p.string() + ": " + ec.message());
+  };
+  for (const char* name :
+       {"timeseries.csv", "nodes.csv", "summary.json", "summary.json.part", "spectra.csv", "report.html"})
+    remove_file(fs::path(dir) / name);
+  // plots/ (towsim plot's folder): its regular files, then the folder if that empties it.
+  const fs::path plots = fs::path(dir) / "plots";
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(plots, ec))) return;
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(plots, ec))
+    if (e.is_regular_file() && !e.is_symlink()) files.push_back(e.path());
+  if (ec) throw std::runtime_error("cannot read the previous run's " + plots.string() + ": " + ec.message());
+  for (const fs::path& f : files) remove_file(f);
+  if (fs::is_empty(plots, ec)) fs::remove(plots, ec);
 }
 
 void Extreme::max(double v, double t) {

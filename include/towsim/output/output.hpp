@@ -137,9 +137,11 @@ double layback(const Model& model, const Sample& s);
 /// section gives a breaking load) [-].
 double utilisation(const Model& model, const Sample& s);
 
-/// Remove what towsim writes into an output directory (timeseries.csv,
-/// nodes.csv, summary.json, plots/, report.html) and nothing else, so that a
-/// reused directory keeps no stale file. Throws std::runtime_error on failure.
+/// Remove what towsim writes into an output directory (the regular files
+/// timeseries.csv, nodes.csv, summary.json, spectra.csv, report.html and those
+/// in plots/) and nothing else, so that a reused directory keeps no stale
+/// file. Throws std::runtime_error on failure, and when one of those names is
+/// something else (a directory, a link), which it leaves alone.
 void remove_run_outputs(const std::string& dir);
 
 /// A sink that keeps what summary.json needs: the extremes, the number of
