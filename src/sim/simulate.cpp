@@ -93,6 +93,32 @@ void check_stall(const Model& model, const Workspace& ws, double t, RunStats& st
   }
 }
 
+/// The first output time the cable (a joint below the tow point: a vessel's
+/// tow point may stand above the water) or a body is above the mean water
+/// surface z = 0: a warning, once per part. The water's loads act there as
+/// under water; such results are not physical (docs/theory.md §3).
+void check_surface(const Model& model, const Sample& s, RunStats& stats) {
+  const auto warn = [&stats, &s](const std::string& who, const std::string& where, double z) {
+    if (std::any_of(stats.warnings.begin(), stats.warnings.end(),
+                    [&](const std::string& w) { return w.rfind(who + " rose above", 0) == 0; }))
+      return;
+    std::ostringstream os;
+    os << who << " rose above the water surface at t = " << s.t << " s (" << where << "z = " << z
+       << " m): the water's loads (buoyancy, drag, added mass) still act there, so results above z = 0 are not "
+          "physical";
+    stats.warnings.push_back(os.str());
+  };
+  for (std::size_t k = 1; k < s.node_pos.size(); ++k)
+    if (s.node_pos[k].z() > 0) {
+      warn("the cable", "joint " + std::to_string(k) + " at ", s.node_pos[k].z());
+      break;
+    }
+  for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b)
+    if (s.bodies[b].pos.z() > 0)
+      warn(model.bodies[b].inline_body ? "body " + model.bodies[b].name : std::string("the body"), "",
+           s.bodies[b].pos.z());
+}
+
 /// Output sample of state y at time t into `out` (its storage reused);
 /// tracks the element length drift.
 void sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats, Sample& out,
@@ -101,6 +127,7 @@ void sample_of(const Model& model, System& sys, const StateVector& y, double t, 
   if (err) *err = check_rk4_step(model, ws, t, stats);
   check_stall(model, ws, t, stats);
   make_sample(model, sys.physical_view(y), ws, t, out);
+  check_surface(model, out, stats);
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
     const int b = ws.body_at[k + 1];
     const Vec3& bottom = b >= 0 ? ws.body[static_cast<std::size_t>(b)].Q : ws.P[k + 1];
