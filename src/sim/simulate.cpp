@@ -439,6 +439,14 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   RunStats stats;
   stats.integrator = integrator_key(model.sim.integrator);
   stats.threads = evaluation_threads(model);
+  // A loose tolerance passes large errors as "ok" (dopri5 at 0.1: a peak tension 6.5 times the converged one).
+  constexpr double kLooseTolerance = 1e-2;  // [-]
+  if (model.sim.integrator != Integrator::RK4 && model.sim.tolerance > kLooseTolerance) {
+    std::ostringstream os;
+    os << "simulation.tolerance " << model.sim.tolerance << " is loose (above " << kLooseTolerance
+       << "): the results may be far from converged; check them at a tolerance 10 times smaller";
+    stats.warnings.push_back(os.str());
+  }
   const auto wall0 = std::chrono::steady_clock::now();
   // A steady start can fail or be interrupted: the run then ends before t = 0.
   PhysicalState s0;

@@ -200,3 +200,22 @@ TEST_F(Cli, CableOrBodyAboveTheSurfaceIsWarned) {
   EXPECT_EQ(f.out.find(prefix, at + 1), std::string::npos) << "warned once";
   EXPECT_NE(f.out.find("towsim: warning: the cable rose above the water surface at t = "), std::string::npos);
 }
+
+// A loose tolerance passes large errors as "ok": above 1e-2 it is warned about.
+TEST_F(Cli, LooseToleranceIsWarned) {
+  const std::string w =
+      "simulation.tolerance 0.1 is loose (above 0.01): the results may be far from converged; check them at a "
+      "tolerance 10 times smaller";
+  for (const char* integrator : {"dopri5", "rosenbrock"}) {
+    const fs::path out = dir_ / integrator;
+    const CliResult r = run_towsim("run --example cable-tow --set simulation.duration=1 --set simulation.integrator=" +
+                                   std::string(integrator) + " --set simulation.tolerance=0.1 --out " + quoted(out));
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("towsim: warning: " + w + "\n"), std::string::npos) << r.out;
+    EXPECT_NE(towsim::testing::slurp(out / "summary.json").find("\"" + w + "\""), std::string::npos);
+  }
+  const CliResult tight = run_towsim(
+      "run --example cable-tow --set simulation.duration=1 --set simulation.tolerance=0.01 --out " +
+      quoted(dir_ / "tight"));
+  EXPECT_EQ(tight.out.find("is loose"), std::string::npos) << tight.out;
+}
