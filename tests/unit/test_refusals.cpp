@@ -119,6 +119,28 @@ TEST_F(Refusal, EmptySectionListAndSingleFormKeysBesideSections) {
                 at("3:13: cable.elements: not used with cable.sections (each section gives its own)"));
 }
 
+// A second YAML document was silently ignored (only the first one ran).
+TEST_F(Refusal, SecondYamlDocument) {
+  const auto s = load(kCable + kSim + "---\nfoo: 1\n");
+  EXPECT_EQ(s.diags.str(), at("9:1: (yaml): a second YAML document (after ---): a scenario is one document"));
+  const auto trailing = load(kCable + kSim + "---\n");  // an empty one after: nothing lost
+  EXPECT_TRUE(trailing.ok()) << trailing.diags.str();
+}
+
+// Not a scenario file: a directory (once "the scenario is empty"), a device
+// without end (once read until memory ran out), a file beyond 4 MiB.
+TEST_F(Refusal, ScenarioPathNotARegularFileOrTooLarge) {
+  const auto dir = load_scenario_file(dir_.string(), {});
+  EXPECT_EQ(dir.diags.str(), dir_.string() + ":0:0: (file): is a directory, not a scenario file\n");
+  const std::string too_large =
+      ":0:0: (file): larger than 4 MiB (give long tables, such as tracks and vessel "
+      "motions, as CSV files)\n";
+  const auto zero = load_scenario_file("/dev/zero", {});
+  EXPECT_EQ(zero.diags.str(), "/dev/zero" + too_large);
+  const std::string big = write(kCable + kSim + "description: \"" + std::string(std::size_t{4} << 20, 'x') + "\"\n");
+  EXPECT_EQ(load_scenario_file(big, {}).diags.str(), big + too_large);
+}
+
 TEST_F(Refusal, BodyMassesAndSizesMustBePositive) {
   const auto s = load(kCable + kSim +
                       "body:\n  mass: -3\n  inertia: [1, 1, 1]\n  link_point: [0, 0, 0]\n  volume: -1\n"
