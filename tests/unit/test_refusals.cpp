@@ -141,6 +141,13 @@ TEST_F(Refusal, ScenarioPathNotARegularFileOrTooLarge) {
   EXPECT_EQ(load_scenario_file(big, {}).diags.str(), big + too_large);
 }
 
+// Valid numbers whose derived volume overflows: once "valid" in check.
+TEST_F(Refusal, InfiniteDisplacedVolume) {
+  const auto s = load(kCable + kSim + kBody + "  spheres: [{center: [0, 0, 0], radius: 1e200}]\n");
+  EXPECT_EQ(s.diags.str(),
+            at("9:3: body: the displaced volume is not finite (got inf m^3: the sizes overflow double precision)"));
+}
+
 TEST_F(Refusal, BodyMassesAndSizesMustBePositive) {
   const auto s = load(kCable + kSim +
                       "body:\n  mass: -3\n  inertia: [1, 1, 1]\n  link_point: [0, 0, 0]\n  volume: -1\n"
