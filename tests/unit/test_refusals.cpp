@@ -148,6 +148,13 @@ TEST_F(Refusal, InfiniteDisplacedVolume) {
             at("9:3: body: the displaced volume is not finite (got inf m^3: the sizes overflow double precision)"));
 }
 
+// Control bytes quoted from a binary file are escaped, not sent to the terminal.
+TEST_F(Refusal, ControlBytesInMessagesAreEscaped) {
+  write("time,x,y,z\n0,0,0,0\n1,\x1b[31mred,0,0\n", "track.csv");
+  const auto s = load(kCable + kSim + "tow:\n  motion:\n    - {type: track, file: track.csv}\n");
+  EXPECT_EQ(s.diags.str(), in("track.csv", "3:3: tow.motion.0.file: expected a number (got '\\x1b[31mred')"));
+}
+
 TEST_F(Refusal, BodyMassesAndSizesMustBePositive) {
   const auto s = load(kCable + kSim +
                       "body:\n  mass: -3\n  inertia: [1, 1, 1]\n  link_point: [0, 0, 0]\n  volume: -1\n"
