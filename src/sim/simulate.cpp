@@ -284,7 +284,8 @@ std::string check_state(const Model& model, const System& sys, const StateVector
 }
 
 /// Advance y from t to `target` (an output time), by fixed RK4 steps or
-/// adaptive steps that land on `target`. Returns an error text or empty.
+/// adaptive steps that land on `target`. Returns an error text or empty;
+/// returns early (t short of `target`) once the stop flag is set.
 /// True when the winch needs an event (split or removal) after this step.
 bool winch_due(const Model& model, const System& sys, const StateVector& y) {
   return model.winch.active() && winch_event(model, sys.physical(y)) != WinchEvent::None;
@@ -292,8 +293,8 @@ bool winch_due(const Model& model, const System& sys, const StateVector& y) {
 
 template <class Stepper>
 std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVector& y, double& t, double target,
-                          RunStats& stats, bool& event) {
-  while (t < target - 1e-12 * std::max(1.0, target)) {
+                          RunStats& stats, bool& event, const volatile int* stop) {
+  while (t < target - 1e-12 * std::max(1.0, target) && !(stop && *stop)) {
     const double h = std::min(model.sim.time_step, target - t);
     sys.set_window(t, t + h);
     rk.do_step(std::ref(sys), y, t, h);
@@ -313,12 +314,13 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
 /// the last step may pass stop. `try_step(y, t, dt)` attempts a step (true:
 /// accepted, t and y advanced; dt the proposal for the next step either
 /// way); `accepted(y, t)` runs after each accepted step (projection).
-/// Returns an error text or empty.
+/// Returns an error text or empty; returns early once *stop_flag is set.
 template <class TryStep, class Accepted>
 std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step, Accepted&& accepted, StateVector& y,
-                             double& t, double land, double stop, double& h, RunStats& stats, bool& event) {
+                             double& t, double land, double stop, double& h, RunStats& stats, bool& event,
+                             const volatile int* stop_flag) {
   const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
-  while (t < stop - 1e-12 * std::max(1.0, stop)) {
+  while (t < stop - 1e-12 * std::max(1.0, stop) && !(stop_flag && *stop_flag)) {
     const double h_try = std::min({h, model.sim.max_step, land - t});
     double dt = h_try;
     if (!try_step(y, t, dt)) {
@@ -350,7 +352,7 @@ std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step
 /// projected.
 template <class Controlled>
 std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, StateVector& y, double& t, double target,
-                           double& h, RunStats& stats, bool& event) {
+                           double& h, RunStats& stats, bool& event, const volatile int* stop) {
   auto try_step = [&](StateVector& yy, double& tt, double& dt) {
     sys.set_window(tt, tt + dt);
     return ctrl.try_step(std::ref(sys), yy, tt, dt) != odeint::fail;  // tt, dt updated
@@ -359,16 +361,17 @@ std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, St
     sys.project(yy, tt);
     if constexpr (requires { ctrl.reset(); }) ctrl.reset();  // projection changed y: no stale FSAL derivative
   };
-  return advance_adaptive(model, sys, try_step, accepted, y, t, target, target, h, stats, event);
+  return advance_adaptive(model, sys, try_step, accepted, y, t, target, target, h, stats, event, stop);
 }
 
 /// The same with Rosenbrock-W steps (error control on state and forces),
 /// which do not land on `stop` (an output time): it is sampled by dense output.
 std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros, StateVector& y, double& t,
-                               double land, double stop, double& h, RunStats& stats, bool& event) {
+                               double land, double stop, double& h, RunStats& stats, bool& event,
+                               const volatile int* stop_flag) {
   auto try_step = [&](StateVector& yy, double& tt, double& dt) { return ros.try_step(yy, tt, dt); };
   auto accepted = [](StateVector&, double) {};
-  return advance_adaptive(model, sys, try_step, accepted, y, t, land, stop, h, stats, event);
+  return advance_adaptive(model, sys, try_step, accepted, y, t, land, stop, h, stats, event, stop_flag);
 }
 
 /// The largest error estimates so far, kept across winch events (which
@@ -568,27 +571,33 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       bool event = false;
       switch (model.sim.integrator) {
         case Integrator::RK4:
-          err = advance_fixed(m, sys, rk4, y, t, target, stats, event);
+          err = advance_fixed(m, sys, rk4, y, t, target, stats, event, stop_flag);
           break;
         case Integrator::DOPRI5:
-          err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event);
+          err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event, stop_flag);
           break;
         case Integrator::CashKarp54:
-          err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event);
+          err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event, stop_flag);
           break;
         case Integrator::Rosenbrock:
-          err = advance_rosenbrock(m, sys, *ros, y, t, land, target, h, stats, event);
+          err = advance_rosenbrock(m, sys, *ros, y, t, land, target, h, stats, event, stop_flag);
           break;
       }
       // The state changes size: new chain, fresh steppers (sized on first
       // use), at the top of this loop once the outputs passed are written.
       if (event && err.empty()) pending_event = true;
+      if (stop_flag && *stop_flag) break;  // checked after every step: a stop between outputs is prompt
     }
     if (!err.empty()) {
       std::ostringstream os;
       os << "numerical failure at t = " << t << " s: " << err;
       stats.status = "failed";
       stats.message = os.str();
+      break;
+    }
+    if (stop_flag && *stop_flag && t < out_time - 1e-12 * std::max(1.0, out_time)) {
+      stats.status = "interrupted";  // between output times: the last sample on disk is the end
+      stats.message = "interrupted by signal at t = " + std::to_string(written) + " s";
       break;
     }
     if (std::abs(t - out_time) <= 1e-12 * std::max(1.0, out_time)) {
