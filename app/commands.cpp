@@ -194,7 +194,13 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
         throw std::runtime_error("cannot write spectra.csv");
       summary["files"]["spectra"] = "spectra.csv";
     }
-    if (!write_summary(opts.out_dir, summary)) throw std::runtime_error("cannot write summary.json");
+    // A file the disk could not take (full, I/O error): said in summary.json and on exit (status 1).
+    const std::string csv_error = writer.error();
+    if (!csv_error.empty()) summary["warnings"].push_back(csv_error + " (the file ends at the last whole row written)");
+    std::string why;
+    if (!write_summary(opts.out_dir, summary, &why))
+      throw std::runtime_error(why + (csv_error.empty() ? "" : "; " + csv_error));
+    if (!csv_error.empty()) throw std::runtime_error(csv_error + " (the file ends at the last whole row written)");
     if (!opts.quiet)
       for (const std::string& w : stats.warnings) err << "towsim: warning: " << w << "\n";
     // Rigid elements can push; a real cable would go slack there. An

@@ -114,8 +114,9 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
         summary["target_depth"] = {{"depth", *opts.target_depth},
                                    {"deployed_length", target->length},
                                    {"reached_depth", target->depth}};
-      if (!write_summary(opts.out_dir, summary))
-        throw std::runtime_error("cannot write " + opts.out_dir + "/summary.json");
+      std::string why;
+      if (!writer.error().empty()) throw std::runtime_error(writer.error());
+      if (!write_summary(opts.out_dir, summary, &why)) throw std::runtime_error(why);
     } catch (const std::runtime_error& e) {
       err << "towsim: statics: " << e.what() << "\n";
       return kExitError;

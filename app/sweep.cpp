@@ -208,8 +208,10 @@ CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const 
     }
     rec->flush();
     const auto summary = make_summary(to_json(sc.tree), model.name, stats, *rec, model.sim.write_nodes);
-    if (!out_dir.empty() && !write_summary(out_dir, summary))
-      throw std::runtime_error("cannot write " + out_dir + "/summary.json");
+    std::string why;
+    if (!out_dir.empty() && !write_summary(out_dir, summary, &why)) throw std::runtime_error(why);
+    if (const auto* w = dynamic_cast<const RunWriter*>(rec.get()); w != nullptr && !w->error().empty())
+      throw std::runtime_error(w->error());
     res.status = stats.status;
     res.message = stats.message;
     res.figures = summary_figures(summary);

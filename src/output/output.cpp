@@ -19,18 +19,6 @@
 namespace towsim::io {
 namespace {
 
-std::FILE* open_file(const std::string& dir, const std::string& name) {
-  const std::string path = (std::filesystem::path(dir) / name).string();
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (f == nullptr) throw std::runtime_error("cannot create " + path);
-  return f;
-}
-
-void write_all(std::FILE* f, const std::string& s) {
-  std::fwrite(s.data(), 1, s.size(), f);
-  std::fflush(f);
-}
-
 /// JSON for an extreme: {value, time}, null values when never set.
 nlohmann::ordered_json json_of(const Extreme& e) {
   nlohmann::ordered_json j;
@@ -595,25 +583,24 @@ nlohmann::ordered_json RunRecord::final_row() const {
 }
 
 RunWriter::RunWriter(const std::string& dir, const Model& model, bool write_nodes) : RunRecord(model) {
-  // Unbuffered: the rows arrive in large batches, each one write(2).
-  series_ = open_file(dir, "timeseries.csv");
-  std::setvbuf(series_, nullptr, _IONBF, 0);
-  write_all(series_, timeseries_header(model) + "\n");
+  // The rows arrive in large batches, each one write(2).
+  series_ = std::make_unique<RowFile>((std::filesystem::path(dir) / "timeseries.csv").string());
+  series_->append(timeseries_header(model) + "\n");
   node_ids_ = model.winch.active();
   if (write_nodes) {
-    nodes_ = open_file(dir, "nodes.csv");
-    std::setvbuf(nodes_, nullptr, _IONBF, 0);
+    nodes_ = std::make_unique<RowFile>((std::filesystem::path(dir) / "nodes.csv").string());
     std::string h = node_ids_ ? "time,node,node_id" : "time,node";
     for (const auto& c : node_columns(model)) h += "," + c;
-    write_all(nodes_, h + "\n");
+    nodes_->append(h + "\n");
   }
   last_write_ = std::chrono::steady_clock::now();
 }
 
-RunWriter::~RunWriter() {
-  flush();
-  if (series_ != nullptr) std::fclose(series_);
-  if (nodes_ != nullptr) std::fclose(nodes_);
+RunWriter::~RunWriter() { flush(); }
+
+std::string RunWriter::error() const {
+  if (!series_->error().empty()) return series_->error();
+  return nodes_ != nullptr ? nodes_->error() : std::string();
 }
 
 void RunWriter::write(const Sample& s) {
@@ -669,8 +656,8 @@ void RunWriter::write(const Sample& s) {
 }
 
 void RunWriter::flush() {
-  if (series_ != nullptr && !series_buf_.empty()) write_all(series_, series_buf_);
-  if (nodes_ != nullptr && !nodes_buf_.empty()) write_all(nodes_, nodes_buf_);
+  if (!series_buf_.empty()) series_->append(series_buf_);
+  if (nodes_ != nullptr && !nodes_buf_.empty()) nodes_->append(nodes_buf_);
   series_buf_.clear();
   nodes_buf_.clear();
   last_write_ = std::chrono::steady_clock::now();
@@ -791,13 +778,28 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   return j;
 }
 
-bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary) {
-  std::ofstream out(std::filesystem::path(dir) / "summary.json");
+bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary, std::string* error) {
+  namespace fs = std::filesystem;
   // Invalid UTF-8 in the scenario echo (e.g. a `name:` in another encoding)
   // becomes U+FFFD instead of throwing after the whole run.
-  out << summary.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
-  out.flush();
-  return static_cast<bool>(out);
+  const std::string text = summary.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+  // Whole or not at all: written beside, then renamed over summary.json.
+  const fs::path path = fs::path(dir) / "summary.json";
+  const fs::path part = fs::path(dir) / "summary.json.part";
+  std::string why;
+  try {
+    RowFile f(part.string());
+    if (!f.append(text)) why = f.error();
+  } catch (const std::runtime_error& e) {
+    why = e.what();
+  }
+  std::error_code ec;
+  if (why.empty()) fs::rename(part, path, ec);
+  if (why.empty() && ec) why = "cannot write " + path.string() + ": " + ec.message();
+  if (why.empty()) return true;
+  fs::remove(part, ec);
+  if (error != nullptr) *error = why;
+  return false;
 }
 
 }  // namespace towsim::io

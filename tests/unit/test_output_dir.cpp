@@ -2,11 +2,18 @@
 // it refuses to touch (docs/reliability.md "Output directory").
 #include <gtest/gtest.h>
 
+#include <sys/mount.h>
+
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 
 #include "../support/cli.hpp"
+#include "towsim/output/output.hpp"
+#include "towsim/output/row_file.hpp"
 
 namespace fs = std::filesystem;
 using towsim::testing::CliResult;
@@ -54,4 +61,41 @@ TEST_F(OutputDir, RerunRemovesOnlyTowsimsRegularFiles) {
   EXPECT_TRUE(fs::exists(out / "plots" / "notes" / "n.txt"));
   EXPECT_TRUE(fs::exists(out / "mine.csv"));
   EXPECT_TRUE(fs::is_regular_file(out / "summary.json"));
+}
+
+// A disk that takes no more: the batch that did not fit is cut back off the
+// file (whole rows only), and the cause is kept.
+TEST_F(OutputDir, RowFileOnAFullDiskKeepsWholeRowsAndTheCause) {
+  towsim::io::RowFile full("/dev/full");
+  EXPECT_FALSE(full.append("1,2\n"));
+  EXPECT_EQ(full.error(), "cannot write /dev/full: No space left on device");
+  EXPECT_FALSE(full.append("3,4\n"));  // nothing more after a failure
+  // summary.json is whole or absent (written beside, then renamed).
+  std::string why;
+  EXPECT_FALSE(towsim::io::write_summary((dir_ / "none").string(), nlohmann::ordered_json::object(), &why));
+  EXPECT_EQ(why, "cannot create " + (dir_ / "none" / "summary.json.part").string() + ": No such file or directory");
+}
+
+// A full file system (a 256 KiB tmpfs, where the test may mount one): exit 1
+// naming the file and the cause (once only "cannot write summary.json"), every
+// file ending in a whole row, no empty summary.json.
+TEST_F(OutputDir, FullDiskExits1WithTheCauseAndWholeRows) {
+  const fs::path mnt = dir_ / "small";
+  fs::create_directories(mnt);
+  if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=256k") != 0) GTEST_SKIP() << "cannot mount a tmpfs here";
+  const fs::path out = mnt / "out";
+  const CliResult r = run_towsim("run --example paper-3d-turn --set simulation.duration=200 --quiet --out " +
+                                 quoted(out));
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_EQ(r.out.rfind("towsim: cannot write " + out.string() + "/", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("No space left on device"), std::string::npos) << r.out;
+  for (const char* name : {"timeseries.csv", "nodes.csv"}) {
+    const std::string text = towsim::testing::slurp(out / name);
+    EXPECT_TRUE(text.empty() || text.back() == '\n') << name;
+  }
+  if (fs::exists(out / "summary.json")) {
+    EXPECT_TRUE(nlohmann::json::accept(towsim::testing::slurp(out / "summary.json")));
+  }
+  EXPECT_FALSE(fs::exists(out / "summary.json.part"));
+  ::umount(mnt.c_str());
 }
