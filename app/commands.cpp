@@ -13,6 +13,7 @@
 
 #include "towsim/integrators/system.hpp"
 #include "towsim/output/async_sink.hpp"
+#include "towsim/output/dir_lock.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/scenario/examples.hpp"
 #include "towsim/sim/simulate.hpp"
@@ -176,6 +177,7 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     return kExitError;
   }
   try {
+    const DirLock lock(opts.out_dir);  // one towsim at a time in a directory
     remove_run_outputs(opts.out_dir);  // no stale file of a previous run
     RunWriter writer(opts.out_dir, model, model.sim.write_nodes);
     RunStats stats;

@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "towsim/dynamics/dynamics.hpp"
+#include "towsim/output/dir_lock.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/sim/statics.hpp"
 
@@ -101,6 +102,7 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
       return kExitError;
     }
     try {                                // an I/O failure (as `run`): exit 1 with the reason
+      const DirLock lock(opts.out_dir);  // one towsim at a time in a directory
       remove_run_outputs(opts.out_dir);  // no stale file of a previous run
       RunWriter writer(opts.out_dir, used, true);
       writer.write(s);

@@ -63,6 +63,32 @@ TEST_F(OutputDir, RerunRemovesOnlyTowsimsRegularFiles) {
   EXPECT_TRUE(fs::is_regular_file(out / "summary.json"));
 }
 
+// Two runs into one --out mixed their files (the CSVs of one, the summary of
+// the other, both exit 0): the second is refused while the first runs.
+TEST_F(OutputDir, SecondRunIntoABusyDirectoryIsRefused) {
+  const fs::path out = dir_ / "out";
+  towsim::testing::Child first({"run", "--example", "paper-3d-turn", "--set", "simulation.duration=100000", "--out",
+                                out.string(), "--quiet"},
+                               dir_);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline && first.running() && !fs::exists(out / "timeseries.csv"))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_TRUE(first.running());
+  const std::string busy =
+      " is in use by another towsim run (wait for it to end, or choose another output "
+      "directory)\n";
+  const CliResult second = run_towsim("run" + kShortRun + quoted(out));
+  EXPECT_EQ(second.status, 1) << second.out;
+  EXPECT_EQ(second.out, "towsim: " + out.string() + busy);
+  const CliResult statics = run_towsim("statics --example cable-tow --out " + quoted(out));
+  EXPECT_EQ(statics.status, 1) << statics.out;
+  EXPECT_NE(statics.out.find("towsim: statics: " + out.string() + busy), std::string::npos) << statics.out;
+  ::kill(first.pid(), SIGTERM);
+  EXPECT_EQ(first.wait().status, 130);
+  // Free again once the first has ended.
+  EXPECT_EQ(run_towsim("run" + kShortRun + quoted(out)).status, 0);
+}
+
 // A disk that takes no more: the batch that did not fit is cut back off the
 // file (whole rows only), and the cause is kept.
 TEST_F(OutputDir, RowFileOnAFullDiskKeepsWholeRowsAndTheCause) {
