@@ -207,13 +207,9 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
       for (const std::string& w : stats.warnings) err << "towsim: warning: " << w << "\n";
     // Rigid elements can push; a real cable would go slack there. An
     // elastic cable goes slack instead: its episodes are reported.
-    const Extreme& comp = writer.extremes().min_axial_force;
-    const bool all_elastic = std::all_of(model.cable.elements.begin(), model.cable.elements.end(), is_elastic);
     if (!opts.quiet && lengths_in_state(model)) elastic_warnings(stats.slack, err);
-    if (!opts.quiet && comp.value < 0 && !all_elastic)
-      err << "towsim: warning: the cable was in compression (axial force " << fmt_num(comp.value)
-          << " N at t = " << fmt_num(comp.time)
-          << " s; see axial_force in nodes.csv): a real cable would go slack there\n";
+    if (const std::string w = compression_warning(model, writer.extremes()); !opts.quiet && !w.empty())
+      err << "towsim: warning: " << w << "\n";  // also in summary.json "warnings"
     // An extreme attitude usually means a design that does not fly (stalled
     // fins, a body hanging nose down): say when, so the user need not dig.
     constexpr double kAttitudeWarnDeg = 30;  // |roll| or |pitch| beyond this [deg]

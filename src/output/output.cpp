@@ -14,6 +14,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "towsim/dynamics/elastic.hpp"
 #include "towsim/version.hpp"
 
 namespace towsim::io {
@@ -554,6 +555,17 @@ std::vector<std::string> strength_warnings(const Extremes& ex) {
   return out;
 }
 
+std::string compression_warning(const Model& model, const Extremes& ex) {
+  const Extreme& comp = ex.min_axial_force;
+  const auto& els = model.cable.elements;
+  if (!(comp.value < 0) || std::all_of(els.begin(), els.end(), is_elastic)) return {};
+  char force[40], time[40];  // as in messages ("%.10g")
+  std::snprintf(force, sizeof force, "%.10g", comp.value);
+  std::snprintf(time, sizeof time, "%.10g", comp.time);
+  return std::string("the cable was in compression (axial force ") + force + " N at t = " + time +
+         " s; see axial_force in nodes.csv): a real cable would go slack there";
+}
+
 RunRecord::RunRecord(const Model& model) : model_(model), sea_(statistics_start(model)) {}
 
 void RunRecord::write(const Sample& s) {
@@ -773,6 +785,7 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   }
   if (lengths_in_state(model)) j["elastic"] = elastic_json(stats.slack);
   for (const std::string& w : strength_warnings(ex)) j["warnings"].push_back(w);
+  if (const std::string w = compression_warning(model, ex); !w.empty()) j["warnings"].push_back(w);
   j["final"] = record.final_row();  // the last timeseries.csv row by column name
   j["scenario"] = scenario;
   return j;

@@ -219,3 +219,18 @@ TEST_F(Cli, LooseToleranceIsWarned) {
       quoted(dir_ / "tight"));
   EXPECT_EQ(tight.out.find("is loose"), std::string::npos) << tight.out;
 }
+
+// The compression warning of a rigid cable is in summary.json "warnings" too
+// (once on stderr only, unseen from Python and sweeps).
+TEST_F(Cli, CompressionWarningIsInTheSummary) {
+  const fs::path out = dir_ / "out";
+  const CliResult r = run_towsim(
+      "run --example paper-planar-b --set simulation.duration=20 --set simulation.write_nodes=false --out " +
+      quoted(out));
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::string w = "the cable was in compression (axial force ";
+  const auto on_stderr = r.out.find("towsim: warning: " + w);
+  ASSERT_NE(on_stderr, std::string::npos) << r.out;
+  const std::string text = r.out.substr(on_stderr + 17, r.out.find('\n', on_stderr) - on_stderr - 17);
+  EXPECT_NE(towsim::testing::slurp(out / "summary.json").find("\"" + text + "\""), std::string::npos) << text;
+}

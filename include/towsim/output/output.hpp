@@ -132,6 +132,10 @@ std::vector<double> node_arc_lengths(const Model& model);
 /// (a safety factor below 3), above 1 (the cable would break there).
 std::vector<std::string> strength_warnings(const Extremes& ex);
 
+/// A rigid cable pushed (negative axial force: a real cable would go slack
+/// there): the warning with the most negative force and its time, or "".
+std::string compression_warning(const Model& model, const Extremes& ex);
+
 /// Horizontal distance from the tow point to the end body's origin (or to
 /// the cable's lower end without an end body) [m].
 double layback(const Model& model, const Sample& s);
