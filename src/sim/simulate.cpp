@@ -286,6 +286,10 @@ std::string check_state(const Model& model, const System& sys, const StateVector
 /// Advance y from t to `target` (an output time), by fixed RK4 steps or
 /// adaptive steps that land on `target`. Returns an error text or empty;
 /// returns early (t short of `target`) once the stop flag is set.
+/// Before each step at time t [s]: true to stop now. It also reports the
+/// progress t / duration, where the Python module polls Ctrl-C.
+using StopCheck = std::function<bool(double)>;
+
 /// True when the winch needs an event (split or removal) after this step.
 bool winch_due(const Model& model, const System& sys, const StateVector& y) {
   return model.winch.active() && winch_event(model, sys.physical(y)) != WinchEvent::None;
@@ -293,8 +297,8 @@ bool winch_due(const Model& model, const System& sys, const StateVector& y) {
 
 template <class Stepper>
 std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVector& y, double& t, double target,
-                          RunStats& stats, bool& event, const volatile int* stop) {
-  while (t < target - 1e-12 * std::max(1.0, target) && !(stop && *stop)) {
+                          RunStats& stats, bool& event, const StopCheck& stopping) {
+  while (t < target - 1e-12 * std::max(1.0, target) && !stopping(t)) {
     const double h = std::min(model.sim.time_step, target - t);
     sys.set_window(t, t + h);
     rk.do_step(std::ref(sys), y, t, h);
@@ -318,9 +322,9 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
 template <class TryStep, class Accepted>
 std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step, Accepted&& accepted, StateVector& y,
                              double& t, double land, double stop, double& h, RunStats& stats, bool& event,
-                             const volatile int* stop_flag) {
+                             const StopCheck& stopping) {
   const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
-  while (t < stop - 1e-12 * std::max(1.0, stop) && !(stop_flag && *stop_flag)) {
+  while (t < stop - 1e-12 * std::max(1.0, stop) && !stopping(t)) {
     const double h_try = std::min({h, model.sim.max_step, land - t});
     double dt = h_try;
     if (!try_step(y, t, dt)) {
@@ -352,7 +356,7 @@ std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step
 /// projected.
 template <class Controlled>
 std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, StateVector& y, double& t, double target,
-                           double& h, RunStats& stats, bool& event, const volatile int* stop) {
+                           double& h, RunStats& stats, bool& event, const StopCheck& stopping) {
   auto try_step = [&](StateVector& yy, double& tt, double& dt) {
     sys.set_window(tt, tt + dt);
     return ctrl.try_step(std::ref(sys), yy, tt, dt) != odeint::fail;  // tt, dt updated
@@ -361,17 +365,17 @@ std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, St
     sys.project(yy, tt);
     if constexpr (requires { ctrl.reset(); }) ctrl.reset();  // projection changed y: no stale FSAL derivative
   };
-  return advance_adaptive(model, sys, try_step, accepted, y, t, target, target, h, stats, event, stop);
+  return advance_adaptive(model, sys, try_step, accepted, y, t, target, target, h, stats, event, stopping);
 }
 
 /// The same with Rosenbrock-W steps (error control on state and forces),
 /// which do not land on `stop` (an output time): it is sampled by dense output.
 std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros, StateVector& y, double& t,
                                double land, double stop, double& h, RunStats& stats, bool& event,
-                               const volatile int* stop_flag) {
+                               const StopCheck& stopping) {
   auto try_step = [&](StateVector& yy, double& tt, double& dt) { return ros.try_step(yy, tt, dt); };
   auto accepted = [](StateVector&, double) {};
-  return advance_adaptive(model, sys, try_step, accepted, y, t, land, stop, h, stats, event, stop_flag);
+  return advance_adaptive(model, sys, try_step, accepted, y, t, land, stop, h, stats, event, stopping);
 }
 
 /// The largest error estimates so far, kept across winch events (which
@@ -531,6 +535,10 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   bool pending_event = false;
   StateVector y_out;   // dense output state
   double written = t;  // time of the last sample written [s]
+  const StopCheck stopping = [&](double tt) {
+    if (progress) progress(tt / T);
+    return stop_flag != nullptr && *stop_flag != 0;
+  };
   for (long k = 1; k <= n_out && check.empty(); ++k) {
     if (stop_flag && *stop_flag) {
       // Stopped at the last sample on disk (a dense-output step may have passed it).
@@ -571,16 +579,16 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       bool event = false;
       switch (model.sim.integrator) {
         case Integrator::RK4:
-          err = advance_fixed(m, sys, rk4, y, t, target, stats, event, stop_flag);
+          err = advance_fixed(m, sys, rk4, y, t, target, stats, event, stopping);
           break;
         case Integrator::DOPRI5:
-          err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event, stop_flag);
+          err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event, stopping);
           break;
         case Integrator::CashKarp54:
-          err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event, stop_flag);
+          err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event, stopping);
           break;
         case Integrator::Rosenbrock:
-          err = advance_rosenbrock(m, sys, *ros, y, t, land, target, h, stats, event, stop_flag);
+          err = advance_rosenbrock(m, sys, *ros, y, t, land, target, h, stats, event, stopping);
           break;
       }
       // The state changes size: new chain, fresh steppers (sized on first

@@ -188,6 +188,28 @@ def test_ctrl_c_stops_the_run_and_keeps_the_result():
     assert time.monotonic() - t0 < 30  # it stopped, it did not run to the end
 
 
+def test_ctrl_c_between_output_times_stops_promptly():
+    # The next output time minutes of integration away: Ctrl-C is polled
+    # after every step (once only at output times), the run stops within
+    # seconds at the last row written (t = 0).
+    path = SCENARIOS / "paper-3d-turn.yaml"
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    try:
+        timer.start()
+        with pytest.raises(KeyboardInterrupt) as e:
+            towsim.run(path, {"simulation.duration": 1e7, "simulation.output_interval": 5e6,
+                              "simulation.write_nodes": False})
+    finally:
+        timer.cancel()
+        timer.join()
+        signal.signal(signal.SIGINT, previous)
+    r = e.value.result
+    assert r.status == "interrupted"
+    assert list(r["time"]) == [0.0]
+    assert r.integration_interval[1] - r.integration_interval[0] < 5  # 1 s asked for, margin for a loaded machine
+
+
 def test_ctrl_c_stops_the_statics_and_keeps_the_last_iterate():
     # The steady solve runs in a worker thread while the main thread polls
     # Ctrl-C: a --target-depth search over 100000 elements (~2 s of CPU, many
