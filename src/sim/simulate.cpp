@@ -283,9 +283,6 @@ std::string check_state(const Model& model, const System& sys, const StateVector
   return {};
 }
 
-/// Advance y from t to `target` (an output time), by fixed RK4 steps or
-/// adaptive steps that land on `target`. Returns an error text or empty;
-/// returns early (t short of `target`) once the stop flag is set.
 /// Before each step at time t [s]: true to stop now. It also reports the
 /// progress t / duration, where the Python module polls Ctrl-C.
 using StopCheck = std::function<bool(double)>;
@@ -295,6 +292,9 @@ bool winch_due(const Model& model, const System& sys, const StateVector& y) {
   return model.winch.active() && winch_event(model, sys.physical(y)) != WinchEvent::None;
 }
 
+/// Advance y from t to `target` (an output time), by fixed RK4 steps or
+/// adaptive steps that land on `target`. Returns an error text or empty;
+/// returns early (t short of `target`) once `stopping` says so.
 template <class Stepper>
 std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVector& y, double& t, double target,
                           RunStats& stats, bool& event, const StopCheck& stopping) {
@@ -318,7 +318,7 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
 /// the last step may pass stop. `try_step(y, t, dt)` attempts a step (true:
 /// accepted, t and y advanced; dt the proposal for the next step either
 /// way); `accepted(y, t)` runs after each accepted step (projection).
-/// Returns an error text or empty; returns early once *stop_flag is set.
+/// Returns an error text or empty; returns early once `stopping` says so.
 template <class TryStep, class Accepted>
 std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step, Accepted&& accepted, StateVector& y,
                              double& t, double land, double stop, double& h, RunStats& stats, bool& event,
