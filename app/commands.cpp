@@ -13,6 +13,7 @@
 
 #include "towsim/integrators/system.hpp"
 #include "towsim/output/async_sink.hpp"
+#include "towsim/output/dir_lock.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/scenario/examples.hpp"
 #include "towsim/sim/simulate.hpp"
@@ -176,6 +177,7 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     return kExitError;
   }
   try {
+    const DirLock lock(opts.out_dir);  // one towsim at a time in a directory
     remove_run_outputs(opts.out_dir);  // no stale file of a previous run
     RunWriter writer(opts.out_dir, model, model.sim.write_nodes);
     RunStats stats;
@@ -194,18 +196,20 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
         throw std::runtime_error("cannot write spectra.csv");
       summary["files"]["spectra"] = "spectra.csv";
     }
-    if (!write_summary(opts.out_dir, summary)) throw std::runtime_error("cannot write summary.json");
+    // A file the disk could not take (full, I/O error): said in summary.json and on exit (status 1).
+    const std::string csv_error = writer.error();
+    if (!csv_error.empty()) summary["warnings"].push_back(csv_error + " (the file ends at the last whole row written)");
+    std::string why;
+    if (!write_summary(opts.out_dir, summary, &why))
+      throw std::runtime_error(why + (csv_error.empty() ? "" : "; " + csv_error));
+    if (!csv_error.empty()) throw std::runtime_error(csv_error + " (the file ends at the last whole row written)");
     if (!opts.quiet)
       for (const std::string& w : stats.warnings) err << "towsim: warning: " << w << "\n";
     // Rigid elements can push; a real cable would go slack there. An
     // elastic cable goes slack instead: its episodes are reported.
-    const Extreme& comp = writer.extremes().min_axial_force;
-    const bool all_elastic = std::all_of(model.cable.elements.begin(), model.cable.elements.end(), is_elastic);
     if (!opts.quiet && lengths_in_state(model)) elastic_warnings(stats.slack, err);
-    if (!opts.quiet && comp.value < 0 && !all_elastic)
-      err << "towsim: warning: the cable was in compression (axial force " << fmt_num(comp.value)
-          << " N at t = " << fmt_num(comp.time)
-          << " s; see axial_force in nodes.csv): a real cable would go slack there\n";
+    if (const std::string w = compression_warning(model, writer.extremes()); !opts.quiet && !w.empty())
+      err << "towsim: warning: " << w << "\n";  // also in summary.json "warnings"
     // An extreme attitude usually means a design that does not fly (stalled
     // fins, a body hanging nose down): say when, so the user need not dig.
     constexpr double kAttitudeWarnDeg = 30;  // |roll| or |pitch| beyond this [deg]

@@ -69,6 +69,22 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
+/// The whole file's text ("" when it cannot be read).
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// True when the file's last byte is not a newline: its last row was cut off.
+bool ends_cut(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in || in.tellg() <= 0) return false;
+  in.seekg(-1, std::ios::end);
+  return in.get() != '\n';
+}
+
 /// Read a CSV file with a header row; `max_cols` (0 = all) limits the
 /// numeric columns kept per row. False when the file cannot be opened or has
 /// no header.
@@ -76,10 +92,10 @@ bool read_csv(const fs::path& path, Table& t, std::size_t max_cols = 0) {
   std::ifstream in(path);
   if (!in) return false;
   std::string line;
-  if (!std::getline(in, line)) return false;
+  if (!whole_line(in, line)) return false;
   t.names = split(line);
   for (std::size_t i = 0; i < t.names.size(); ++i) t.index[t.names[i]] = static_cast<int>(i);
-  while (std::getline(in, line)) {
+  while (whole_line(in, line)) {
     if (line.empty() || line == "\r") continue;
     std::vector<double> row;
     std::size_t pos = 0;
@@ -186,6 +202,7 @@ struct Run {
   bool has_spectra = false;   // spectra.csv (a sea-state run) with data rows
   bool spectra_body = false;  // ... with the body's columns filled
   double spectra_wmax = 0;    // highest omega where the wave spectrum is >= 1e-4 of its peak [rad/s]
+  bool cut_series = false;    // timeseries.csv ends in a row cut off (no newline): plots/ gets its whole rows
   double marker_every = 10;   // s between trajectory markers
   int marker_rows = 1;        // the same in rows
   // Data spans for the equal-scale decisions.
@@ -228,7 +245,8 @@ std::string preamble(const Run& run, const std::string& name, const std::string&
     << "set grid ls 100\n"
     << "set key outside right top vertical reverse Left samplen 2 spacing 1.1 width 1\n"
     << "set border lw 1.2\n"
-    << "ts = '../timeseries.csv'\n"
+    << (run.cut_series ? "ts = 'timeseries.csv'  # the whole rows of ../timeseries.csv (its last one cut off)\n"
+                       : "ts = '../timeseries.csv'\n")
     << "# Node data: cable_shapes.dat and tension_map.dat beside this script, extracted\n"
     << "# from ../nodes.csv in one pass by `towsim plot` (gnuplot never reads nodes.csv).\n";
   return s.str();
@@ -746,6 +764,7 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
     log << "towsim plot: " << (root / "timeseries.csv").string() << ": cannot read it or it has no header\n";
     return kInvalid;
   }
+  run.cut_series = ends_cut(root / "timeseries.csv");
   run.has_body = ts.has("body_x");
   run.has_winch = ts.has("payout_speed");
   run.has_rating = ts.has("winch_load_ratio");
@@ -771,7 +790,7 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   if (run.has_nodes) {
     std::ifstream in(root / "nodes.csv");
     std::string header;
-    std::getline(in, header);
+    whole_line(in, header);
     const auto names = split(header);
     for (const char* c : {"time", "node", "x", "y", "z"})
       if (std::find(names.begin(), names.end(), c) == names.end()) absent.push_back(c);
@@ -885,6 +904,11 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   }
   if (run.status != "ok")
     log << "towsim plot: note: the run ended with status '" << run.status << "'; plotting what it wrote\n";
+  if (run.cut_series) {  // a killed run: gnuplot reads the whole rows only
+    const std::string text = read_text(root / "timeseries.csv");
+    std::ofstream(plots / "timeseries.csv", std::ios::binary) << text.substr(0, text.rfind('\n') + 1);
+    log << "towsim plot: note: the last row of timeseries.csv is cut off (the run was killed); left out\n";
+  }
   if (run.has_nodes) {  // nodes.csv, read once
     std::string error;
     if (!write_node_data(root, plots, run, times, error)) {

@@ -39,7 +39,7 @@ bool open_csv(const std::string& path, std::ifstream& in, std::string& header, s
     error = path + ": cannot open it";
     return false;
   }
-  if (!std::getline(in, header)) {
+  if (!whole_line(in, header)) {
     error = path + ": empty file (no header)";
     return false;
   }
@@ -47,6 +47,11 @@ bool open_csv(const std::string& path, std::ifstream& in, std::string& header, s
 }
 
 }  // namespace
+
+bool whole_line(std::istream& in, std::string& line) {
+  // getline stops at the end of the file without a newline: eof is set then.
+  return std::getline(in, line) && !in.eof();
+}
 
 int CsvTable::col(const std::string& name) const {
   for (std::size_t i = 0; i < names.size(); ++i)
@@ -67,7 +72,7 @@ bool read_csv_table(const std::string& path, CsvTable& table, std::string& error
   std::vector<std::string_view> f;
   split_views(line, f);
   for (auto v : f) table.names.emplace_back(v);
-  while (std::getline(in, line)) {
+  while (whole_line(in, line)) {
     if (line.empty() || line == "\r") continue;
     split_views(line, f);
     std::vector<double> row;
@@ -100,7 +105,7 @@ bool read_node_frames(const std::string& path, const std::vector<double>& wanted
   std::size_t w = 0;  // next wanted time
   double current = std::nan("");
   bool keep = false;
-  while (std::getline(in, line) && w <= wanted.size()) {
+  while (whole_line(in, line) && w <= wanted.size()) {
     if (line.empty() || line == "\r") continue;
     // The time is the first thing to look at: most rows are skipped.
     const std::size_t c0 = ct == 0 ? line.find(',') : std::string::npos;

@@ -2,10 +2,16 @@
 // nodes.csv is read ONCE, keeping only the rows of the wanted times.
 #pragma once
 
+#include <istream>
 #include <string>
 #include <vector>
 
 namespace towsim::io {
+
+/// std::getline for towsim's files: a last line without its newline is not
+/// read. The writers end every row with one, so such a line is a row cut off
+/// by a kill (SIGKILL, power loss) during a write (docs/reliability.md).
+bool whole_line(std::istream& in, std::string& line);
 
 /// A CSV file with a header row and numeric cells (NaN where not a number).
 struct CsvTable {

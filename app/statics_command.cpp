@@ -5,9 +5,11 @@
 #include <iostream>
 #include <new>
 #include <optional>
+#include <stdexcept>
 
 #include "commands.hpp"
 #include "towsim/dynamics/dynamics.hpp"
+#include "towsim/output/dir_lock.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/sim/statics.hpp"
 
@@ -99,21 +101,26 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
       err << "towsim: statics: " << opts.out_dir << ": cannot create the directory: " << ec.message() << "\n";
       return kExitError;
     }
-    remove_run_outputs(opts.out_dir);  // no stale file of a previous run
-    RunWriter writer(opts.out_dir, used, true);
-    writer.write(s);
-    writer.flush();
-    RunStats stats;  // a statics "run": one sample at t = 0
-    stats.status = r.converged ? "ok" : r.interrupted ? "interrupted" : "failed";
-    stats.message = r.converged ? "" : r.message;
-    stats.steps = r.iterations;
-    auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, true);
-    if (target)
-      summary["target_depth"] = {{"depth", *opts.target_depth},
-                                 {"deployed_length", target->length},
-                                 {"reached_depth", target->depth}};
-    if (!write_summary(opts.out_dir, summary)) {
-      err << "towsim: statics: cannot write " << opts.out_dir << "/summary.json\n";
+    try {                                // an I/O failure (as `run`): exit 1 with the reason
+      const DirLock lock(opts.out_dir);  // one towsim at a time in a directory
+      remove_run_outputs(opts.out_dir);  // no stale file of a previous run
+      RunWriter writer(opts.out_dir, used, true);
+      writer.write(s);
+      writer.flush();
+      RunStats stats;  // a statics "run": one sample at t = 0
+      stats.status = r.converged ? "ok" : r.interrupted ? "interrupted" : "failed";
+      stats.message = r.converged ? "" : r.message;
+      stats.steps = r.iterations;
+      auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, true);
+      if (target)
+        summary["target_depth"] = {{"depth", *opts.target_depth},
+                                   {"deployed_length", target->length},
+                                   {"reached_depth", target->depth}};
+      std::string why;
+      if (!writer.error().empty()) throw std::runtime_error(writer.error());
+      if (!write_summary(opts.out_dir, summary, &why)) throw std::runtime_error(why);
+    } catch (const std::runtime_error& e) {
+      err << "towsim: statics: " << e.what() << "\n";
       return kExitError;
     }
     out << "  written: " << opts.out_dir << "/timeseries.csv, " << opts.out_dir << "/nodes.csv, " << opts.out_dir

@@ -15,6 +15,7 @@
 
 #include "../src/scenario/reader.hpp"  // MapReader for the sweep file (scenario-internal)
 #include "commands.hpp"
+#include "towsim/output/dir_lock.hpp"
 #include "towsim/output/output.hpp"
 
 namespace towsim::io {
@@ -191,11 +192,13 @@ CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const 
   own.sim.threads = 1;
   const Model& model = own;
   try {
+    std::unique_ptr<DirLock> lock;
     std::unique_ptr<RunRecord> rec;
     if (out_dir.empty()) {
       rec = std::make_unique<RunRecord>(model);
     } else {
       std::filesystem::create_directories(out_dir);
+      lock = std::make_unique<DirLock>(out_dir);  // one towsim at a time in a directory
       remove_run_outputs(out_dir);
       rec = std::make_unique<RunWriter>(out_dir, model, model.sim.write_nodes);
     }
@@ -208,8 +211,10 @@ CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const 
     }
     rec->flush();
     const auto summary = make_summary(to_json(sc.tree), model.name, stats, *rec, model.sim.write_nodes);
-    if (!out_dir.empty() && !write_summary(out_dir, summary))
-      throw std::runtime_error("cannot write " + out_dir + "/summary.json");
+    std::string why;
+    if (!out_dir.empty() && !write_summary(out_dir, summary, &why)) throw std::runtime_error(why);
+    if (const auto* w = dynamic_cast<const RunWriter*>(rec.get()); w != nullptr && !w->error().empty())
+      throw std::runtime_error(w->error());
     res.status = stats.status;
     res.message = stats.message;
     res.figures = summary_figures(summary);

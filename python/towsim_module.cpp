@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "towsim/scenario/examples.hpp"
-#include "towsim/output/output.hpp"
 #include "sweep.hpp"
+#include "towsim/output/output.hpp"
+#include "towsim/scenario/examples.hpp"
 #include "towsim/sim/statics.hpp"
 
 namespace py = pybind11;
@@ -63,7 +63,8 @@ class ArraySink : public RunRecord {
   std::vector<double> node_block() const {
     const std::size_t c = node_columns(model()).size();
     std::vector<double> out(nodes.size() * joints * c, kNaN);
-    for (std::size_t t = 0; t < nodes.size(); ++t) std::copy(nodes[t].begin(), nodes[t].end(), out.begin() + t * joints * c);
+    for (std::size_t t = 0; t < nodes.size(); ++t)
+      std::copy(nodes[t].begin(), nodes[t].end(), out.begin() + t * joints * c);
     return out;
   }
 
@@ -113,13 +114,19 @@ std::string json_text(const nlohmann::ordered_json& j) {
   return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
+/// Text for Python: UTF-8, with invalid bytes (a scenario in another
+/// encoding, quoted in a message) as U+FFFD, as in summary.json.
+py::str text(const std::string& s) {
+  return py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(s.data(), static_cast<py::ssize_t>(s.size()), "replace"));
+}
+
 /// towsim.run: simulate; series and nodes in memory; GIL released while integrating.
 py::dict run(const std::string& kind, const std::string& source, const std::string& label,
              const std::vector<std::string>& sets) {
   py::dict out;
   const LoadedScenario sc = load(kind, source, label, sets);
   if (!sc.ok()) {
-    out["errors"] = sc.diags.str();
+    out["errors"] = text(sc.diags.str());
     return out;
   }
   const Model& model = *sc.model;
@@ -132,7 +139,8 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
     py::gil_scoped_release release;
     t0 = monotonic_seconds();
     try {
-      stats = simulate(model, sink, [&poll](double) { poll(); }, &stop);
+      stats = simulate(
+          model, sink, [&poll](double) { poll(); }, &stop);
     } catch (const std::exception& e) {
       stats.status = "failed";
       stats.message = std::string("internal error: ") + e.what();
@@ -152,7 +160,7 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
     out["nodes"] = py::none();
   out["summary"] = json_text(summary);
   out["status"] = stats.status;
-  out["message"] = stats.message;
+  out["message"] = text(stats.message);
   out["keyboard_interrupt"] = poll.interrupted;
   out["integration_interval"] = py::make_tuple(t0, t1);
   return out;
@@ -166,7 +174,7 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   py::dict out;
   const LoadedScenario sc = load(kind, source, label, sets);
   if (!sc.ok()) {
-    out["errors"] = sc.diags.str();
+    out["errors"] = text(sc.diags.str());
     return out;
   }
   const Model& model = *sc.model;
@@ -206,11 +214,11 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   out["values"] = to_array(std::move(row), {static_cast<py::ssize_t>(columns.size())});
   out["node_columns"] = node_columns(model);
   out["nodes"] = to_array(std::move(nodes), {static_cast<py::ssize_t>(s.node_pos.size()),
-                                            static_cast<py::ssize_t>(node_columns(model).size())});
+                                             static_cast<py::ssize_t>(node_columns(model).size())});
   out["converged"] = r.converged;
   out["iterations"] = r.iterations;
   out["residual"] = r.residual;
-  out["message"] = r.message;
+  out["message"] = text(r.message);
   out["tow_velocity"] = std::vector<double>{r.tow_velocity.x(), r.tow_velocity.y(), r.tow_velocity.z()};
   out["keyboard_interrupt"] = poll.interrupted;
   return out;
@@ -229,7 +237,7 @@ py::tuple run_case_py(const std::string& kind, const std::string& source, const 
     const LoadedScenario sc = load(kind, source, label, sets);
     r = run_case(sc, out_dir, &stop, [&poll](double) { poll(); });
   }
-  return py::make_tuple(r.status, r.message, r.figures);
+  return py::make_tuple(r.status, text(r.message), r.figures);
 }
 
 /// The figures of a summary.json text, as the sweep tables name them.

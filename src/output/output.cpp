@@ -15,22 +15,11 @@
 #include <stdexcept>
 
 #include "towsim/dynamics/bending.hpp"
+#include "towsim/dynamics/elastic.hpp"
 #include "towsim/version.hpp"
 
 namespace towsim::io {
 namespace {
-
-std::FILE* open_file(const std::string& dir, const std::string& name) {
-  const std::string path = (std::filesystem::path(dir) / name).string();
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (f == nullptr) throw std::runtime_error("cannot create " + path);
-  return f;
-}
-
-void write_all(std::FILE* f, const std::string& s) {
-  std::fwrite(s.data(), 1, s.size(), f);
-  std::fflush(f);
-}
 
 /// JSON for an extreme: {value, time}, null values when never set.
 nlohmann::ordered_json json_of(const Extreme& e) {
@@ -279,13 +268,32 @@ double utilisation(const Model& model, const Sample& s) {
 
 void remove_run_outputs(const std::string& dir) {
   namespace fs = std::filesystem;
-  for (const char* name : {"timeseries.csv", "nodes.csv", "summary.json", "report.html", "plots"}) {
+  // Only regular files, never what else may bear a name of towsim's (a
+  // user's folder called summary.json): that is refused, left as it is.
+  const auto remove_file = [](const fs::path& p) {
     std::error_code ec;
-    fs::remove_all(fs::path(dir) / name, ec);
-    if (ec)
-      throw std::runtime_error("cannot remove the previous run's " + (fs::path(dir) / name).string() + ": " +
-                               ec.message());
-  }
+    const fs::file_status st = fs::symlink_status(p, ec);
+    if (st.type() == fs::file_type::not_found) return;
+    if (!ec && st.type() != fs::file_type::regular)
+      throw std::runtime_error(p.string() + " is not a file of towsim's (" +
+                               (st.type() == fs::file_type::directory ? "a directory" : "not a regular file") +
+                               "): move it away or choose another output directory");
+    if (!ec) fs::remove(p, ec);
+    if (ec) throw std::runtime_error("cannot remove the previous run's " + p.string() + ": " + ec.message());
+  };
+  for (const char* name :
+       {"timeseries.csv", "nodes.csv", "summary.json", "summary.json.part", "spectra.csv", "report.html"})
+    remove_file(fs::path(dir) / name);
+  // plots/ (towsim plot's folder): its regular files, then the folder if that empties it.
+  const fs::path plots = fs::path(dir) / "plots";
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(plots, ec))) return;
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(plots, ec))
+    if (e.is_regular_file() && !e.is_symlink()) files.push_back(e.path());
+  if (ec) throw std::runtime_error("cannot read the previous run's " + plots.string() + ": " + ec.message());
+  for (const fs::path& f : files) remove_file(f);
+  if (fs::is_empty(plots, ec)) fs::remove(plots, ec);
 }
 
 void Extreme::max(double v, double t) {
@@ -550,6 +558,17 @@ std::vector<std::string> strength_warnings(const Extremes& ex) {
   return out;
 }
 
+std::string compression_warning(const Model& model, const Extremes& ex) {
+  const Extreme& comp = ex.min_axial_force;
+  const auto& els = model.cable.elements;
+  if (!(comp.value < 0) || std::all_of(els.begin(), els.end(), is_elastic)) return {};
+  char force[40], time[40];  // as in messages ("%.10g")
+  std::snprintf(force, sizeof force, "%.10g", comp.value);
+  std::snprintf(time, sizeof time, "%.10g", comp.time);
+  return std::string("the cable was in compression (axial force ") + force + " N at t = " + time +
+         " s; see axial_force in nodes.csv): a real cable would go slack there";
+}
+
 RunRecord::RunRecord(const Model& model) : model_(model), sea_(statistics_start(model)) {}
 
 void RunRecord::write(const Sample& s) {
@@ -579,25 +598,24 @@ nlohmann::ordered_json RunRecord::final_row() const {
 }
 
 RunWriter::RunWriter(const std::string& dir, const Model& model, bool write_nodes) : RunRecord(model) {
-  // Unbuffered: the rows arrive in large batches, each one write(2).
-  series_ = open_file(dir, "timeseries.csv");
-  std::setvbuf(series_, nullptr, _IONBF, 0);
-  write_all(series_, timeseries_header(model) + "\n");
+  // The rows arrive in large batches, each one write(2).
+  series_ = std::make_unique<RowFile>((std::filesystem::path(dir) / "timeseries.csv").string());
+  series_->append(timeseries_header(model) + "\n");
   node_ids_ = model.winch.active();
   if (write_nodes) {
-    nodes_ = open_file(dir, "nodes.csv");
-    std::setvbuf(nodes_, nullptr, _IONBF, 0);
+    nodes_ = std::make_unique<RowFile>((std::filesystem::path(dir) / "nodes.csv").string());
     std::string h = node_ids_ ? "time,node,node_id" : "time,node";
     for (const auto& c : node_columns(model)) h += "," + c;
-    write_all(nodes_, h + "\n");
+    nodes_->append(h + "\n");
   }
   last_write_ = std::chrono::steady_clock::now();
 }
 
-RunWriter::~RunWriter() {
-  flush();
-  if (series_ != nullptr) std::fclose(series_);
-  if (nodes_ != nullptr) std::fclose(nodes_);
+RunWriter::~RunWriter() { flush(); }
+
+std::string RunWriter::error() const {
+  if (!series_->error().empty()) return series_->error();
+  return nodes_ != nullptr ? nodes_->error() : std::string();
 }
 
 void RunWriter::write(const Sample& s) {
@@ -653,8 +671,8 @@ void RunWriter::write(const Sample& s) {
 }
 
 void RunWriter::flush() {
-  if (series_ != nullptr && !series_buf_.empty()) write_all(series_, series_buf_);
-  if (nodes_ != nullptr && !nodes_buf_.empty()) write_all(nodes_, nodes_buf_);
+  if (!series_buf_.empty()) series_->append(series_buf_);
+  if (nodes_ != nullptr && !nodes_buf_.empty()) nodes_->append(nodes_buf_);
   series_buf_.clear();
   nodes_buf_.clear();
   last_write_ = std::chrono::steady_clock::now();
@@ -770,18 +788,34 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   }
   if (lengths_in_state(model)) j["elastic"] = elastic_json(stats.slack);
   for (const std::string& w : strength_warnings(ex)) j["warnings"].push_back(w);
+  if (const std::string w = compression_warning(model, ex); !w.empty()) j["warnings"].push_back(w);
   j["final"] = record.final_row();  // the last timeseries.csv row by column name
   j["scenario"] = scenario;
   return j;
 }
 
-bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary) {
-  std::ofstream out(std::filesystem::path(dir) / "summary.json");
+bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary, std::string* error) {
+  namespace fs = std::filesystem;
   // Invalid UTF-8 in the scenario echo (e.g. a `name:` in another encoding)
   // becomes U+FFFD instead of throwing after the whole run.
-  out << summary.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
-  out.flush();
-  return static_cast<bool>(out);
+  const std::string text = summary.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+  // Whole or not at all: written beside, then renamed over summary.json.
+  const fs::path path = fs::path(dir) / "summary.json";
+  const fs::path part = fs::path(dir) / "summary.json.part";
+  std::string why;
+  try {
+    RowFile f(part.string());
+    if (!f.append(text)) why = f.error();
+  } catch (const std::runtime_error& e) {
+    why = e.what();
+  }
+  std::error_code ec;
+  if (why.empty()) fs::rename(part, path, ec);
+  if (why.empty() && ec) why = "cannot write " + path.string() + ": " + ec.message();
+  if (why.empty()) return true;
+  fs::remove(part, ec);
+  if (error != nullptr) *error = why;
+  return false;
 }
 
 }  // namespace towsim::io

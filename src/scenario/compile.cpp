@@ -1,6 +1,7 @@
 #include "towsim/scenario/compile.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 
@@ -137,6 +138,24 @@ Simulation build_simulation(const SimulationSpec& s, bool winch) {
   return sim;
 }
 
+/// Bodies whose derived volume or mass overflow (a sphere of radius 1e200):
+/// valid numbers each, but no run could use them.
+void check_finite_bodies(const ScenarioSpec& spec, const Model& m, Diagnostics& d) {
+  std::vector<const BodySpec*> specs;  // in the model's body order: in-line bodies, then the end body
+  for (const BodySpec& b : spec.cable.inline_bodies) specs.push_back(&b);
+  if (spec.body.present) specs.push_back(&spec.body);
+  for (std::size_t i = 0; i < m.bodies.size() && i < specs.size(); ++i) {
+    const Body& b = m.bodies[i];
+    const Where& w = specs[i]->where;
+    if (!std::isfinite(b.displaced_volume))
+      d.error(w.loc, w.path,
+              "the displaced volume is not finite (got " + fmt_num(b.displaced_volume) +
+                  " m^3: the sizes overflow double precision)");
+    else if (!b.total_mass.allFinite())
+      d.error(w.loc, w.path, "the mass matrix is not finite (the masses or sizes overflow double precision)");
+  }
+}
+
 }  // namespace
 
 std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
@@ -163,6 +182,8 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
     check_winch_rk4(spec, m, diags);
     if (!diags.ok()) return std::nullopt;
   }
+  check_finite_bodies(spec, m, diags);
+  if (!diags.ok()) return std::nullopt;
   m.initial = build_initial(spec.initial);
   m.sim = build_simulation(spec.simulation, spec.winch.present);
   build_seabed(spec.environment.seabed, m);

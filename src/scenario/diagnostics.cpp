@@ -7,8 +7,30 @@
 
 namespace towsim::io {
 
+namespace {
+
+/// Control bytes (quoted from a binary file) as \xNN: they would act on the terminal.
+std::string printable(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if ((u < 0x20 && c != '\t') || u == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", u);
+      out += hex;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string Diagnostic::str() const {
-  return loc.file + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.col) + ": " + path + ": " + message;
+  return printable(loc.file + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.col) + ": " + path + ": " +
+                   message);
 }
 
 void Diagnostics::error(const SourceLoc& loc, const std::string& path, const std::string& message) {

@@ -207,8 +207,15 @@ void parse_cable(MapReader& r, CableSpec& cable, Diagnostics& d) {
   r.read("axial_stiffness", cable.axial_stiffness);
   r.read("axial_damping", cable.axial_damping);
   r.read("bending_stiffness", cable.bending_stiffness);
-  if (const YNode* n = r.get("sections"))
+  if (const YNode* n = r.get("sections")) {
     cable.sections_where = r.where(*n, "sections");  // after the single form's keys
+    // An empty list has no cable; length and elements belong to each section.
+    if (n->is_seq() && n->items.empty())
+      d.error(n->loc, r.sub("sections"), "the list is empty (give at least one section, or leave sections out)");
+    const std::string own = "not used with cable.sections (each section gives its own)";
+    if (cable.length.given) d.error(cable.length.where.loc, cable.length.where.path, own);
+    if (cable.elements.given) d.error(cable.elements.where.loc, cable.elements.where.path, own);
+  }
   // Sections top to bottom; an item {body: {...}} is an in-line body.
   r.list("sections", [&](MapReader& item, std::size_t) {
     cable.item_where.push_back(item.where());

@@ -2,10 +2,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -43,6 +45,10 @@ struct TooManyValues {
 /// refers to itself (`a: &a [*a]`) makes a cyclic node, which would otherwise
 /// recurse until the stack overflows.
 constexpr int kMaxDepth = 64;
+
+/// Largest scenario file read [bytes]: 4 MiB, some 40 000 lines, far beyond a
+/// scenario written by hand; its tree then takes at most a few hundred MB.
+constexpr std::size_t kMaxFileBytes = std::size_t{4} << 20;
 
 /// Thrown by convert() past kMaxDepth.
 struct TooDeep {
@@ -101,7 +107,15 @@ std::string tab_hint(const std::string& text, int err_line, const Origin& o) {
 /// Parse text with the given origin; syntax errors go to diags.
 YNode parse_with_origin(const std::string& text, const Origin& o, Diagnostics& diags, const std::string& err_path) {
   try {
-    const YAML::Node n = YAML::Load(text);
+    // One document: what follows a second `---` would be silently ignored.
+    const std::vector<YAML::Node> docs = YAML::LoadAll(text);
+    for (std::size_t i = 1; i < docs.size(); ++i)
+      if (!docs[i].IsNull()) {
+        diags.error(loc_of(docs[i].Mark(), o.file, o.line_override, o.col_offset), err_path,
+                    "a second YAML document (after ---): a scenario is one document");
+        return YNode{};
+      }
+    const YAML::Node n = docs.empty() ? YAML::Node() : docs.front();
     const SourceLoc start{o.file, o.line_override > 0 ? o.line_override : 1, 1 + o.col_offset};
     std::size_t budget = max_values(text.size());
     return convert(n, o, start, budget);
@@ -206,14 +220,32 @@ YNode parse_yaml(const std::string& text, const std::string& file, Diagnostics& 
 }
 
 YNode load_yaml_file(const std::string& path, Diagnostics& diags) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    diags.error(SourceLoc{path, 0, 0}, "(file)", std::string("cannot open the file (") + std::strerror(errno) + ")");
+  const SourceLoc at{path, 0, 0};
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    diags.error(at, "(file)", "is a directory, not a scenario file");
     return YNode{};
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_yaml(ss.str(), path, diags);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    diags.error(at, "(file)", std::string("cannot open the file (") + std::strerror(errno) + ")");
+    return YNode{};
+  }
+  // At most kMaxFileBytes, read in chunks: a device or a pipe (/dev/zero) may
+  // have no end, and the tree costs ~100 times the text's size in memory.
+  std::string text;
+  std::array<char, 65536> chunk{};
+  while (in && text.size() <= kMaxFileBytes) {
+    in.read(chunk.data(), chunk.size());
+    text.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+  }
+  if (text.size() > kMaxFileBytes) {
+    diags.error(at, "(file)",
+                "larger than " + std::to_string(kMaxFileBytes / (1024 * 1024)) +
+                    " MiB (give long tables, such as tracks and vessel motions, as CSV files)");
+    return YNode{};
+  }
+  return parse_yaml(text, path, diags);
 }
 
 void apply_set(YNode& root, const std::string& assignment, int rank, Diagnostics& diags) {

@@ -94,6 +94,32 @@ void check_stall(const Model& model, const Workspace& ws, double t, RunStats& st
   }
 }
 
+/// The first output time the cable (a joint below the tow point: a vessel's
+/// tow point may stand above the water) or a body is above the mean water
+/// surface z = 0: a warning, once per part. The water's loads act there as
+/// under water; such results are not physical (docs/theory.md §3).
+void check_surface(const Model& model, const Sample& s, RunStats& stats) {
+  const auto warn = [&stats, &s](const std::string& who, const std::string& where, double z) {
+    if (std::any_of(stats.warnings.begin(), stats.warnings.end(),
+                    [&](const std::string& w) { return w.rfind(who + " rose above", 0) == 0; }))
+      return;
+    std::ostringstream os;
+    os << who << " rose above the water surface at t = " << s.t << " s (" << where << "z = " << z
+       << " m): the water's loads (buoyancy, drag, added mass) still act there, so results above z = 0 are not "
+          "physical";
+    stats.warnings.push_back(os.str());
+  };
+  for (std::size_t k = 1; k < s.node_pos.size(); ++k)
+    if (s.node_pos[k].z() > 0) {
+      warn("the cable", "joint " + std::to_string(k) + " at ", s.node_pos[k].z());
+      break;
+    }
+  for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b)
+    if (s.bodies[b].pos.z() > 0)
+      warn(model.bodies[b].inline_body ? "body " + model.bodies[b].name : std::string("the body"), "",
+           s.bodies[b].pos.z());
+}
+
 /// Output sample of state y at time t into `out` (its storage reused);
 /// tracks the element length drift.
 void sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats, Sample& out,
@@ -102,6 +128,7 @@ void sample_of(const Model& model, System& sys, const StateVector& y, double t, 
   if (err) *err = check_rk4_step(model, ws, t, stats);
   check_stall(model, ws, t, stats);
   make_sample(model, sys.physical_view(y), ws, t, out);
+  check_surface(model, out, stats);
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
     const int b = ws.body_at[k + 1];
     const Vec3& bottom = b >= 0 ? ws.body[static_cast<std::size_t>(b)].Q : ws.P[k + 1];
@@ -264,17 +291,22 @@ std::string check_state(const Model& model, const System& sys, const StateVector
   return {};
 }
 
-/// Advance y from t to `target` (an output time), by fixed RK4 steps or
-/// adaptive steps that land on `target`. Returns an error text or empty.
+/// Before each step at time t [s]: true to stop now. It also reports the
+/// progress t / duration, where the Python module polls Ctrl-C.
+using StopCheck = std::function<bool(double)>;
+
 /// True when the winch needs an event (split or removal) after this step.
 bool winch_due(const Model& model, const System& sys, const StateVector& y) {
   return model.winch.active() && winch_event(model, sys.physical(y)) != WinchEvent::None;
 }
 
+/// Advance y from t to `target` (an output time), by fixed RK4 steps or
+/// adaptive steps that land on `target`. Returns an error text or empty;
+/// returns early (t short of `target`) once `stopping` says so.
 template <class Stepper>
 std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVector& y, double& t, double target,
-                          RunStats& stats, bool& event) {
-  while (t < target - 1e-12 * std::max(1.0, target)) {
+                          RunStats& stats, bool& event, const StopCheck& stopping) {
+  while (t < target - 1e-12 * std::max(1.0, target) && !stopping(t)) {
     const double h = std::min(model.sim.time_step, target - t);
     sys.set_window(t, t + h);
     rk.do_step(std::ref(sys), y, t, h);
@@ -294,12 +326,13 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
 /// the last step may pass stop. `try_step(y, t, dt)` attempts a step (true:
 /// accepted, t and y advanced; dt the proposal for the next step either
 /// way); `accepted(y, t)` runs after each accepted step (projection).
-/// Returns an error text or empty.
+/// Returns an error text or empty; returns early once `stopping` says so.
 template <class TryStep, class Accepted>
 std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step, Accepted&& accepted, StateVector& y,
-                             double& t, double land, double stop, double& h, RunStats& stats, bool& event) {
+                             double& t, double land, double stop, double& h, RunStats& stats, bool& event,
+                             const StopCheck& stopping) {
   const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
-  while (t < stop - 1e-12 * std::max(1.0, stop)) {
+  while (t < stop - 1e-12 * std::max(1.0, stop) && !stopping(t)) {
     const double h_try = std::min({h, model.sim.max_step, land - t});
     double dt = h_try;
     if (!try_step(y, t, dt)) {
@@ -331,7 +364,7 @@ std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step
 /// projected.
 template <class Controlled>
 std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, StateVector& y, double& t, double target,
-                           double& h, RunStats& stats, bool& event) {
+                           double& h, RunStats& stats, bool& event, const StopCheck& stopping) {
   auto try_step = [&](StateVector& yy, double& tt, double& dt) {
     sys.set_window(tt, tt + dt);
     return ctrl.try_step(std::ref(sys), yy, tt, dt) != odeint::fail;  // tt, dt updated
@@ -340,16 +373,17 @@ std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, St
     sys.project(yy, tt);
     if constexpr (requires { ctrl.reset(); }) ctrl.reset();  // projection changed y: no stale FSAL derivative
   };
-  return advance_adaptive(model, sys, try_step, accepted, y, t, target, target, h, stats, event);
+  return advance_adaptive(model, sys, try_step, accepted, y, t, target, target, h, stats, event, stopping);
 }
 
 /// The same with Rosenbrock-W steps (error control on state and forces),
 /// which do not land on `stop` (an output time): it is sampled by dense output.
 std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros, StateVector& y, double& t,
-                               double land, double stop, double& h, RunStats& stats, bool& event) {
+                               double land, double stop, double& h, RunStats& stats, bool& event,
+                               const StopCheck& stopping) {
   auto try_step = [&](StateVector& yy, double& tt, double& dt) { return ros.try_step(yy, tt, dt); };
   auto accepted = [](StateVector&, double) {};
-  return advance_adaptive(model, sys, try_step, accepted, y, t, land, stop, h, stats, event);
+  return advance_adaptive(model, sys, try_step, accepted, y, t, land, stop, h, stats, event, stopping);
 }
 
 /// The largest error estimates so far, kept across winch events (which
@@ -420,6 +454,14 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   RunStats stats;
   stats.integrator = integrator_key(model.sim.integrator);
   stats.threads = evaluation_threads(model);
+  // A loose tolerance passes large errors as "ok" (dopri5 at 0.1: a peak tension 6.5 times the converged one).
+  constexpr double kLooseTolerance = 1e-2;  // [-]
+  if (model.sim.integrator != Integrator::RK4 && model.sim.tolerance > kLooseTolerance) {
+    std::ostringstream os;
+    os << "simulation.tolerance " << model.sim.tolerance << " is loose (above " << kLooseTolerance
+       << "): the results may be far from converged; check them at a tolerance 10 times smaller";
+    stats.warnings.push_back(os.str());
+  }
   const auto wall0 = std::chrono::steady_clock::now();
   // A steady start can fail or be interrupted: the run then ends before t = 0.
   PhysicalState s0;
@@ -501,6 +543,10 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   bool pending_event = false;
   StateVector y_out;   // dense output state
   double written = t;  // time of the last sample written [s]
+  const StopCheck stopping = [&](double tt) {
+    if (progress) progress(tt / T);
+    return stop_flag != nullptr && *stop_flag != 0;
+  };
   for (long k = 1; k <= n_out && check.empty(); ++k) {
     if (stop_flag && *stop_flag) {
       // Stopped at the last sample on disk (a dense-output step may have passed it).
@@ -541,27 +587,33 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       bool event = false;
       switch (model.sim.integrator) {
         case Integrator::RK4:
-          err = advance_fixed(m, sys, rk4, y, t, target, stats, event);
+          err = advance_fixed(m, sys, rk4, y, t, target, stats, event, stopping);
           break;
         case Integrator::DOPRI5:
-          err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event);
+          err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event, stopping);
           break;
         case Integrator::CashKarp54:
-          err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event);
+          err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event, stopping);
           break;
         case Integrator::Rosenbrock:
-          err = advance_rosenbrock(m, sys, *ros, y, t, land, target, h, stats, event);
+          err = advance_rosenbrock(m, sys, *ros, y, t, land, target, h, stats, event, stopping);
           break;
       }
       // The state changes size: new chain, fresh steppers (sized on first
       // use), at the top of this loop once the outputs passed are written.
       if (event && err.empty()) pending_event = true;
+      if (stop_flag && *stop_flag) break;  // checked after every step: a stop between outputs is prompt
     }
     if (!err.empty()) {
       std::ostringstream os;
       os << "numerical failure at t = " << t << " s: " << err;
       stats.status = "failed";
       stats.message = os.str();
+      break;
+    }
+    if (stop_flag && *stop_flag && t < out_time - 1e-12 * std::max(1.0, out_time)) {
+      stats.status = "interrupted";  // between output times: the last sample on disk is the end
+      stats.message = "interrupted by signal at t = " + std::to_string(written) + " s";
       break;
     }
     if (std::abs(t - out_time) <= 1e-12 * std::max(1.0, out_time)) {

@@ -1091,6 +1091,17 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
   out.body_force = p.ws.acc.lower_link_force;
   out.joint_force = p.ws.acc.joint_force;
   out.sample = make_sample(elastic, p.base, p.ws, 0.0);
+  // Angles balanced but forces overflowed (e.g. mass_per_length 1e200): no equilibrium to report.
+  // (components near 1e200 are finite, their norm, the tension, is not).
+  bool finite = std::isfinite(out.tow_force.norm());
+  for (const std::vector<Vec3>* forces : {&out.link_force, &out.body_force, &out.joint_force})
+    for (const Vec3& f : *forces) finite = finite && std::isfinite(f.norm());
+  if (out.converged && !finite) {
+    out.converged = false;
+    out.message =
+        "no finite equilibrium: the forces overflow double precision (check the scenario's masses, sizes "
+        "and speeds)";
+  }
   return out;
 }
 

@@ -109,6 +109,21 @@ def test_scenario_errors_carry_the_cli_messages(tmp_path):
         towsim.run(42)
 
 
+def test_scenario_errors_quoting_other_encodings_and_empty_sections(tmp_path):
+    # A message quoting a byte that is not UTF-8 (once UnicodeDecodeError): U+FFFD in its place.
+    bad = tmp_path / "b.yaml"
+    bad.write_bytes(b'name: "\\\xff"\n')
+    with pytest.raises(towsim.ScenarioError) as e:
+        towsim.run(str(bad))
+    assert e.value.errors[0].startswith(f"{bad}:1:")
+    assert "\ufffd" in str(e.value)
+    # An empty section list (once a crash of the interpreter) is a ScenarioError.
+    with pytest.raises(towsim.ScenarioError) as e:
+        towsim.run("cable: {sections: [], mass_per_length: 1.5, diameter: 0.02}\nsimulation: {duration: 1}\n")
+    assert str(e.value) == ("<string>:1:19: cable.sections: the list is empty "
+                            "(give at least one section, or leave sections out)")
+
+
 def test_numerical_failure_raises_with_the_partial_result(tmp_path):
     path = tmp_path / "unstable.yaml"
     path.write_text(UNSTABLE)
@@ -171,6 +186,28 @@ def test_ctrl_c_stops_the_run_and_keeps_the_result():
     assert r.status == "interrupted" and r.summary["status"] == "interrupted"
     assert 0 < r["time"][-1] < 100000
     assert time.monotonic() - t0 < 30  # it stopped, it did not run to the end
+
+
+def test_ctrl_c_between_output_times_stops_promptly():
+    # The next output time minutes of integration away: Ctrl-C is polled
+    # after every step (once only at output times), the run stops within
+    # seconds at the last row written (t = 0).
+    path = SCENARIOS / "paper-3d-turn.yaml"
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    try:
+        timer.start()
+        with pytest.raises(KeyboardInterrupt) as e:
+            towsim.run(path, {"simulation.duration": 1e7, "simulation.output_interval": 5e6,
+                              "simulation.write_nodes": False})
+    finally:
+        timer.cancel()
+        timer.join()
+        signal.signal(signal.SIGINT, previous)
+    r = e.value.result
+    assert r.status == "interrupted"
+    assert list(r["time"]) == [0.0]
+    assert r.integration_interval[1] - r.integration_interval[0] < 5  # 1 s asked for, margin for a loaded machine
 
 
 def test_ctrl_c_stops_the_statics_and_keeps_the_last_iterate():

@@ -170,3 +170,67 @@ TEST_F(Cli, StalledSurfaceIsWarnedAboutWithItsTime) {
   ASSERT_EQ(ok.status, 0) << ok.out;
   EXPECT_EQ(ok.out.find("stalled"), std::string::npos) << ok.out;
 }
+
+// Above the mean water surface the water's loads still act (results there are
+// not physical): the first output time the cable (below the tow point) or a
+// body is above z = 0 is warned about, once per part, on stderr and in
+// summary.json "warnings" (once a silent status ok).
+TEST_F(Cli, CableOrBodyAboveTheSurfaceIsWarned) {
+  const std::string tail =
+      " rose above the water surface at t = 0 s (joint 1 at z = 980 m): the water's loads (buoyancy, drag, added "
+      "mass) still act there, so results above z = 0 are not physical";
+  const fs::path high = dir_ / "high";
+  const CliResult r = run_towsim(
+      "run --example cable-tow --set 'tow.start=[0,0,1000]' --set simulation.duration=0.2 --out " + quoted(high));
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("towsim: warning: the cable" + tail + "\n"), std::string::npos) << r.out;
+  EXPECT_NE(towsim::testing::slurp(high / "summary.json").find("\"the cable" + tail + "\""), std::string::npos);
+  // A buoyant body (34 kg of water displaced, 2 kg) on 4 m of cable from a tow point 1 m deep floats up.
+  const fs::path scen = dir_ / "float.yaml";
+  std::ofstream(scen) << "cable: {length: 4, elements: 4, mass_per_length: 0.1, diameter: 0.01}\n"
+                         "body:\n  mass: 2\n  inertia: [0.1, 0.1, 0.1]\n  link_point: [0, 0, 0]\n"
+                         "  spheres: [{center: [0, 0, 0], radius: 0.2}]\n"
+                         "tow: {start: [0, 0, -1]}\ninitial: {direction: [1, 0, 0.2]}\n"
+                         "simulation: {duration: 3, output_interval: 0.5}\n";
+  const CliResult f = run_towsim("run " + quoted(scen) + " --out " + quoted(dir_ / "float"));
+  ASSERT_EQ(f.status, 0) << f.out;
+  const std::string prefix = "towsim: warning: the body rose above the water surface at t = ";
+  const auto at = f.out.find(prefix);
+  ASSERT_NE(at, std::string::npos) << f.out;
+  EXPECT_EQ(f.out.find(prefix, at + 1), std::string::npos) << "warned once";
+  EXPECT_NE(f.out.find("towsim: warning: the cable rose above the water surface at t = "), std::string::npos);
+}
+
+// A loose tolerance passes large errors as "ok": above 1e-2 it is warned about.
+TEST_F(Cli, LooseToleranceIsWarned) {
+  const std::string w =
+      "simulation.tolerance 0.1 is loose (above 0.01): the results may be far from converged; check them at a "
+      "tolerance 10 times smaller";
+  for (const char* integrator : {"dopri5", "rosenbrock"}) {
+    const fs::path out = dir_ / integrator;
+    const CliResult r = run_towsim("run --example cable-tow --set simulation.duration=1 --set simulation.integrator=" +
+                                   std::string(integrator) + " --set simulation.tolerance=0.1 --out " + quoted(out));
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("towsim: warning: " + w + "\n"), std::string::npos) << r.out;
+    EXPECT_NE(towsim::testing::slurp(out / "summary.json").find("\"" + w + "\""), std::string::npos);
+  }
+  const CliResult tight = run_towsim(
+      "run --example cable-tow --set simulation.duration=1 --set simulation.tolerance=0.01 --out " +
+      quoted(dir_ / "tight"));
+  EXPECT_EQ(tight.out.find("is loose"), std::string::npos) << tight.out;
+}
+
+// The compression warning of a rigid cable is in summary.json "warnings" too
+// (once on stderr only, unseen from Python and sweeps).
+TEST_F(Cli, CompressionWarningIsInTheSummary) {
+  const fs::path out = dir_ / "out";
+  const CliResult r = run_towsim(
+      "run --example paper-planar-b --set simulation.duration=20 --set simulation.write_nodes=false --out " +
+      quoted(out));
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::string w = "the cable was in compression (axial force ";
+  const auto on_stderr = r.out.find("towsim: warning: " + w);
+  ASSERT_NE(on_stderr, std::string::npos) << r.out;
+  const std::string text = r.out.substr(on_stderr + 17, r.out.find('\n', on_stderr) - on_stderr - 17);
+  EXPECT_NE(towsim::testing::slurp(out / "summary.json").find("\"" + text + "\""), std::string::npos) << text;
+}

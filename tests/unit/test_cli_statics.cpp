@@ -140,3 +140,21 @@ TEST(CliRunWarnings, ExtremeAttitudeIsReported) {
 }
 
 }  // namespace
+
+// Angles balanced but tensions of infinity (once "converged: yes", status ok,
+// exit 0 with inf in the CSVs): a numerical failure, exit 3.
+TEST(CliStaticsErrors, InfiniteTensionIsAFailure) {
+  const fs::path dir = fresh_dir("statics_infinite") / "out";
+  const auto [status,
+              out] = run_towsim("statics --example cable-tow --set cable.mass_per_length=1e200 --out " + quoted(dir));
+  EXPECT_EQ(status, 3) << out;
+  EXPECT_NE(out.find("converged: NO"), std::string::npos) << out;
+  EXPECT_NE(out.find("towsim: statics: no finite equilibrium: the forces overflow double precision (check the "
+                     "scenario's masses, sizes and speeds)\n"),
+            std::string::npos)
+      << out;
+  std::ifstream in(dir / "summary.json");
+  std::string summary((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos) << summary;
+  fs::remove_all(dir.parent_path());
+}

@@ -104,6 +104,57 @@ TEST_F(Refusal, TooManyElements) {
   EXPECT_EQ(s.diags.str(), at("3:13: cable.elements: must be <= 100000 (got 1000000000000)"));
 }
 
+// An empty section list was a cable of no element (a crash in check, statics
+// and run); length and elements beside sections were silently ignored.
+TEST_F(Refusal, EmptySectionListAndSingleFormKeysBesideSections) {
+  const auto empty = load("cable: {sections: [], mass_per_length: 1.5, diameter: 0.02}\nsimulation: {duration: 1}\n");
+  EXPECT_EQ(empty.diags.str(),
+            at("1:19: cable.sections: the list is empty (give at least one section, or leave sections out)"));
+  const auto beside = load(
+      "cable:\n  length: 100\n  elements: 5\n  mass_per_length: 1.5\n  diameter: 0.019\n  sections:\n"
+      "    - {length: 60, elements: 6}\n" +
+      kSim);
+  EXPECT_EQ(beside.diags.str(),
+            at("2:11: cable.length: not used with cable.sections (each section gives its own)") +
+                at("3:13: cable.elements: not used with cable.sections (each section gives its own)"));
+}
+
+// A second YAML document was silently ignored (only the first one ran).
+TEST_F(Refusal, SecondYamlDocument) {
+  const auto s = load(kCable + kSim + "---\nfoo: 1\n");
+  EXPECT_EQ(s.diags.str(), at("9:1: (yaml): a second YAML document (after ---): a scenario is one document"));
+  const auto trailing = load(kCable + kSim + "---\n");  // an empty one after: nothing lost
+  EXPECT_TRUE(trailing.ok()) << trailing.diags.str();
+}
+
+// Not a scenario file: a directory (once "the scenario is empty"), a device
+// without end (once read until memory ran out), a file beyond 4 MiB.
+TEST_F(Refusal, ScenarioPathNotARegularFileOrTooLarge) {
+  const auto dir = load_scenario_file(dir_.string(), {});
+  EXPECT_EQ(dir.diags.str(), dir_.string() + ":0:0: (file): is a directory, not a scenario file\n");
+  const std::string too_large =
+      ":0:0: (file): larger than 4 MiB (give long tables, such as tracks and vessel "
+      "motions, as CSV files)\n";
+  const auto zero = load_scenario_file("/dev/zero", {});
+  EXPECT_EQ(zero.diags.str(), "/dev/zero" + too_large);
+  const std::string big = write(kCable + kSim + "description: \"" + std::string(std::size_t{4} << 20, 'x') + "\"\n");
+  EXPECT_EQ(load_scenario_file(big, {}).diags.str(), big + too_large);
+}
+
+// Valid numbers whose derived volume overflows: once "valid" in check.
+TEST_F(Refusal, InfiniteDisplacedVolume) {
+  const auto s = load(kCable + kSim + kBody + "  spheres: [{center: [0, 0, 0], radius: 1e200}]\n");
+  EXPECT_EQ(s.diags.str(),
+            at("9:3: body: the displaced volume is not finite (got inf m^3: the sizes overflow double precision)"));
+}
+
+// Control bytes quoted from a binary file are escaped, not sent to the terminal.
+TEST_F(Refusal, ControlBytesInMessagesAreEscaped) {
+  write("time,x,y,z\n0,0,0,0\n1,\x1b[31mred,0,0\n", "track.csv");
+  const auto s = load(kCable + kSim + "tow:\n  motion:\n    - {type: track, file: track.csv}\n");
+  EXPECT_EQ(s.diags.str(), in("track.csv", "3:3: tow.motion.0.file: expected a number (got '\\x1b[31mred')"));
+}
+
 TEST_F(Refusal, BodyMassesAndSizesMustBePositive) {
   const auto s = load(kCable + kSim +
                       "body:\n  mass: -3\n  inertia: [1, 1, 1]\n  link_point: [0, 0, 0]\n  volume: -1\n"
@@ -346,6 +397,7 @@ TEST_F(Refusal, ProgramExits2AndWritesNothingForEachClass) {
       kCable + kSim + "tow:\n  motion:\n    - {type: turn, radius: 5}\n",                              // turn speed
       "cable: [1, 2\n",                                                                                // YAML syntax
       kCable + kSim + "tow: {mode: force, force: [1, 0, 0]}\ninitial: steady\n",  // between sections
+      "cable: {sections: [], mass_per_length: 1.5, diameter: 0.02}\n" + kSim,     // no section
   };
   for (std::size_t i = 0; i < bad.size(); ++i) {
     const std::string scen = write(bad[i], "bad" + std::to_string(i) + ".yaml");

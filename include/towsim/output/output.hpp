@@ -13,11 +13,13 @@
 #include <chrono>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "towsim/output/row_file.hpp"
 #include "towsim/output/sea_statistics.hpp"
 #include "towsim/sim/simulate.hpp"
 
@@ -130,6 +132,10 @@ std::vector<double> node_arc_lengths(const Model& model);
 /// (a safety factor below 3), above 1 (the cable would break there).
 std::vector<std::string> strength_warnings(const Extremes& ex);
 
+/// A rigid cable pushed (negative axial force: a real cable would go slack
+/// there): the warning with the most negative force and its time, or "".
+std::string compression_warning(const Model& model, const Extremes& ex);
+
 /// Horizontal distance from the tow point to the end body's origin (or to
 /// the cable's lower end without an end body) [m].
 double layback(const Model& model, const Sample& s);
@@ -137,9 +143,11 @@ double layback(const Model& model, const Sample& s);
 /// section gives a breaking load) [-].
 double utilisation(const Model& model, const Sample& s);
 
-/// Remove what towsim writes into an output directory (timeseries.csv,
-/// nodes.csv, summary.json, plots/, report.html) and nothing else, so that a
-/// reused directory keeps no stale file. Throws std::runtime_error on failure.
+/// Remove what towsim writes into an output directory (the regular files
+/// timeseries.csv, nodes.csv, summary.json, spectra.csv, report.html and those
+/// in plots/) and nothing else, so that a reused directory keeps no stale
+/// file. Throws std::runtime_error on failure, and when one of those names is
+/// something else (a directory, a link), which it leaves alone.
 void remove_run_outputs(const std::string& dir);
 
 /// A sink that keeps what summary.json needs: the extremes, the number of
@@ -196,17 +204,21 @@ class RunWriter : public RunRecord {
   /// Write out the rows buffered so far and flush both files.
   void flush() override;
 
+  /// "" while every row went to the disk; else the first file's failure
+  /// ("cannot write PATH: cause"), after which that file gets no more rows.
+  std::string error() const;
+
   /// Buffered rows are written out from this size on [bytes]
   static constexpr std::size_t kWriteBytes = 64 * 1024;
   /// ... or this long after the last write [s of wall time]
   static constexpr std::chrono::milliseconds kWriteEvery{100};
 
  private:
-  std::FILE* series_ = nullptr;
-  std::FILE* nodes_ = nullptr;
-  bool node_ids_ = false;   // nodes.csv has a node_id column (a model with a winch)
-  std::string series_buf_;  // timeseries.csv rows not yet written
-  std::string nodes_buf_;   // nodes.csv rows not yet written
+  std::unique_ptr<RowFile> series_;
+  std::unique_ptr<RowFile> nodes_;  // null without nodes.csv
+  bool node_ids_ = false;           // nodes.csv has a node_id column (a model with a winch)
+  std::string series_buf_;          // timeseries.csv rows not yet written
+  std::string nodes_buf_;           // nodes.csv rows not yet written
   std::chrono::steady_clock::time_point last_write_;
   std::string time_;  // the sample's time as written
   std::vector<double> values_;
@@ -217,7 +229,9 @@ class RunWriter : public RunRecord {
 nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,
                                     const RunStats& stats, const RunRecord& record, bool write_nodes);
 
-/// Write `summary` as DIR/summary.json (pretty-printed); false on I/O error.
-bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary);
+/// Write `summary` as DIR/summary.json (pretty-printed), whole or not at all
+/// (through DIR/summary.json.part); false on I/O error, with `error` (when
+/// given) set to "cannot write PATH: cause".
+bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary, std::string* error = nullptr);
 
 }  // namespace towsim::io
