@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "towsim/scenario/examples.hpp"
-#include "towsim/output/output.hpp"
 #include "sweep.hpp"
+#include "towsim/output/output.hpp"
+#include "towsim/scenario/examples.hpp"
 #include "towsim/sim/statics.hpp"
 
 namespace py = pybind11;
@@ -63,7 +63,8 @@ class ArraySink : public RunRecord {
   std::vector<double> node_block() const {
     const std::size_t c = node_columns(model()).size();
     std::vector<double> out(nodes.size() * joints * c, kNaN);
-    for (std::size_t t = 0; t < nodes.size(); ++t) std::copy(nodes[t].begin(), nodes[t].end(), out.begin() + t * joints * c);
+    for (std::size_t t = 0; t < nodes.size(); ++t)
+      std::copy(nodes[t].begin(), nodes[t].end(), out.begin() + t * joints * c);
     return out;
   }
 
@@ -132,7 +133,8 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
     py::gil_scoped_release release;
     t0 = monotonic_seconds();
     try {
-      stats = simulate(model, sink, [&poll](double) { poll(); }, &stop);
+      stats = simulate(
+          model, sink, [&poll](double) { poll(); }, &stop);
     } catch (const std::exception& e) {
       stats.status = "failed";
       stats.message = std::string("internal error: ") + e.what();
@@ -206,7 +208,7 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   out["values"] = to_array(std::move(row), {static_cast<py::ssize_t>(columns.size())});
   out["node_columns"] = node_columns(model);
   out["nodes"] = to_array(std::move(nodes), {static_cast<py::ssize_t>(s.node_pos.size()),
-                                            static_cast<py::ssize_t>(node_columns(model).size())});
+                                             static_cast<py::ssize_t>(node_columns(model).size())});
   out["converged"] = r.converged;
   out["iterations"] = r.iterations;
   out["residual"] = r.residual;
@@ -216,15 +218,25 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   return out;
 }
 
-/// One sweep case, exactly as `towsim sweep` runs it: (status, message,
-/// [(figure, value)]). Ctrl-C in a worker process's main thread ends the case
-/// `interrupted` (the KeyboardInterrupt is cleared: the row says it).
+/// One sweep case, exactly as `towsim sweep` runs it (with `statics`, as a
+/// `statics: true` sweep does): (status, message, [(figure, value)]). Ctrl-C
+/// in a worker process's main thread ends the case `interrupted` (the
+/// KeyboardInterrupt is cleared: the row says it).
 py::tuple run_case_py(const std::string& kind, const std::string& source, const std::string& label,
-                      const std::vector<std::string>& sets, const std::string& out_dir) {
+                      const std::vector<std::string>& sets, const std::string& out_dir, bool statics) {
   CaseResult r;
   volatile int stop = 0;
   SignalPoll poll(stop);
-  {
+  if (statics) {
+    // The solve in a worker thread; this (main) thread polls Ctrl-C meanwhile.
+    py::gil_scoped_release release;
+    auto solve = std::async(std::launch::async, [&] {
+      const LoadedScenario sc = load(kind, source, label, sets);
+      r = statics_case(sc, out_dir, &stop);
+    });
+    while (solve.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready) poll();
+    solve.get();
+  } else {
     py::gil_scoped_release release;
     const LoadedScenario sc = load(kind, source, label, sets);
     r = run_case(sc, out_dir, &stop, [&poll](double) { poll(); });
@@ -245,7 +257,9 @@ PYBIND11_MODULE(_towsim, m) {
   m.def("statics", &statics, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"),
         py::arg("target_depth") = std::numeric_limits<double>::quiet_NaN());
   m.def("run_case", &run_case_py, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"),
-        py::arg("out_dir") = "");
+        py::arg("out_dir") = "", py::arg("statics") = false);
+  m.def("towing_table_columns", &towing_table_columns);
+  m.def("towing_row", &towing_row, py::arg("figures"));
   m.def("summary_figures", &figures_of, py::arg("summary_json"));
   m.def("examples", [] {
     std::vector<std::string> names;

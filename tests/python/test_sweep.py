@@ -116,7 +116,7 @@ cases:
 
 BAD_SWEEPS = [
     ("unknown key", "scenario: {cable}\ngrid: {{cable.elements: [2]}}\njobs: 2\n",
-     "{f}:3:1: jobs: unknown key (expected one of: scenario, example, set, write_cases, grid, cases)\n"),
+     "{f}:3:1: jobs: unknown key (expected one of: scenario, example, set, write_cases, statics, grid, cases)\n"),
     ("typo", "scenario: {cable}\ngird: {{cable.elements: [2]}}\n",
      "{f}:1:1: grid: missing: give the values to sweep (grid: {{KEY: [values]}} and/or cases: [{{KEY: VALUE}}])\n"
      "{f}:2:1: gird: unknown key (did you mean 'grid'?)\n"),
