@@ -122,3 +122,23 @@ def test_python_statics_sweep_equals_the_cli_and_towsim_statics(tmp_path):
     for i, row in enumerate(t_rows):
         for name in t_header[3:]:
             assert same_printed(tt[name][i], row[t_header.index(name)]), (i, name)
+
+
+def test_towsim_plot_draws_a_sweeps_towing_table(tmp_path):
+    status, _, err = towsim_cli("sweep", statics_sweep(tmp_path), "--out", tmp_path / "out", "--quiet")
+    assert status == 0, err
+    status, _, log = towsim_cli("plot", tmp_path / "out")
+    assert status == 0, log
+    plots = tmp_path / "out" / "plots"
+    assert log == f"towsim plot: wrote {plots / 'towing_table.png'} and .svg\n"
+    for ext in ("png", "svg"):
+        assert (plots / f"towing_table.{ext}").stat().st_size > 0
+    script = (plots / "towing_table.gp").read_text()
+    # Units on both axes, depth downwards (0 at the top), each point labelled.
+    assert "set xlabel 'layback: horizontal distance from the tow point (m)'" in script
+    assert "set ylabel 'depth of the body (or cable end) (m), downwards'" in script
+    assert re.search(r"set yrange \[[0-9.]+:0\]", script)
+    assert "sprintf('%d: %.3g kn', column('case'), column('tow_speed_kn'))" in script
+    svg = (plots / "towing_table.svg").read_text()
+    for i, kn in enumerate(("2", "4", "6")):
+        assert f"{i}: {kn} kn" in svg
