@@ -205,7 +205,11 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     if (!opts.quiet && comp.value < 0 && !all_elastic)
       err << "towsim: warning: the cable was in compression (axial force " << fmt_num(comp.value)
           << " N at t = " << fmt_num(comp.time)
-          << " s; see axial_force in nodes.csv): a real cable would go slack there\n";
+          << (model.sim.write_nodes
+                  ? " s; see axial_force in nodes.csv"
+                  : " s; see min_axial_force in summary.json: nodes.csv was not written, simulation.write_nodes is "
+                    "false")
+          << "): a real cable would go slack there\n";
     // An extreme attitude usually means a design that does not fly (stalled
     // fins, a body hanging nose down): say when, so the user need not dig.
     constexpr double kAttitudeWarnDeg = 30;  // |roll| or |pitch| beyond this [deg]

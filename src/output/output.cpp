@@ -759,7 +759,10 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
     nlohmann::ordered_json w;
     w["splits"] = stats.winch_splits;
     w["removals"] = stats.winch_removals;
-    w["energy_lost"] = num(tidy(stats.winch_energy_lost));  // [J] kinetic energy lost at removals
+    // [J] the kinetic energy change at removals: lost (kinks straightened) or
+    // gained (the impulse bringing the pay-out speed back did positive work).
+    w["energy_lost"] = num(tidy(std::max(0.0, stats.winch_energy_lost)));
+    w["energy_gained"] = num(tidy(std::max(0.0, -stats.winch_energy_lost)));
     w["rating"] = model.winch.rating > 0 ? num(model.winch.rating) : nlohmann::ordered_json(nullptr);
     w["max_load_ratio"] = model.winch.rating > 0 ? num(tidy(ex.max_tow_tension.value / model.winch.rating))
                                                  : nlohmann::ordered_json(nullptr);
