@@ -181,3 +181,12 @@ def test_the_towing_table_example(tmp_path):
         assert all(depth[s, a] < depth[s, b] for a, b in zip(lengths, lengths[1:])), s
     for L in lengths:
         assert all(depth[a, L] > depth[b, L] for a, b in zip(speeds, speeds[1:])), L
+
+
+def test_an_error_a_case_causes_points_at_its_override(tmp_path):
+    # paper-3d-turn's turn needs speed: the case that takes it away is named.
+    sweep = write_sweep(tmp_path, "example: paper-3d-turn\ncases:\n  - {cable.elements: 4}\n  - {tow.motion.0.speed: 0}\n")
+    status, out, err = towsim_cli("sweep", sweep, "--out", tmp_path / "out")
+    assert status == 2 and out == "" and not (tmp_path / "out").exists()
+    assert err == (f"{sweep}:4:26: tow.motion.1: a turn needs a non-zero horizontal tow speed at its start time "
+                   "(got 0 m/s at t = 15 s) [caused by --set tow.motion.0.speed=0; see paper-3d-turn.yaml:33:7]\n")
