@@ -281,7 +281,7 @@ std::vector<double> towing_row(const std::vector<Figure>& figures) {
           get("final_tow_tension"),
           std::atan2(fz, std::hypot(fx, fy)) * 180.0 / M_PI,
           -(dx * hx + dy * hy),
-          -(-dx * hy + dy * hx)};  // port is +y when heading +x (z up)
+          dx * hy - dy * hx};  // starboard: -y when heading +x (z up)
 }
 
 namespace {

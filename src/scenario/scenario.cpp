@@ -23,10 +23,11 @@ std::set<std::string> errors_with(YNode tree, const std::string& base_dir, const
   return out;
 }
 
-/// Errors found in the file that only the overrides cause (a turn left
-/// without speed by --set tow.motion.0.speed=0) point at the override that
-/// causes them (or the last one, when no single one does), naming it and the
-/// file's place.
+/// Errors found in the scenario file that only the overrides cause (a turn
+/// left without speed by --set tow.motion.0.speed=0) point at the override
+/// that causes them (or the last one, when no single one does), naming it and
+/// the file's place. Errors in other files (a track file an override names)
+/// keep their own line.
 Diagnostics blame_overrides(const Diagnostics& diags, const YNode& tree, const std::string& base_dir,
                             const std::vector<std::string>& sets) {
   Diagnostics out;
@@ -34,7 +35,7 @@ Diagnostics blame_overrides(const Diagnostics& diags, const YNode& tree, const s
   const std::set<std::string> plain = errors_with(tree, base_dir, sets, {});
   std::vector<std::set<std::string>> single;  // each override alone, computed when first needed
   for (const auto& e : diags.list()) {
-    if (e.loc.file == "--set" || plain.count(e.str()) != 0) {
+    if (e.loc.file != diags.primary() || plain.count(e.str()) != 0) {  // a track file's line stays the place
       out.error(e.loc, e.path, e.message);
       continue;
     }
