@@ -653,7 +653,7 @@ std::string join(const std::vector<std::string>& v, const std::string& sep, cons
 /// The gnuplot program, checked for its pngcairo and svg terminals; "" (the
 /// reason in `log`) when it cannot draw.
 std::string usable_gnuplot(std::ostream& log) {
-  const std::string prog = gnuplot_program();
+  std::string prog = gnuplot_program();  // returned: moved
   int err = 0;
   const int probe = spawn(prog, {"-e", "set terminal pngcairo; set terminal svg"}, "", err);
   if (probe < 0) {
