@@ -64,6 +64,17 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
 int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err,
                     const volatile int* stop_flag = nullptr);
 
+/// Why `towsim statics` refuses a valid scenario (a tow in force mode: the
+/// steady speed comes from the tow law), as an error at its key; nullopt when
+/// it can be solved.
+std::optional<Diagnostic> statics_refusal(const LoadedScenario& sc);
+
+/// The summary of a steady tow as `towsim statics --out` writes it: the
+/// equilibrium written to `rec` (of the model solved: the deployed one after
+/// --target-depth) as its one sample (t = 0), status `ok`, `failed` or
+/// `interrupted`, `steps` = solver iterations.
+nlohmann::ordered_json statics_summary(const LoadedScenario& sc, const StaticsResult& r, RunRecord& rec);
+
 /// The line `towsim run` prints at the end of a successful run: final
 /// layback, depth of the body (or cable end) and tow tension, the maximum
 /// tow tension and when, then samples, steps and wall time.

@@ -668,6 +668,123 @@ std::string join(const std::vector<std::string>& v, const std::string& sep, cons
   return out;
 }
 
+/// The gnuplot program, checked for its pngcairo and svg terminals; "" (the
+/// reason in `log`) when it cannot draw.
+std::string usable_gnuplot(std::ostream& log) {
+  std::string prog = gnuplot_program();  // returned: moved
+  int err = 0;
+  const int probe = spawn(prog, {"-e", "set terminal pngcairo; set terminal svg"}, "", err);
+  if (probe < 0) {
+    log << "towsim plot: cannot run the gnuplot program ('" << prog << "': " << std::strerror(err)
+        << "); install it (Debian/Ubuntu: apt-get install gnuplot-nox) or set TOWSIM_GNUPLOT to its path\n";
+    return "";
+  }
+  if (probe != 0) {
+    log << "towsim plot: '" << prog
+        << "' lacks the pngcairo or svg terminal; install a full gnuplot (Debian/Ubuntu: apt-get install "
+           "gnuplot-nox)\n";
+    return "";
+  }
+  return prog;
+}
+
+/// Write each (name, script) into `plots` and render it with `prog`; gnuplot's
+/// messages go to plots/gnuplot.log (and `log` on a failure). Returns kOk or kGnuplotFailed.
+int render_scripts(const fs::path& plots, const std::vector<std::pair<std::string, std::string>>& scripts,
+                   const std::string& prog, std::ostream& log) {
+  std::error_code ec;
+  const std::string gp_log = (plots / "gnuplot.log").string();
+  std::ofstream(gp_log, std::ios::trunc).close();
+  const std::string plots_abs = fs::absolute(plots, ec).string();
+  int status = kOk;
+  for (const auto& [name, text] : scripts) {
+    const fs::path script = plots / (name + ".gp");
+    {
+      std::ofstream out(script, std::ios::trunc);
+      out << text;
+      if (!out) {
+        log << "towsim plot: cannot write " << script.string() << "\n";
+        return kGnuplotFailed;
+      }
+    }
+    const auto before = fs::file_size(gp_log, ec);
+    int err = 0;
+    const int rc = spawn(prog, {"-e", "cd " + quote(plots_abs), name + ".gp"}, gp_log, err);
+    const bool png = exists_file(plots / (name + ".png")) && fs::file_size(plots / (name + ".png"), ec) > 0;
+    const bool svg = exists_file(plots / (name + ".svg")) && fs::file_size(plots / (name + ".svg"), ec) > 0;
+    if (rc != 0 || !png || !svg) {
+      log << "towsim plot: gnuplot failed on " << script.string();
+      if (rc < 0)
+        log << " (" << std::strerror(err) << ")";
+      else if (rc != 0)
+        log << " (exit status " << rc << ")";
+      log << ":\n";
+      std::ifstream in(gp_log);
+      in.seekg(static_cast<std::streamoff>(before));
+      log << in.rdbuf();
+      status = kGnuplotFailed;
+      continue;
+    }
+    log << "towsim plot: wrote " << (plots / (name + ".png")).string() << " and .svg\n";
+  }
+  return status;
+}
+
+/// A sweep's towing table (DIR/towing_table.csv of `towsim sweep`): depth
+/// against layback, one point per case labelled with its case number and tow
+/// speed, into DIR/plots/towing_table.png and .svg.
+int plot_towing_table(const fs::path& root, std::ostream& log, const PlotOptions& o) {
+  const fs::path csv = root / "towing_table.csv";
+  Table t;
+  if (!read_csv(csv, t) || !t.has("layback") || !t.has("depth") || !t.has("tow_speed_kn") || !t.has("case")) {
+    log << "towsim plot: " << csv.string() << ": cannot read it, or no column case, layback, depth or tow_speed_kn\n";
+    return kInvalid;
+  }
+  long drawn = 0;
+  double lmax = 0, dmax = 0;  // largest layback and depth [m]
+  for (std::size_t r = 0; r < t.rows.size(); ++r)
+    if (std::isfinite(t.at(r, "layback")) && std::isfinite(t.at(r, "depth"))) {
+      ++drawn;
+      lmax = std::max(lmax, t.at(r, "layback"));
+      dmax = std::max(dmax, t.at(r, "depth"));
+    }
+  if (drawn == 0) {
+    log << "towsim plot: " << csv.string() << ": no case with a depth and a layback\n";
+    return kInvalid;
+  }
+  const std::string prog = usable_gnuplot(log);
+  if (prog.empty()) return kInvalid;
+  const fs::path plots = root / "plots";
+  std::error_code ec;
+  fs::remove_all(plots, ec);  // towsim's folder: no stale figure
+  fs::create_directories(plots, ec);
+  if (ec) {
+    log << "towsim plot: cannot create " << plots.string() << ": " << ec.message() << "\n";
+    return kGnuplotFailed;
+  }
+  const std::string name = "towing_table";
+  std::ostringstream s;
+  s << "# " << name << ".gp: depth against layback of each case of a sweep (../towing_table.csv).\n"
+    << "# Written by `towsim plot`; re-render from this directory with: gnuplot " << name << ".gp\n"
+    << "set datafile separator comma\n"
+    << "set datafile columnheaders\n"
+    << "set encoding utf8\n"
+    << "set style line 100 lt 1 lw 0.6 lc rgb '#d4d4d4'\n"
+    << "set grid ls 100\nset border lw 1.2\nset key off\n"
+    << "tt = '../towing_table.csv'\n"
+    << "set title " << quote("towing table: depth against layback, " + std::to_string(drawn) + " cases") << "\n"
+    << "set xlabel 'layback: horizontal distance from the tow point (m)'\n"
+    << "set ylabel 'depth of the body (or cable end) (m), downwards'\n"
+    << "set xrange [0:" << num(1.12 * lmax + 1) << "]\nset yrange [" << num(1.06 * dmax + 1) << ":0]\n";
+  const std::string plot_cmd =
+      "plot tt using (column('layback')):(column('depth')) with points pt 7 ps 1.5 lc rgb '" +
+      std::string(kPalette[0]) +
+      "', \\\n  tt using (column('layback')):(column('depth')):(sprintf('%d: %.3g kn', column('case'), "
+      "column('tow_speed_kn'))) with labels offset char 1, char 0.8 left font ',9' tc rgb '#404040'";
+  s << render(name, plot_cmd, o);
+  return render_scripts(plots, {{name, s.str()}}, prog, log);
+}
+
 }  // namespace
 
 std::vector<std::string> plot_names(bool has_body, bool three_d, bool single, bool spectra) {
@@ -703,6 +820,9 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
         << ", with timeseries.csv, nodes.csv and summary.json)\n";
     return kInvalid;
   }
+  // A sweep's directory (`towsim sweep --out DIR`): its towing table.
+  if (!exists_file(root / "timeseries.csv") && exists_file(root / "towing_table.csv"))
+    return plot_towing_table(root, log, opt);
   nlohmann::json summary;
   bool summary_ok = false;
   if (exists_file(root / "summary.json")) {
@@ -879,20 +999,8 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   }
 
   // 3. gnuplot, before writing anything.
-  const std::string prog = gnuplot_program();
-  int err = 0;
-  const int probe = spawn(prog, {"-e", "set terminal pngcairo; set terminal svg"}, "", err);
-  if (probe < 0) {
-    log << "towsim plot: cannot run the gnuplot program ('" << prog << "': " << std::strerror(err)
-        << "); install it (Debian/Ubuntu: apt-get install gnuplot-nox) or set TOWSIM_GNUPLOT to its path\n";
-    return kInvalid;
-  }
-  if (probe != 0) {
-    log << "towsim plot: '" << prog
-        << "' lacks the pngcairo or svg terminal; install a full gnuplot (Debian/Ubuntu: apt-get install "
-           "gnuplot-nox)\n";
-    return kInvalid;
-  }
+  const std::string prog = usable_gnuplot(log);
+  if (prog.empty()) return kInvalid;
 
   // 4. Scripts, then figures.
   const fs::path plots = root / "plots";
@@ -956,40 +1064,7 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
                             "F_L");
     scripts.emplace_back(name, text);
   }
-  const std::string gp_log = (plots / "gnuplot.log").string();
-  std::ofstream(gp_log, std::ios::trunc).close();
-  const std::string plots_abs = fs::absolute(plots, ec).string();
-  int status = kOk;
-  for (const auto& [name, text] : scripts) {
-    const fs::path script = plots / (name + ".gp");
-    {
-      std::ofstream out(script, std::ios::trunc);
-      out << text;
-      if (!out) {
-        log << "towsim plot: cannot write " << script.string() << "\n";
-        return kGnuplotFailed;
-      }
-    }
-    const auto before = fs::file_size(gp_log, ec);
-    const int rc = spawn(prog, {"-e", "cd " + quote(plots_abs), name + ".gp"}, gp_log, err);
-    const bool png = exists_file(plots / (name + ".png")) && fs::file_size(plots / (name + ".png"), ec) > 0;
-    const bool svg = exists_file(plots / (name + ".svg")) && fs::file_size(plots / (name + ".svg"), ec) > 0;
-    if (rc != 0 || !png || !svg) {
-      log << "towsim plot: gnuplot failed on " << script.string();
-      if (rc < 0)
-        log << " (" << std::strerror(err) << ")";
-      else if (rc != 0)
-        log << " (exit status " << rc << ")";
-      log << ":\n";
-      std::ifstream in(gp_log);
-      in.seekg(static_cast<std::streamoff>(before));
-      log << in.rdbuf();
-      status = kGnuplotFailed;
-      continue;
-    }
-    log << "towsim plot: wrote " << (plots / (name + ".png")).string() << " and .svg\n";
-  }
-  return status;
+  return render_scripts(plots, scripts, prog, log);
 }
 
 }  // namespace towsim::io

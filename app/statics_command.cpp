@@ -51,6 +51,26 @@ void print_statics(const Model& model, const StaticsResult& r, const Sample& s, 
   }
 }
 
+}  // namespace
+
+std::optional<Diagnostic> statics_refusal(const LoadedScenario& sc) {
+  if (sc.model->tow.mode == Tow::Mode::Motion) return std::nullopt;
+  const Where& w = sc.spec.tow.mode.where;
+  return Diagnostic{w.loc, w.path, "statics needs mode: motion (the steady speed comes from the tow law; got force)"};
+}
+
+nlohmann::ordered_json statics_summary(const LoadedScenario& sc, const StaticsResult& r, RunRecord& rec) {
+  rec.write(r.sample);
+  rec.flush();
+  RunStats stats;  // a statics "run": one sample at t = 0
+  stats.status = r.converged ? "ok" : r.interrupted ? "interrupted" : "failed";
+  stats.message = r.converged ? "" : r.message;
+  stats.steps = r.iterations;
+  return make_summary(to_json(sc.tree), sc.model->name, stats, rec, true);
+}
+
+namespace {
+
 /// The command; statics_command adds the out-of-memory message.
 int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ostream& err,
                          const volatile int* stop_flag) {
@@ -60,12 +80,9 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
     return kExitInvalid;
   }
   const Model& model = *sc.model;
-  if (model.tow.mode != Tow::Mode::Motion) {
+  if (const auto refusal = statics_refusal(sc)) {
     // A rule between the command and the scenario, in the scenario's error format.
-    const Where& w = sc.spec.tow.mode.where;
-    err << Diagnostic{w.loc, w.path, "statics needs mode: motion (the steady speed comes from the tow law; got force)"}
-               .str()
-        << "\n";
+    err << refusal->str() << "\n";
     return kExitInvalid;
   }
   // --target-depth: the deployed length for that depth, and the statics there.
@@ -105,13 +122,7 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
       const DirLock lock(opts.out_dir);  // one towsim at a time in a directory
       remove_run_outputs(opts.out_dir);  // no stale file of a previous run
       RunWriter writer(opts.out_dir, used, true);
-      writer.write(s);
-      writer.flush();
-      RunStats stats;  // a statics "run": one sample at t = 0
-      stats.status = r.converged ? "ok" : r.interrupted ? "interrupted" : "failed";
-      stats.message = r.converged ? "" : r.message;
-      stats.steps = r.iterations;
-      auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, true);
+      auto summary = statics_summary(sc, r, writer);
       if (target)
         summary["target_depth"] = {{"depth", *opts.target_depth},
                                    {"deployed_length", target->length},

@@ -225,6 +225,70 @@ CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const 
   return res;
 }
 
+CaseResult statics_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag) {
+  CaseResult res;
+  if (!sc.ok() || statics_refusal(sc)) {
+    res.status = "invalid";
+    res.message = sc.ok() ? statics_refusal(sc)->str() : sc.diags.str();
+    while (!res.message.empty() && res.message.back() == '\n') res.message.pop_back();
+    return res;
+  }
+  try {
+    const Model& model = *sc.model;
+    const StaticsResult r = solve_statics(model, final_tow_velocity(model.tow), stop_flag);
+    std::unique_ptr<RunRecord> rec;
+    if (out_dir.empty()) {
+      rec = std::make_unique<RunRecord>(model);
+    } else {
+      std::filesystem::create_directories(out_dir);
+      remove_run_outputs(out_dir);
+      rec = std::make_unique<RunWriter>(out_dir, model, true);
+    }
+    const auto summary = statics_summary(sc, r, *rec);
+    if (!out_dir.empty() && !write_summary(out_dir, summary))
+      throw std::runtime_error("cannot write " + out_dir + "/summary.json");
+    res.status = summary["status"].get<std::string>();
+    res.message = summary["message"].is_string() ? summary["message"].get<std::string>() : std::string();
+    res.figures = summary_figures(summary);
+  } catch (const std::exception& e) {
+    res.status = "failed";
+    res.message = std::string("internal error: ") + e.what();
+  }
+  return res;
+}
+
+const std::vector<std::string>& towing_table_columns() {
+  static const std::vector<std::string> columns{"tow_speed",   "tow_speed_kn",  "depth",      "layback",
+                                                "tow_tension", "top_angle_deg", "offset_aft", "offset_starboard"};
+  return columns;
+}
+
+std::vector<double> towing_row(const std::vector<Figure>& figures) {
+  const auto get = [&](const std::string& name) {
+    for (const auto& [k, v] : figures)
+      if (k == name) return v;
+    return kNaN;
+  };
+  // The end body's figures, else the cable end's (an in-line body is not the end).
+  const bool body = !std::isnan(get("final_body_depth"));
+  const std::string at = body ? "final_body_" : "final_end_";
+  const double vx = get("final_tow_vx"), vy = get("final_tow_vy");
+  const double speed = std::hypot(vx, vy);  // horizontal tow speed [m/s]
+  // Heading: the tow's horizontal velocity (+x when at rest) [-, R_g].
+  const double hx = speed > 0 ? vx / speed : 1.0, hy = speed > 0 ? vy / speed : 0.0;
+  const double dx = get(at + "x") - get("final_tow_x"), dy = get(at + "y") - get("final_tow_y");             // [m]
+  const double fx = get("final_tow_force_x"), fy = get("final_tow_force_y"), fz = get("final_tow_force_z");  // [N]
+  constexpr double kKnot = 1852.0 / 3600.0;                                                                  // [m/s]
+  return {speed,
+          speed / kKnot,
+          get(at + "depth"),
+          get("final_layback"),
+          get("final_tow_tension"),
+          std::atan2(fz, std::hypot(fx, fy)) * 180.0 / M_PI,
+          -(dx * hx + dy * hy),
+          dx * hy - dy * hx};  // starboard: -y when heading +x (z up)
+}
+
 namespace {
 
 /// The sweep file's locations of each case's overrides, kept beside the spec.
@@ -260,6 +324,7 @@ SweepSpec read_sweep_with_locs(const std::string& path, Diagnostics& d, SweepLoc
       locs.common.push_back(o.loc);
     }
   if (const YNode* w = root.get("write_cases")) convert(*w, "write_cases", d, spec.write_cases);
+  if (const YNode* st = root.get("statics")) convert(*st, "statics", d, spec.statics);
 
   // grid: KEY: [values...]; the product, the first key varying slowest.
   std::vector<std::string> grid_keys;
@@ -380,16 +445,33 @@ class SweepTable {
     out_.flush();
   }
   bool good() const { return static_cast<bool>(out_); }
+  /// Every row as a towing table (towing_table_columns()); throws when it cannot be written.
+  void write_towing_table(const std::string& path) const {
+    std::ofstream t(path);
+    std::string text = "case";
+    for (const auto& k : spec_.keys) text += "," + csv_field(k);
+    text += ",status";
+    for (const auto& c : towing_table_columns()) text += "," + c;
+    text += "\n";
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+      text += std::to_string(i);
+      append_keys(text, i);
+      text += "," + csv_field(rows_[i].status);
+      for (double v : towing_row(rows_[i].figures)) {
+        text += ',';
+        if (std::isfinite(v)) append_number(text, v);
+      }
+      text += "\n";
+    }
+    t << text;
+    if (!t.flush()) throw std::runtime_error("cannot write " + path);
+  }
 
  private:
   void write_row(std::size_t i) {
     const CaseResult& r = rows_[i];
     std::string line = std::to_string(i);
-    for (const auto& k : spec_.keys) {
-      line += ',';
-      for (const auto& [key, value] : spec_.cases[i].sets)
-        if (key == k) line += csv_field(value);
-    }
+    append_keys(line, i);
     line += "," + csv_field(r.status) + "," + csv_field(r.message);
     for (const auto& name : figures_) {
       line += ',';
@@ -400,6 +482,15 @@ class SweepTable {
         }
     }
     out_ << line << "\n";
+  }
+
+  /// The varied keys' values of case i, each after a comma.
+  void append_keys(std::string& line, std::size_t i) const {
+    for (const auto& k : spec_.keys) {
+      line += ',';
+      for (const auto& [key, value] : spec_.cases[i].sets)
+        if (key == k) line += csv_field(value);
+    }
   }
 
   const SweepSpec& spec_;
@@ -456,6 +547,15 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
       const std::string msg = from_set ? x.message : x.message + " (" + case_name(i) + ")";
       if (reported.insert(Diagnostic{at, x.path, msg}.str()).second) case_errors.error(at, x.path, msg);
     }
+    // A steady-tow sweep needs a tow law (mode: motion) in every case.
+    if (spec.statics && sc.ok())
+      if (const auto refusal = statics_refusal(sc)) {
+        const bool from_set = refusal->loc.file == "--set" && refusal->loc.line >= 1 &&
+                              static_cast<std::size_t>(refusal->loc.line) <= e.locs.size();
+        const SourceLoc at = from_set ? e.locs[static_cast<std::size_t>(refusal->loc.line) - 1] : refusal->loc;
+        const std::string msg = from_set ? refusal->message : refusal->message + " (" + case_name(i) + ")";
+        if (reported.insert(Diagnostic{at, refusal->path, msg}.str()).second) case_errors.error(at, refusal->path, msg);
+      }
   }
   if (!case_errors.ok()) {
     err << case_errors.str();
@@ -490,7 +590,7 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
         const LoadedScenario sc = load_input(case_input(spec, e.sets));
         const std::string dir = spec.write_cases ? (std::filesystem::path(opts.out_dir) / case_name(i)).string()
                                                  : std::string();
-        CaseResult r = run_case(sc, dir, stop_flag);
+        CaseResult r = spec.statics ? statics_case(sc, dir, stop_flag) : run_case(sc, dir, stop_flag);
         std::lock_guard<std::mutex> lock(mu);
         ++completed;
         if (r.status == "failed") ++failed;
@@ -508,6 +608,7 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
     for (std::size_t i = 0; i < n; ++i)
       if (!started[i]) table.complete(i, CaseResult{"not_run", "the sweep was interrupted before this case", {}});
     if (!table.good()) throw std::runtime_error("cannot write " + opts.out_dir + "/sweep.csv");
+    table.write_towing_table((std::filesystem::path(opts.out_dir) / "towing_table.csv").string());
     if (stop_flag != nullptr && *stop_flag) {
       err << "towsim: sweep interrupted after " << completed << " of " << n << " cases (rows so far in " << opts.out_dir
           << "/sweep.csv)\n";

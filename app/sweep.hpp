@@ -39,6 +39,25 @@ struct CaseResult {
 CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag,
                     const ProgressFn& progress = {});
 
+/// Solve a loaded, valid scenario's steady tow as `towsim statics` does; the
+/// figures are those of the summary `towsim statics --out` writes (`final_*`:
+/// the equilibrium's). With `out_dir` non-empty, write its files there.
+/// Status `ok`, `failed` (not converged), `interrupted` or `invalid` (a tow in
+/// force mode). Never throws.
+CaseResult statics_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag);
+
+/// The columns of a towing table (DIR/towing_table.csv) after the case's
+/// overrides and status: tow speed [m/s] and [kn], depth of the end body (or
+/// the cable end) [m], layback [m], tow tension [N], top angle (the cable's
+/// angle below the horizontal at the tow point, from the tow force) [deg], and
+/// the end body's (or cable end's) offsets from the tow point aft of and to
+/// starboard of the tow's heading [m].
+const std::vector<std::string>& towing_table_columns();
+
+/// A case's towing-table values from its figures (the `final_*` ones), in the
+/// order of towing_table_columns(); NaN where a figure is missing.
+std::vector<double> towing_row(const std::vector<Figure>& figures);
+
 /// One case of a sweep: its overrides as (dotted key, YAML value text).
 struct SweepCase {
   std::vector<std::pair<std::string, std::string>> sets;
@@ -53,6 +72,7 @@ struct SweepSpec {
   std::vector<std::string> keys;    // the keys the cases vary, in order
   std::vector<SweepCase> cases;
   bool write_cases = false;  // also write each case's files into DIR/case-NNNN/
+  bool statics = false;      // each case a `towsim statics` (the steady tow), not a run
 };
 
 /// Most cases a sweep file may expand to.
@@ -70,7 +90,8 @@ struct SweepOptions {
 };
 
 /// `towsim sweep`: run the cases on `jobs` threads, write DIR/sweep.csv (one
-/// row per case, in case order, flushed as they complete). A failing case is
+/// row per case, in case order, flushed as they complete) and, at the end,
+/// DIR/towing_table.csv (the same rows, towing_table_columns()). A failing case is
 /// a row, not a failed sweep. `stop_flag` stops it: running cases end
 /// `interrupted`, the rest are `not_run` rows. Returns an ExitStatus.
 int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err,

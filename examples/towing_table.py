@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
 """The towing table: body depth and layback for tow speeds of 2-6 knots and
-cable lengths of 200-1500 m, made with one towsim.sweep (20 cases on every
-core), printed as a table, written as CSV and plotted (gnuplot).
+cable lengths of 200-1500 m, made with one towsim.sweep of steady tows (20
+`towsim statics` cases on every core), printed as a table, written as CSV and
+plotted (gnuplot).
 
-    PYTHONPATH=build/python python3 examples/towing_table.py [OUT_DIR] [--dask]
+    PYTHONPATH=build/python /usr/bin/python3 examples/towing_table.py [OUT_DIR] [--dask]
 
 --dask runs the cases on a local Dask cluster (2 worker processes) instead of
 local processes: the same call with a distributed.Client as the executor.
 """
-import math
 import os
 import shutil
 import subprocess
@@ -25,10 +25,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 def table(executor=None):
     cases = towsim.grid(os.path.join(HERE, "towing.yaml"),
                         {"tow.motion.0.speed": [round(kn * KNOT, 4) for kn in SPEEDS_KN], "cable.length": LENGTHS})
-    t = towsim.sweep(cases, executor, frame=False)  # a dict of arrays: no pandas needed
+    t = towsim.sweep(cases, executor, frame=False, statics=True)  # a dict of arrays: no pandas needed
+    # The towing table's columns (depth, layback, tension, top angle, offsets) beside the figures.
+    t.update({k: v for k, v in towsim.towing_table(t).items() if k not in t})
     t["speed_kn"] = [round(v / KNOT, 1) for v in t["tow.motion.0.speed"]]
-    t["layback"] = [math.hypot(tx - bx, ty - by) for tx, bx, ty, by in
-                    zip(t["final_tow_x"], t["final_body_x"], t["final_tow_y"], t["final_body_y"])]
     return t
 
 
@@ -52,15 +52,15 @@ def main():
     print("| cable [m] | " + " | ".join(f"{kn} kn" for kn in SPEEDS_KN) + " |")
     print("|---" * (len(SPEEDS_KN) + 1) + "|")
     for length in LENGTHS:
-        cells = [f"{d:.0f} / {l:.0f}" for d, l, L in zip(t["final_body_depth"], t["layback"], t["cable.length"])
+        cells = [f"{d:.0f} / {l:.0f}" for d, l, L in zip(t["final_body_depth"], t["final_layback"], t["cable.length"])
                  if L == length]
         print(f"| {length} | " + " | ".join(cells) + " |")
 
     csv_path = os.path.join(out, "towing_table.csv")
     with open(csv_path, "w") as f:
-        f.write("# speed_kn,cable_length,body_depth,layback,tow_tension\n")
-        for row in zip(t["speed_kn"], t["cable.length"], t["final_body_depth"], t["layback"],
-                       t["final_tow_tension"]):
+        f.write("# speed_kn,cable_length,body_depth,layback,tow_tension,top_angle_deg\n")
+        for row in zip(t["speed_kn"], t["cable.length"], t["final_body_depth"], t["final_layback"],
+                       t["final_tow_tension"], t["top_angle_deg"]):
             f.write(",".join(f"{v:.6g}" for v in row) + "\n")
     print(f"written: {csv_path}")
 

@@ -224,15 +224,25 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   return out;
 }
 
-/// One sweep case, exactly as `towsim sweep` runs it: (status, message,
-/// [(figure, value)]). Ctrl-C in a worker process's main thread ends the case
-/// `interrupted` (the KeyboardInterrupt is cleared: the row says it).
+/// One sweep case, exactly as `towsim sweep` runs it (with `statics`, as a
+/// `statics: true` sweep does): (status, message, [(figure, value)]). Ctrl-C
+/// in a worker process's main thread ends the case `interrupted` (the
+/// KeyboardInterrupt is cleared: the row says it).
 py::tuple run_case_py(const std::string& kind, const std::string& source, const std::string& label,
-                      const std::vector<std::string>& sets, const std::string& out_dir) {
+                      const std::vector<std::string>& sets, const std::string& out_dir, bool statics) {
   CaseResult r;
   volatile int stop = 0;
   SignalPoll poll(stop);
-  {
+  if (statics) {
+    // The solve in a worker thread; this (main) thread polls Ctrl-C meanwhile.
+    py::gil_scoped_release release;
+    auto solve = std::async(std::launch::async, [&] {
+      const LoadedScenario sc = load(kind, source, label, sets);
+      r = statics_case(sc, out_dir, &stop);
+    });
+    while (solve.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready) poll();
+    solve.get();
+  } else {
     py::gil_scoped_release release;
     const LoadedScenario sc = load(kind, source, label, sets);
     r = run_case(sc, out_dir, &stop, [&poll](double) { poll(); });
@@ -253,7 +263,9 @@ PYBIND11_MODULE(_towsim, m) {
   m.def("statics", &statics, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"),
         py::arg("target_depth") = std::numeric_limits<double>::quiet_NaN());
   m.def("run_case", &run_case_py, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"),
-        py::arg("out_dir") = "");
+        py::arg("out_dir") = "", py::arg("statics") = false);
+  m.def("towing_table_columns", &towing_table_columns);
+  m.def("towing_row", &towing_row, py::arg("figures"));
   m.def("summary_figures", &figures_of, py::arg("summary_json"));
   m.def("examples", [] {
     std::vector<std::string> names;

@@ -1,4 +1,4 @@
-# Sourced by scripts/test.sh, sanitize.sh and fuzz.sh: compile through ccache
+# Sourced by scripts/test.sh, run-example.sh, sanitize.sh and fuzz.sh: compile through ccache
 # when it is installed (scripts/setup.sh installs it), so that a build of
 # sources already compiled with the same flags, in any clone or build
 # directory, is a cache hit (docs/reliability.md "CI time budget").

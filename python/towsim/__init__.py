@@ -22,7 +22,7 @@ from . import _towsim as _core
 
 __all__ = [
     "Interrupted", "Result", "ScenarioError", "SimulationError", "StaticsResult", "example", "examples",
-    "grid", "run", "statics", "sweep",
+    "grid", "run", "statics", "sweep", "towing_table",
 ]
 
 
@@ -258,14 +258,14 @@ def grid(scenario, axes, fixed=None):
     return cases
 
 
-def _case(scenario, overrides):
+def _case(scenario, overrides, statics=False):
     """One sweep case (runs in a worker): (status, message, [(figure, value)])."""
     kind, source, label = _source(scenario)
     try:
         sets = _sets(overrides)
     except TypeError as e:
         return "invalid", str(e), []
-    status, message, figures = _core.run_case(kind, source, label, sets)
+    status, message, figures = _core.run_case(kind, source, label, sets, "", bool(statics))
     return status, message, list(figures)
 
 
@@ -276,14 +276,16 @@ def _portable(scenario):
     return scenario
 
 
-def sweep(cases, executor=None, *, max_workers=None, frame=None):
+def sweep(cases, executor=None, *, max_workers=None, frame=None, statics=False):
     """Run many cases and gather one row per case.
 
     cases: a list of (scenario, overrides) pairs (see grid()). executor: any
     concurrent.futures.Executor, or a dask.distributed Client; None = a
     ProcessPoolExecutor with `max_workers` processes (default: every core).
-    Each case runs exactly as a `towsim sweep` case. A case that fails is a
-    row with its status ('failed', 'invalid') and message.
+    Each case runs exactly as a `towsim sweep` case; with statics=True, as a
+    `statics: true` sweep's case: the steady tow of `towsim statics` (the
+    `final_*` figures are the equilibrium's). A case that fails is a row with
+    its status ('failed', 'invalid') and message.
 
     Returns a pandas DataFrame (one row per case, in order: the override
     columns, status, message, then the summary's figures by name) when pandas
@@ -296,7 +298,7 @@ def sweep(cases, executor=None, *, max_workers=None, frame=None):
         executor = ProcessPoolExecutor(max_workers=max_workers or os.cpu_count() or 1)
     futures = []
     try:
-        futures = [executor.submit(_case, s, o) for s, o in cases]
+        futures = [executor.submit(_case, s, o, bool(statics)) for s, o in cases]
         outcomes = [f.result() for f in futures]
     except BaseException:  # Ctrl-C, or a worker lost: stop what is left
         for f in futures:
@@ -309,6 +311,30 @@ def sweep(cases, executor=None, *, max_workers=None, frame=None):
         if own:
             executor.shutdown(wait=True, cancel_futures=True)
     return _table(cases, outcomes, frame)
+
+
+def towing_table(table, frame=None):
+    """The towing table of a sweep() result (the columns of a sweep's
+    towing_table.csv): the override columns, status, then tow_speed [m/s],
+    tow_speed_kn, depth [m] (of the end body, or the cable end), layback [m],
+    tow_tension [N], top_angle_deg (the cable below the horizontal at the tow
+    point), offset_aft and offset_starboard [m] (of the end body or cable end
+    from the tow point, along and across the tow's heading). A DataFrame or a
+    dict of arrays as `frame` says (default: what `table` is)."""
+    names = list(table.keys()) if isinstance(table, Mapping) else list(table.columns)
+    first = names.index("message")
+    figures = names[first + 1:]
+    n = len(table["status"])
+    rows = [_core.towing_row([(f, float(table[f][i])) for f in figures]) for i in range(n)]
+    columns = {k: np.asarray(table[k]) for k in names[:first]}
+    for j, name in enumerate(_core.towing_table_columns()):
+        columns[name] = np.array([r[j] for r in rows], dtype=float)
+    if frame is None:
+        frame = not isinstance(table, dict)
+    if not frame:
+        return columns
+    import pandas
+    return pandas.DataFrame(columns)
 
 
 def _table(cases, outcomes, frame):

@@ -565,8 +565,11 @@ std::string compression_warning(const Model& model, const Extremes& ex) {
   char force[40], time[40];  // as in messages ("%.10g")
   std::snprintf(force, sizeof force, "%.10g", comp.value);
   std::snprintf(time, sizeof time, "%.10g", comp.time);
-  return std::string("the cable was in compression (axial force ") + force + " N at t = " + time +
-         " s; see axial_force in nodes.csv): a real cable would go slack there";
+  const char* where = model.sim.write_nodes ? " s; see axial_force in nodes.csv"
+                                            : " s; see min_axial_force in summary.json: nodes.csv was not written, "
+                                              "simulation.write_nodes is false";
+  return std::string("the cable was in compression (axial force ") + force + " N at t = " + time + where +
+         "): a real cable would go slack there";
 }
 
 RunRecord::RunRecord(const Model& model) : model_(model), sea_(statistics_start(model)) {}
@@ -780,7 +783,10 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
     nlohmann::ordered_json w;
     w["splits"] = stats.winch_splits;
     w["removals"] = stats.winch_removals;
-    w["energy_lost"] = num(tidy(stats.winch_energy_lost));  // [J] kinetic energy lost at removals
+    // [J] the kinetic energy change at removals: lost (kinks straightened) or
+    // gained (the impulse bringing the pay-out speed back did positive work).
+    w["energy_lost"] = num(tidy(std::max(0.0, stats.winch_energy_lost)));
+    w["energy_gained"] = num(tidy(std::max(0.0, -stats.winch_energy_lost)));
     w["rating"] = model.winch.rating > 0 ? num(model.winch.rating) : nlohmann::ordered_json(nullptr);
     w["max_load_ratio"] = model.winch.rating > 0 ? num(tidy(ex.max_tow_tension.value / model.winch.rating))
                                                  : nlohmann::ordered_json(nullptr);

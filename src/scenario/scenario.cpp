@@ -1,6 +1,9 @@
 #include "towsim/scenario/scenario.hpp"
 
 #include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "towsim/scenario/compile.hpp"
 #include "towsim/scenario/parse.hpp"
@@ -8,16 +11,67 @@
 namespace towsim::io {
 namespace {
 
+/// The errors of `tree` with the overrides `only` (ranks from 1, as given) applied, as text.
+std::set<std::string> errors_with(YNode tree, const std::string& base_dir, const std::vector<std::string>& sets,
+                                  const std::vector<std::size_t>& only) {
+  Diagnostics d;
+  for (std::size_t i : only) apply_set(tree, sets[i], static_cast<int>(i) + 1, d);
+  const ScenarioSpec spec = parse_scenario(tree, base_dir, d);
+  static_cast<void>(compile(spec, d));
+  std::set<std::string> out;
+  for (const auto& e : d.list()) out.insert(e.str());
+  return out;
+}
+
+/// Errors found in the scenario file that only the overrides cause (a turn
+/// left without speed by --set tow.motion.0.speed=0) point at the override
+/// that causes them (or the last one, when no single one does), naming it and
+/// the file's place. Errors in other files (a track file an override names)
+/// keep their own line.
+Diagnostics blame_overrides(const Diagnostics& diags, const YNode& tree, const std::string& base_dir,
+                            const std::vector<std::string>& sets) {
+  Diagnostics out;
+  out.set_primary(diags.primary());
+  const std::set<std::string> plain = errors_with(tree, base_dir, sets, {});
+  std::vector<std::set<std::string>> single;  // each override alone, computed when first needed
+  for (const auto& e : diags.list()) {
+    if (e.loc.file != diags.primary() || plain.count(e.str()) != 0) {  // a track file's line stays the place
+      out.error(e.loc, e.path, e.message);
+      continue;
+    }
+    if (single.empty())
+      for (std::size_t i = 0; i < sets.size(); ++i) single.push_back(errors_with(tree, base_dir, sets, {i}));
+    std::size_t culprit = sets.size() - 1;
+    for (std::size_t i = 0; i < sets.size(); ++i)
+      if (single[i].count(e.str()) != 0) {
+        culprit = i;
+        break;
+      }
+    const std::string& set = sets[culprit];
+    const auto eq = set.find('=');
+    const SourceLoc at{"--set", static_cast<int>(culprit) + 1, static_cast<int>(eq) + 2};
+    out.error(at, e.path,
+              e.message + " [caused by --set " + set + "; see " + e.loc.file + ":" + std::to_string(e.loc.line) + ":" +
+                  std::to_string(e.loc.col) + "]");
+  }
+  return out;
+}
+
 /// Apply the overrides, read the spec and compile, after the YAML was loaded.
 void finish_loading(LoadedScenario& s, const std::string& name, const std::string& base_dir,
                     const std::vector<std::string>& sets) {
   const bool loaded = s.diags.ok();
+  const YNode plain = sets.empty() ? YNode{} : s.tree;
   for (std::size_t i = 0; i < sets.size(); ++i) apply_set(s.tree, sets[i], static_cast<int>(i) + 1, s.diags);
   if (!loaded) return;
   s.spec = parse_scenario(s.tree, base_dir, s.diags);
   if (s.spec.name.empty()) s.spec.name = name;
   auto model = compile(s.spec, s.diags);
-  if (s.diags.ok()) s.model = std::move(model);
+  if (s.diags.ok()) {
+    s.model = std::move(model);
+  } else if (!sets.empty()) {
+    s.diags = blame_overrides(s.diags, plain, base_dir, sets);
+  }
 }
 
 }  // namespace

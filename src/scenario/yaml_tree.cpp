@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <charconv>
@@ -259,12 +260,14 @@ void apply_set(YNode& root, const std::string& assignment, int rank, Diagnostics
   const auto parts = split_path(key);
   std::string path;
   YNode* cur = &root;
+  YNode* parent = nullptr;  // the mapping or list that holds cur
   for (const auto& part : parts) {
     path += (path.empty() ? "" : ".") + part;
     if (part.empty()) {
       diags.error(at, key, "empty component in the key path");
       return;
     }
+    parent = cur;
     cur = step(cur, part, path, at, diags);
     if (cur == nullptr) return;
   }
@@ -277,6 +280,15 @@ void apply_set(YNode& root, const std::string& assignment, int rank, Diagnostics
   value.key_loc = cur->key_loc;
   if (value.is_null()) value.loc = SourceLoc{"--set", rank, static_cast<int>(eq) + 2};
   *cur = std::move(value);
+  // A key and its `_kn` twin (the same speed in knots) name one value: the
+  // override replaces both.
+  if (parent != nullptr && parent->is_map()) {
+    const std::string& k = parts.back();
+    const std::string twin = k.size() > 3 && k.compare(k.size() - 3, 3, "_kn") == 0 ? k.substr(0, k.size() - 3)
+                                                                                    : k + "_kn";
+    auto& items = parent->items;
+    items.erase(std::remove_if(items.begin(), items.end(), [&](const YNode& v) { return v.key == twin; }), items.end());
+  }
 }
 
 nlohmann::ordered_json to_json(const YNode& node) {

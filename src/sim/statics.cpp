@@ -528,7 +528,8 @@ Vec3 body_moment(const Body& body, const BodyWork& bw, const Vec3& f2) {
 /// Body attitude balancing its moments about Q, from q: Newton with
 /// minimum-norm steps (a sphere's rotation about its link line is neutral).
 /// On return bw holds the body at q; false when no balance was found.
-bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2, Quat& q, BodyWork& bw) {
+bool newton_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2, Quat& q,
+                 BodyWork& bw) {
   BodyWork tmp = bw;
   auto rotated = [&q](const Vec3& x) {
     return x.norm() > 0 ? Quat((Quat(Eigen::AngleAxisd(x.norm(), x.normalized())) * q).normalized()) : q;
@@ -565,6 +566,37 @@ bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, 
   }
   steady_body(m, body, q, Q, V, bw);  // bw at the best attitude found
   return false;
+}
+
+/// newton_body from q, else from several trims: nose up and down in steps of
+/// 15 deg to 75 deg, level in the tow's heading. Newton from the attitude a
+/// body held may not reach a balance far from it (two-part-tow's depressor
+/// flies nose up below about 560 kg, 24 deg at 500 kg, from a level start);
+/// of the balances found, the one nearest q is taken.
+bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2, Quat& q, BodyWork& bw) {
+  if (newton_body(m, body, Q, V, f2, q, bw)) return true;
+  const Quat start = q;
+  const BodyWork at_start = bw;  // the best attitude from q, kept when no start balances
+  const Quat heading(Eigen::AngleAxisd(std::hypot(V.x(), V.y()) > 0 ? std::atan2(V.y(), V.x()) : 0.0, Vec3::UnitZ()));
+  bool found = false;
+  double nearest = 0;  // angle from q to the balance kept [rad]
+  BodyWork trial = bw;
+  for (int deg = -75; deg <= 75; deg += 15) {
+    Quat t = (heading * Quat(Eigen::AngleAxisd(deg * M_PI / 180.0, Vec3::UnitY()))).normalized();
+    if (!newton_body(m, body, Q, V, f2, t, trial)) continue;
+    const double angle = t.angularDistance(start);
+    if (!found || angle < nearest) {
+      found = true;
+      nearest = angle;
+      q = t;
+      bw = trial;
+    }
+  }
+  if (!found) {
+    q = start;
+    bw = at_start;
+  }
+  return found;
 }
 
 /// One sweep from the bottom up at the positions of p.base (in p.ws): every

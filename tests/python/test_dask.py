@@ -21,6 +21,14 @@ def test_dask_sweep_equals_local_sweep(tmp_path):
         remote = towsim.sweep(cases, client)
         # Both workers took part.
         assert len(client.scheduler_info()["workers"]) == 2
+        # Steady tows through the same path: each case exactly towsim.statics's.
+        speeds = [1.0, 1.57, 2.0]
+        steady = towsim.sweep(towsim.grid(SCENARIOS / "paper-3d-turn.yaml", {"tow.motion.0.speed": speeds}), client,
+                              statics=True)
+    assert list(steady["status"]) == ["ok"] * 3
+    for i, speed in enumerate(speeds):
+        s = towsim.statics(SCENARIOS / "paper-3d-turn.yaml", {"tow.motion.0.speed": speed})
+        assert steady["final_tow_tension"][i] == s["tow_tension"] and steady["final_end_depth"][i] == s["end_depth"]
     assert isinstance(remote, pandas.DataFrame)
     assert list(remote["status"]) == ["ok"] * 6 + ["invalid"]
     # Deterministic runs: the same numbers bit for bit, row for row.

@@ -116,7 +116,7 @@ cases:
 
 BAD_SWEEPS = [
     ("unknown key", "scenario: {cable}\ngrid: {{cable.elements: [2]}}\njobs: 2\n",
-     "{f}:3:1: jobs: unknown key (expected one of: scenario, example, set, write_cases, grid, cases)\n"),
+     "{f}:3:1: jobs: unknown key (expected one of: scenario, example, set, write_cases, statics, grid, cases)\n"),
     ("typo", "scenario: {cable}\ngird: {{cable.elements: [2]}}\n",
      "{f}:1:1: grid: missing: give the values to sweep (grid: {{KEY: [values]}} and/or cases: [{{KEY: VALUE}}])\n"
      "{f}:2:1: gird: unknown key (did you mean 'grid'?)\n"),
@@ -181,3 +181,12 @@ def test_the_towing_table_example(tmp_path):
         assert all(depth[s, a] < depth[s, b] for a, b in zip(lengths, lengths[1:])), s
     for L in lengths:
         assert all(depth[a, L] > depth[b, L] for a, b in zip(speeds, speeds[1:])), L
+
+
+def test_an_error_a_case_causes_points_at_its_override(tmp_path):
+    # paper-3d-turn's turn needs speed: the case that takes it away is named.
+    sweep = write_sweep(tmp_path, "example: paper-3d-turn\ncases:\n  - {cable.elements: 4}\n  - {tow.motion.0.speed: 0}\n")
+    status, out, err = towsim_cli("sweep", sweep, "--out", tmp_path / "out")
+    assert status == 2 and out == "" and not (tmp_path / "out").exists()
+    assert err == (f"{sweep}:4:26: tow.motion.1: a turn needs a non-zero horizontal tow speed at its start time "
+                   "(got 0 m/s at t = 15 s) [caused by --set tow.motion.0.speed=0; see paper-3d-turn.yaml:33:7]\n")

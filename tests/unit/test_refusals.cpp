@@ -310,9 +310,12 @@ TEST_F(Refusal, SteadyStartNeedsAnImposedTowMotion) {
       "initial: steady needs tow.mode: motion (the steady velocity comes from the tow's motion; tow.mode is force)";
   const auto s = load(kCable + kSim + "tow:\n  mode: force\n  force: [10, 0, 0]\n" + "initial: steady\n");
   EXPECT_EQ(s.diags.str(), at("11:10: " + kProblem));
-  // The same rule reached through --set: reported where `initial` is written.
+  // The same rule reached through --set: reported at the override that
+  // breaks it, naming it and where `initial` is written.
   const auto set = load(kCable + kSim + "initial: steady\n", {"tow.mode=force", "tow.force=[10, 0, 0]"});
-  EXPECT_EQ(set.diags.str(), at("8:10: " + kProblem));
+  std::string initial_at = at("8:10");
+  initial_at.pop_back();  // the line's '\n'
+  EXPECT_EQ(set.diags.str(), "--set:1:10: " + kProblem + " [caused by --set tow.mode=force; see " + initial_at + "]\n");
   const auto set_initial = load(kCable + kSim + "tow: {mode: force, force: [1, 0, 0]}\n", {"initial=steady"});
   EXPECT_EQ(set_initial.diags.str(), "--set:1:9: " + kProblem + "\n");
   // Accepted: steady with an imposed motion, force mode with another start.

@@ -45,6 +45,7 @@ class Diagnostics {
   std::string str() const;
   /// Name the main input file, listed first by str().
   void set_primary(const std::string& file) { primary_ = file; }
+  const std::string& primary() const { return primary_; }
 
  private:
   std::vector<Diagnostic> list_;
