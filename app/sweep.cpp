@@ -16,6 +16,7 @@
 #include "../src/scenario/reader.hpp"  // MapReader for the sweep file (scenario-internal)
 #include "commands.hpp"
 #include "towsim/output/output.hpp"
+#include "towsim/sim/discretisation.hpp"
 
 namespace towsim::io {
 namespace {
@@ -207,6 +208,7 @@ CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const 
       stats.message = std::string("internal error: ") + e.what();
     }
     rec->flush();
+    record_discretisation_estimate(model, stats, stop_flag);
     const auto summary = make_summary(to_json(sc.tree), model.name, stats, *rec, model.sim.write_nodes);
     if (!out_dir.empty() && !write_summary(out_dir, summary))
       throw std::runtime_error("cannot write " + out_dir + "/summary.json");

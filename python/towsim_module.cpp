@@ -16,9 +16,10 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "towsim/scenario/examples.hpp"
-#include "towsim/output/output.hpp"
 #include "sweep.hpp"
+#include "towsim/output/output.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/sim/discretisation.hpp"
 #include "towsim/sim/statics.hpp"
 
 namespace py = pybind11;
@@ -63,7 +64,8 @@ class ArraySink : public RunRecord {
   std::vector<double> node_block() const {
     const std::size_t c = node_columns(model()).size();
     std::vector<double> out(nodes.size() * joints * c, kNaN);
-    for (std::size_t t = 0; t < nodes.size(); ++t) std::copy(nodes[t].begin(), nodes[t].end(), out.begin() + t * joints * c);
+    for (std::size_t t = 0; t < nodes.size(); ++t)
+      std::copy(nodes[t].begin(), nodes[t].end(), out.begin() + t * joints * c);
     return out;
   }
 
@@ -132,12 +134,14 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
     py::gil_scoped_release release;
     t0 = monotonic_seconds();
     try {
-      stats = simulate(model, sink, [&poll](double) { poll(); }, &stop);
+      stats = simulate(
+          model, sink, [&poll](double) { poll(); }, &stop);
     } catch (const std::exception& e) {
       stats.status = "failed";
       stats.message = std::string("internal error: ") + e.what();
     }
     t1 = monotonic_seconds();
+    record_discretisation_estimate(model, stats, &stop);  // after the integration's interval
   }
   const auto summary = make_summary(to_json(sc.tree), model.name, stats, sink, model.sim.write_nodes);
   const auto columns = timeseries_columns(model);
@@ -206,7 +210,7 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   out["values"] = to_array(std::move(row), {static_cast<py::ssize_t>(columns.size())});
   out["node_columns"] = node_columns(model);
   out["nodes"] = to_array(std::move(nodes), {static_cast<py::ssize_t>(s.node_pos.size()),
-                                            static_cast<py::ssize_t>(node_columns(model).size())});
+                                             static_cast<py::ssize_t>(node_columns(model).size())});
   out["converged"] = r.converged;
   out["iterations"] = r.iterations;
   out["residual"] = r.residual;
