@@ -101,21 +101,33 @@ ElementAdvice advise_elements(const Model& model, const DiscretisationEstimate& 
     a.enough = true;
     return a;
   }
-  // Levels n f with f = 1, 2, 4, ...: the estimate at f from T(f) and T(2f).
+  // Levels n f with f = 1, 2, 4, ...: the estimate at f from T(f) and T(2f),
+  // until one meets the accuracy (`below`, at 2f).
   const Vec3 V = final_tow_velocity(model.tow);
   int f = 1;
-  double T2 = d.refined_tension, est = d.estimate;
+  double T2 = d.refined_tension, est = d.estimate, below = -1;
   while (2 * f <= max_refinement && 4 * f * d.elements <= kMaxAdviceElements) {
     const StaticsResult r = solve_statics(refined_model(model, 4 * f), V, stop_flag);
     if (!r.converged) return a;
     const double T4 = r.tow_force.norm();
     const double next = richardson(T2, T4);
-    if (next <= accuracy) break;
+    if (next <= accuracy) {
+      below = next;
+      break;
+    }
     f *= 2, T2 = T4, est = next;
   }
   const int n = f * d.elements;
-  a.beyond = 2 * f > max_refinement || 4 * f * d.elements > kMaxAdviceElements;
-  a.elements = a.beyond ? n : static_cast<int>(std::ceil(n * std::pow(est / accuracy, 1 / kDiscretisationOrder)));
+  if (below < 0) {
+    a.elements = n;
+    a.beyond = true;
+    return a;
+  }
+  // Between n and 2n, with the order measured there: the estimate falls by
+  // est / below over the doubling (2^p, p = 2 once asymptotic).
+  const double p = below > 0 && est > below ? std::log2(est / below) : 0;
+  a.elements = p > 0 ? static_cast<int>(std::ceil(n * std::pow(est / accuracy, 1 / p))) : 2 * n;
+  a.elements = std::min(a.elements, 2 * n);
   return a;
 }
 

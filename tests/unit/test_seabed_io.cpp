@@ -146,7 +146,12 @@ TEST_F(SeabedIo, OutputsOfACableOnTheBottom) {
   EXPECT_TRUE(sm["extremes"].contains("max_contact_length"));
   EXPECT_TRUE(sm["extremes"].contains("max_seabed_normal_force"));
   EXPECT_TRUE(sm["extremes"].contains("max_seabed_friction_force"));
-  EXPECT_TRUE(sm["warnings"].empty());
+  // Only the element count's warning: 20 m elements place the touchdown
+  // point to within an element (the steady tension changes 5.6 % from 5 to
+  // 10 elements).
+  ASSERT_EQ(sm["warnings"].size(), 1u) << sm["warnings"].dump();
+  EXPECT_EQ(sm["warnings"][0].get<std::string>().rfind("discretisation error estimate 7.4 % of the tow tension", 0), 0u)
+      << sm["warnings"].dump();
   const auto [cs, described] = towsim_cli("check '" + (dir_ / "scen.yaml").string() + "'");
   EXPECT_EQ(cs, 0);
   EXPECT_NE(described.find("  depth" + std::string(23, ' ') + "80 m (flat)\n"), std::string::npos) << described;

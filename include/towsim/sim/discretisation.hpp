@@ -56,8 +56,9 @@ DiscretisationEstimate estimate_discretisation_error(const Model& model, const v
 
 /// The element count for a relative error `accuracy` of the steady tow
 /// tension: the cable refined by 2, 4, 8, ... (each section alike) until the
-/// estimate at a level meets it, then from the last level above it, with
-/// error ~ n^-p, n (estimate / accuracy)^(1/p). Each level is one more steady
+/// estimate at a level 2n meets it, then between n (the last level above it)
+/// and 2n with the order p measured there (estimate_n / estimate_2n = 2^p):
+/// n (estimate_n / accuracy)^(1/p). Each level is one more steady
 /// solve; the refinement stops at max_refinement n or 20000 elements (`beyond`).
 /// A run's warning refines up to 8 n, `towsim check` up to 64 n.
 ElementAdvice advise_elements(const Model& model, const DiscretisationEstimate& d, double accuracy,
