@@ -14,6 +14,8 @@ namespace towsim {
 namespace {
 
 constexpr int kMaxAdviceElements = 20000;  // advise_elements: largest element count solved [-]
+constexpr int kMaxSeabedAdviceElements = 200;  // ... with a seabed, whose steady solve is dense (~n^3: 0.4 s at
+                                               // 160 elements on the bottom, 4 s at 320) [-]
 constexpr int kRunRefinement = 8;          // a run's advice: largest refinement factor [-]
 
 /// A fraction as a percentage with two significant digits ("1.2 %").
@@ -101,12 +103,13 @@ ElementAdvice advise_elements(const Model& model, const DiscretisationEstimate& 
     a.enough = true;
     return a;
   }
-  // Levels n f with f = 1, 2, 4, ...: the estimate at f from T(f) and T(2f),
-  // until one meets the accuracy (`below`, at 2f).
+  // Levels of f n elements, f = 1, 2, 4, ...: the estimate at f n from the
+  // tensions at f n and 2 f n, until one meets the accuracy (`below`, at 2 f n).
   const Vec3 V = final_tow_velocity(model.tow);
+  const int max_elements = model.seabed ? kMaxSeabedAdviceElements : kMaxAdviceElements;
   int f = 1;
   double T2 = d.refined_tension, est = d.estimate, below = -1;
-  while (2 * f <= max_refinement && 4 * f * d.elements <= kMaxAdviceElements) {
+  while (2 * f <= max_refinement && 4 * f * d.elements <= max_elements) {
     const StaticsResult r = solve_statics(refined_model(model, 4 * f), V, stop_flag);
     if (!r.converged) return a;
     const double T4 = r.tow_force.norm();

@@ -59,8 +59,9 @@ DiscretisationEstimate estimate_discretisation_error(const Model& model, const v
 /// estimate at a level 2n meets it, then between n (the last level above it)
 /// and 2n with the order p measured there (estimate_n / estimate_2n = 2^p):
 /// n (estimate_n / accuracy)^(1/p). Each level is one more steady
-/// solve; the refinement stops at max_refinement n or 20000 elements (`beyond`).
-/// A run's warning refines up to 8 n, `towsim check` up to 64 n.
+/// solve; the estimates stop at max_refinement n (solves at twice that) or
+/// solves of 20000 elements, 200 with a seabed (`beyond`). A run's warning
+/// goes up to 8 n, `towsim check` up to 64 n.
 ElementAdvice advise_elements(const Model& model, const DiscretisationEstimate& d, double accuracy,
                               int max_refinement, const volatile int* stop_flag = nullptr);
 
