@@ -13,10 +13,10 @@ namespace towsim {
 
 namespace {
 
-constexpr int kMaxAdviceElements = 20000;  // advise_elements: largest element count solved [-]
+constexpr int kMaxAdviceElements = 20000;      // advise_elements: largest element count solved [-]
 constexpr int kMaxSeabedAdviceElements = 200;  // ... with a seabed, whose steady solve is dense (~n^3: 0.4 s at
                                                // 160 elements on the bottom, 4 s at 320) [-]
-constexpr int kRunRefinement = 8;          // a run's advice: largest refinement factor [-]
+constexpr int kRunRefinement = 8;              // a run's advice: largest refinement factor [-]
 
 /// A fraction as a percentage with two significant digits ("1.2 %").
 std::string percent(double x) {
@@ -94,8 +94,8 @@ DiscretisationEstimate estimate_discretisation_error(const Model& model, const v
   return d;
 }
 
-ElementAdvice advise_elements(const Model& model, const DiscretisationEstimate& d, double accuracy,
-                              int max_refinement, const volatile int* stop_flag) {
+ElementAdvice advise_elements(const Model& model, const DiscretisationEstimate& d, double accuracy, int max_refinement,
+                              const volatile int* stop_flag) {
   ElementAdvice a;
   if (!d.available()) return a;
   if (d.estimate <= accuracy) {

@@ -40,8 +40,8 @@ TEST_F(Accuracy, PaperTowReportsItsEstimateWithoutWarning) {
 TEST_F(Accuracy, WellResolvedRunIsBelow1e3AndNotWarned) {
   // 20 elements: 2.0e-4 (the steady tension changes 1.5e-4 from 20 to 40).
   const fs::path out = dir_ / "run";
-  const CliResult r = run_towsim("run --example paper-planar-a --set cable.elements=20 --set simulation.duration=1 --out " +
-                                 quoted(out));
+  const CliResult r = run_towsim(
+      "run --example paper-planar-a --set cable.elements=20 --set simulation.duration=1 --out " + quoted(out));
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_EQ(r.out.find("discretisation"), std::string::npos) << r.out;
   const std::string summary = towsim::testing::slurp(out / "summary.json");
@@ -68,8 +68,8 @@ TEST_F(Accuracy, CoarseCableIsWarnedOnStderrAndInTheSummary) {
 
 TEST_F(Accuracy, QuietRunStillWritesTheWarning) {
   const fs::path out = dir_ / "run";
-  const CliResult r =
-      run_towsim("run --example paper-3d-turn --set simulation.duration=0.1 --quiet --out " + quoted(out));
+  const CliResult r = run_towsim("run --example paper-3d-turn --set simulation.duration=0.1 --quiet --out " +
+                                 quoted(out));
   EXPECT_EQ(r.status, 0) << r.out;
   EXPECT_EQ(r.out, "");
   EXPECT_NE(towsim::testing::slurp(out / "summary.json").find("\"discretisation error estimate 5.9 %"),

@@ -45,7 +45,8 @@ double steady_tension(const Model& m) {
 /// The order p measured from the steady tensions at n, 2n and 4n elements:
 /// (T_n - T_2n) / (T_2n - T_4n) = 2^p.
 double measured_order(const Model& m) {
-  const double t1 = steady_tension(m), t2 = steady_tension(refined_model(m, 2)), t4 = steady_tension(refined_model(m, 4));
+  const double t1 = steady_tension(m), t2 = steady_tension(refined_model(m, 2)),
+               t4 = steady_tension(refined_model(m, 4));
   return std::log2(std::abs(t1 - t2) / std::abs(t2 - t4));
 }
 
@@ -72,8 +73,8 @@ TEST(DiscretisationEstimate, RefinedModelIsTheCompiledRefinement) {
   constexpr double kSame = 1e-9;
   const Model parts = example("two-part-tow");
   const double split = steady_tension(refined_model(parts, 2));
-  const double compiled = steady_tension(example("two-part-tow", {"cable.sections.0.elements=60",
-                                                                  "cable.sections.2.elements=20"}));
+  const double compiled = steady_tension(
+      example("two-part-tow", {"cable.sections.0.elements=60", "cable.sections.2.elements=20"}));
   EXPECT_NEAR(split, compiled, kSame * compiled);
   const std::vector<std::string> clump = {"cable.attachments=[{at: 60, mass: 40, volume: 0.002, drag_area: 0.05}]"};
   std::vector<std::string> clump10 = clump;
@@ -97,8 +98,8 @@ TEST(DiscretisationEstimate, PaperTowWithinAFactorOf3OfTheTrueError) {
   EXPECT_FALSE(d.proxy);
   // The reference: 40 elements, rosenbrock at tolerance 1e-8 (its time error
   // is below 1e-6 of the tension, far below the 1.7e-3 measured).
-  Model fine = example("paper-planar-a", {"cable.elements=40", "simulation.integrator=rosenbrock",
-                                          "simulation.tolerance=1e-8"});
+  Model fine = example("paper-planar-a",
+                       {"cable.elements=40", "simulation.integrator=rosenbrock", "simulation.tolerance=1e-8"});
   Model run5 = coarse;
   run5.sim.write_nodes = fine.sim.write_nodes = false;
   const std::vector<Sample> a = testing::run(run5), b = testing::run(fine);
@@ -133,8 +134,7 @@ TEST(DiscretisationEstimate, AdviceMeetsTheAccuracyItIsFor) {
   EXPECT_FALSE(a.enough);
   EXPECT_FALSE(a.beyond);
   const double converged = steady_tension(example("paper-planar-a", {"cable.elements=640"}));
-  const double at_advice =
-      steady_tension(example("paper-planar-a", {"cable.elements=" + std::to_string(a.elements)}));
+  const double at_advice = steady_tension(example("paper-planar-a", {"cable.elements=" + std::to_string(a.elements)}));
   const double err = std::abs(at_advice / converged - 1);
   std::cout << "[measured] paper 5.1: advised " << a.elements << " elements for 0.1 %: true error " << err << "\n";
   EXPECT_LT(err, kWithin * kAdvisedAccuracy);

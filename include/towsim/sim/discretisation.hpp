@@ -62,8 +62,8 @@ DiscretisationEstimate estimate_discretisation_error(const Model& model, const v
 /// solve; the estimates stop at max_refinement n (solves at twice that) or
 /// solves of 20000 elements, 200 with a seabed (`beyond`). A run's warning
 /// goes up to 8 n, `towsim check` up to 64 n.
-ElementAdvice advise_elements(const Model& model, const DiscretisationEstimate& d, double accuracy,
-                              int max_refinement, const volatile int* stop_flag = nullptr);
+ElementAdvice advise_elements(const Model& model, const DiscretisationEstimate& d, double accuracy, int max_refinement,
+                              const volatile int* stop_flag = nullptr);
 
 /// The warning the estimate calls for (above kDiscretisationWarnAbove, with
 /// the advice for kAdvisedAccuracy; or a failed solve), one sentence; empty when none.
