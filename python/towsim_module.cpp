@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "sweep.hpp"
-#include "towsim/output/output.hpp"
 #include "towsim/scenario/examples.hpp"
+#include "towsim/output/output.hpp"
+#include "sweep.hpp"
 #include "towsim/sim/discretisation.hpp"
 #include "towsim/sim/statics.hpp"
 
@@ -64,8 +64,7 @@ class ArraySink : public RunRecord {
   std::vector<double> node_block() const {
     const std::size_t c = node_columns(model()).size();
     std::vector<double> out(nodes.size() * joints * c, kNaN);
-    for (std::size_t t = 0; t < nodes.size(); ++t)
-      std::copy(nodes[t].begin(), nodes[t].end(), out.begin() + t * joints * c);
+    for (std::size_t t = 0; t < nodes.size(); ++t) std::copy(nodes[t].begin(), nodes[t].end(), out.begin() + t * joints * c);
     return out;
   }
 
@@ -134,8 +133,7 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
     py::gil_scoped_release release;
     t0 = monotonic_seconds();
     try {
-      stats = simulate(
-          model, sink, [&poll](double) { poll(); }, &stop);
+      stats = simulate(model, sink, [&poll](double) { poll(); }, &stop);
     } catch (const std::exception& e) {
       stats.status = "failed";
       stats.message = std::string("internal error: ") + e.what();
@@ -210,7 +208,7 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   out["values"] = to_array(std::move(row), {static_cast<py::ssize_t>(columns.size())});
   out["node_columns"] = node_columns(model);
   out["nodes"] = to_array(std::move(nodes), {static_cast<py::ssize_t>(s.node_pos.size()),
-                                             static_cast<py::ssize_t>(node_columns(model).size())});
+                                            static_cast<py::ssize_t>(node_columns(model).size())});
   out["converged"] = r.converged;
   out["iterations"] = r.iterations;
   out["residual"] = r.residual;

@@ -86,27 +86,28 @@ class MemorySink : public OutputSink {
 
 /// How a run ended and what it cost.
 struct RunStats {
-  std::string status = "ok";                  // "ok", "failed" (numerical), "interrupted"
-  std::string message;                        // why it failed: time, element or body, quantity
-  double end_time = 0;                        // last simulated time reached [s]
-  long steps = 0;                             // accepted steps
-  long rejected_steps = 0;                    // adaptive: rejected trial steps
-  long rhs_evaluations = 0;                   // evaluations of the dynamics
-  double wall_seconds = 0;                    // wall-clock time of the integration [s]
-  std::string integrator;                     // the method used: rk4, dopri5, cash_karp54, rosenbrock
-  int threads = 1;                            // threads the dynamics were evaluated on (evaluation_threads) [-]
-  double error_estimate = -1;                 // rosenbrock: largest local error estimate of an accepted step,
-                                              // relative, state and tow/link forces [-]; < 0: none
-  double force_error_estimate = -1;           // rosenbrock: its part from the tow and link forces [-]; < 0: none
-  double rk4_step_limit = -1;                 // rk4: smallest estimated stability limit over the samples [s]; < 0: none
-  double discretisation_error_estimate = -1;  // relative error of the steady tow tension due to the element
-                                              // count (record_discretisation_estimate) [-]; < 0: none
-  std::vector<std::string> warnings;          // e.g. an rk4 step beyond the estimated stability limit
-  long winch_splits = 0;                      // top elements split as cable was paid out [-]
-  long winch_removals = 0;                    // top elements removed as cable was hauled in [-]
-  double winch_energy_lost = 0;               // kinetic energy lost at removals (Removal::energy_lost, summed) [J]
-  double max_element_drift = 0;               // max |  |P_k - P_{k-1}| / l_k - 1 | seen (l_k: the state's length) [-]
-  SlackRecord slack;                          // elastic cable: slack episodes, snap and peak element tensions
+  std::string status = "ok";          // "ok", "failed" (numerical), "interrupted"
+  std::string message;                // why it failed: time, element or body, quantity
+  double end_time = 0;                // last simulated time reached [s]
+  long steps = 0;                     // accepted steps
+  long rejected_steps = 0;            // adaptive: rejected trial steps
+  long rhs_evaluations = 0;           // evaluations of the dynamics
+  double wall_seconds = 0;            // wall-clock time of the integration [s]
+  std::string integrator;             // the method used: rk4, dopri5, cash_karp54, rosenbrock
+  int threads = 1;                    // threads the dynamics were evaluated on (evaluation_threads) [-]
+  double error_estimate = -1;         // rosenbrock: largest local error estimate of an accepted step,
+                                      // relative, state and tow/link forces [-]; < 0: none
+  double force_error_estimate = -1;   // rosenbrock: its part from the tow and link forces [-]; < 0: none
+  double rk4_step_limit = -1;         // rk4: smallest estimated stability limit over the samples [s]; < 0: none
+  std::vector<std::string> warnings;  // e.g. an rk4 step beyond the estimated stability limit
+  long winch_splits = 0;              // top elements split as cable was paid out [-]
+  long winch_removals = 0;            // top elements removed as cable was hauled in [-]
+  double winch_energy_lost = 0;       // kinetic energy lost at removals (Removal::energy_lost, summed) [J]
+  double max_element_drift = 0;       // max |  |P_k - P_{k-1}| / l_k - 1 | seen (l_k: the state's length) [-]
+  SlackRecord slack;                  // elastic cable: slack episodes, snap and peak element tensions
+  // Relative error of the steady tow tension due to the element count
+  // (record_discretisation_estimate, towsim/sim/discretisation.hpp) [-]; < 0: none.
+  double discretisation_error_estimate = -1;
 };
 
 /// Estimated largest stable RK4 step for the state whose evaluation `ws`
