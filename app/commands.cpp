@@ -16,6 +16,7 @@
 #include "towsim/output/dir_lock.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/scenario/examples.hpp"
+#include "towsim/sim/discretisation.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim::io {
@@ -189,6 +190,7 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
       AsyncSink async(writer);
       stats = simulate_safely(model, async, opts, err, stop_flag);
     }
+    record_discretisation_estimate(model, stats, stop_flag);  // two steady tows, O(n) each
     auto summary = make_summary(to_json(sc.tree), model.name, stats, writer, model.sim.write_nodes);
     if (has_sea(model)) {
       summary["statistics"] = writer.sea_statistics().json();

@@ -1,11 +1,13 @@
 // `towsim check`: the derived quantities of a compiled model.
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <ostream>
 
 #include "commands.hpp"
 #include "describe_sea.hpp"
 #include "towsim/dynamics/elastic.hpp"
+#include "towsim/sim/discretisation.hpp"
 
 namespace towsim::io {
 namespace {
@@ -230,6 +232,38 @@ void describe_run(const Model& m, std::ostream& out) {
            (s.write_nodes ? ", with nodes.csv)" : ", no nodes.csv)"));
 }
 
+/// The element count's share of the tow tension's error and the count for
+/// kAdvisedAccuracy (two steady tows: include/towsim/sim/discretisation.hpp).
+void describe_accuracy(const Model& m, std::ostream& out) {
+  constexpr int kCheckRefinement = 64;  // the advice's largest refinement of the cable [-]
+  out << "accuracy\n";
+  const DiscretisationEstimate d = estimate_discretisation_error(m);
+  if (!d.available()) {
+    line(out, "discretisation error", "no estimate: " + d.message);
+    return;
+  }
+  char pct[32];
+  std::snprintf(pct, sizeof pct, "%.2g %%", 100 * d.estimate);
+  line(out, "discretisation error",
+       std::string(pct) + " of the steady tow tension at " + fmt_num(d.speed) + " m/s (" + fmt_num(d.tension) + " N; " +
+           fmt_num(d.refined_tension) + " N with " + std::to_string(2 * d.elements) + " elements)");
+  std::snprintf(pct, sizeof pct, "%.2g %%", 100 * kAdvisedAccuracy);
+  const std::string label = "elements for " + std::string(pct) + " tension";
+  const ElementAdvice a = advise_elements(m, d, kAdvisedAccuracy, kCheckRefinement);
+  if (a.elements < 0) {
+    line(out, label, "no advice: a steady tow on a refined cable did not converge");
+  } else if (a.enough) {
+    line(out, label, "the present " + std::to_string(d.elements) + " are enough");
+  } else {
+    std::string advice = (a.beyond ? "more than " : "about ") + std::to_string(a.elements);
+    if (m.cable.sections.size() > 1)
+      advice += " in all (each section's elements times " + fmt_num(std::ceil(100.0 * a.elements / d.elements) / 100) +
+                ")";
+    line(out, label, advice);
+  }
+  if (d.proxy) line(out, "basis", "the steady tow at the final speed, standing in for this run's unsteady conditions");
+}
+
 }  // namespace
 
 void describe_model(const Model& m, std::ostream& out) {
@@ -243,6 +277,7 @@ void describe_model(const Model& m, std::ostream& out) {
   describe_sea(m, out);
   describe_winch(m.winch, out);
   describe_run(m, out);
+  describe_accuracy(m, out);
 }
 
 }  // namespace towsim::io

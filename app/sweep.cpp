@@ -17,6 +17,7 @@
 #include "commands.hpp"
 #include "towsim/output/dir_lock.hpp"
 #include "towsim/output/output.hpp"
+#include "towsim/sim/discretisation.hpp"
 
 namespace towsim::io {
 namespace {
@@ -210,6 +211,7 @@ CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const 
       stats.message = std::string("internal error: ") + e.what();
     }
     rec->flush();
+    record_discretisation_estimate(model, stats, stop_flag);
     const auto summary = make_summary(to_json(sc.tree), model.name, stats, *rec, model.sim.write_nodes);
     std::string why;
     if (!out_dir.empty() && !write_summary(out_dir, summary, &why)) throw std::runtime_error(why);

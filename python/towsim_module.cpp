@@ -19,6 +19,7 @@
 #include "sweep.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/scenario/examples.hpp"
+#include "towsim/sim/discretisation.hpp"
 #include "towsim/sim/statics.hpp"
 
 namespace py = pybind11;
@@ -146,6 +147,7 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
       stats.message = std::string("internal error: ") + e.what();
     }
     t1 = monotonic_seconds();
+    record_discretisation_estimate(model, stats, &stop);  // after the integration's interval
   }
   const auto summary = make_summary(to_json(sc.tree), model.name, stats, sink, model.sim.write_nodes);
   const auto columns = timeseries_columns(model);

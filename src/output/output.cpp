@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -32,6 +33,13 @@ nlohmann::ordered_json json_of(const Extreme& e) {
 /// A finite number as JSON, anything else as null.
 nlohmann::ordered_json num(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+
+/// v rounded to two significant digits.
+double two_digits(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1e", v);
+  return std::strtod(b, nullptr);
 }
 
 /// The end body's sample, or nullptr.
@@ -704,6 +712,11 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
                                                               : nlohmann::ordered_json(nullptr);
   j["force_error_estimate"] = stats.force_error_estimate >= 0 ? num(stats.force_error_estimate)
                                                               : nlohmann::ordered_json(nullptr);
+  // The element count's share of the tow tension's error (relative, two
+  // significant digits: an estimate); null when none was made.
+  j["discretisation_error_estimate"] = stats.discretisation_error_estimate >= 0
+                                           ? num(two_digits(stats.discretisation_error_estimate))
+                                           : nlohmann::ordered_json(nullptr);
   // rk4: smallest estimated stability limit of the step over the samples [s].
   j["rk4_stability_limit"] = stats.rk4_step_limit > 0 ? num(stats.rk4_step_limit) : nlohmann::ordered_json(nullptr);
   j["warnings"] = stats.warnings;

@@ -2,7 +2,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cstddef>
+#include <optional>
+#include <string_view>
 
 namespace towsim::io {
 namespace embedded {
@@ -17,14 +20,40 @@ extern const std::size_t file_count;
 
 namespace {
 
-/// The `description:` of a scenario text, or "".
-std::string description_of(const std::string& yaml) {
+/// The `description` scalar of a YAML map in `text`, or nullopt.
+std::optional<std::string> description_in(const std::string& text) {
   try {
-    const YAML::Node n = YAML::Load(yaml);
+    const YAML::Node n = YAML::Load(text);
     if (n.IsMap() && n["description"] && n["description"].IsScalar()) return n["description"].Scalar();
   } catch (const YAML::Exception&) {
   }
-  return "";
+  return std::nullopt;
+}
+
+/// The `description:` of a scenario text, or "". Start-up: every run of an
+/// example looks it up among all of them, so a top-level `description:` line
+/// is read alone (reading every example's whole text was 54 M of a 0.5 s
+/// run's 61 M instructions); any other form (a block scalar, a flow map)
+/// falls back to reading the whole text.
+std::string description_of(const std::string& yaml) {
+  constexpr std::string_view kKey = "description:";
+  for (std::size_t at = 0; at < yaml.size();) {
+    const std::size_t end = std::min(yaml.find('\n', at), yaml.size());
+    const std::string_view line = std::string_view(yaml).substr(at, end - at);
+    if (line.starts_with(kKey)) {
+      // A plain double-quoted line, as every shipped example has: its text.
+      std::string_view v = line.substr(kKey.size());
+      while (!v.empty() && (v.front() == ' ' || v.back() == ' ' || v.back() == '\r'))
+        v = v.front() == ' ' ? v.substr(1) : v.substr(0, v.size() - 1);
+      if (v.size() >= 2 && v.front() == '"' && v.back() == '"' &&
+          v.substr(1, v.size() - 2).find_first_of("\"\\") == std::string_view::npos)
+        return std::string(v.substr(1, v.size() - 2));
+      if (const auto d = description_in(std::string(line)); d && !d->empty()) return *d;
+      break;
+    }
+    at = end + 1;
+  }
+  return description_in(yaml).value_or("");
 }
 
 std::vector<Example> load_all() {

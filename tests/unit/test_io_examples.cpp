@@ -35,6 +35,16 @@ TEST(IoExamples, EveryExampleParsesAndCompiles) {
   }
 }
 
+TEST(IoExamples, DescriptionsAreWhatTheScenarioReaderReads) {
+  // The list reads each example's `description:` line alone (start-up); the
+  // same text as the scenario reader gets from the whole document.
+  for (const auto& e : examples()) {
+    const auto s = load_scenario_text(e.yaml, e.name + ".yaml", e.name, "");
+    ASSERT_TRUE(s.ok()) << e.name;
+    EXPECT_EQ(e.description, s.spec.description) << e.name;
+  }
+}
+
 TEST(IoExamples, PaperPlanarValues) {
   const Example* e = find_example("paper-planar-a");
   ASSERT_NE(e, nullptr);

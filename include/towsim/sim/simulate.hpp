@@ -107,6 +107,9 @@ struct RunStats {
   double winch_energy_lost = 0;       // kinetic energy lost at removals (Removal::energy_lost, summed) [J]
   double max_element_drift = 0;       // max |  |P_k - P_{k-1}| / l_k - 1 | seen (l_k: the state's length) [-]
   SlackRecord slack;                  // elastic cable: slack episodes, snap and peak element tensions
+  // Relative error of the steady tow tension due to the element count
+  // (record_discretisation_estimate, towsim/sim/discretisation.hpp) [-]; < 0: none.
+  double discretisation_error_estimate = -1;
 };
 
 /// Estimated largest stable RK4 step for the state whose evaluation `ws`
