@@ -362,20 +362,27 @@ StaticsResult heavy_beam(int n, double EI) {
 /// tension T(x) = W_a + w (L - x) (x down from the pin) carrying the
 /// constant horizontal force P satisfies T theta - EI theta'' = P with
 /// theta' = 0 at both ends (no moment at the pin and at the free end).
-/// Second-order finite differences on m intervals (a tridiagonal solve),
+/// Second-order finite differences on m intervals (a tridiagonal solve by
+/// the Thomas algorithm),
 /// then the tip's offset y(L) = integral of theta (trapezoid) [m].
 double continuum_tip_offset(double EI, double w, double Wa, double P, double L, int m) {
   const double h = L / m;
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m + 1, m + 1);
-  Eigen::VectorXd b = Eigen::VectorXd::Constant(m + 1, P);
+  // Rows i = 0..m: lower l, diagonal d, upper u, right side P (Thomas algorithm).
+  Eigen::VectorXd l = Eigen::VectorXd::Zero(m + 1), d(m + 1), u = Eigen::VectorXd::Zero(m + 1);
+  Eigen::VectorXd th = Eigen::VectorXd::Constant(m + 1, P);
   for (int i = 0; i <= m; ++i) {
-    const double T = Wa + w * (L - i * h);
-    A(i, i) = T + 2 * EI / (h * h);
+    d[i] = Wa + w * (L - i * h) + 2 * EI / (h * h);
     // theta' = 0 at the ends: the ghost node mirrors the neighbour.
-    if (i > 0) A(i, i - 1) = -EI / (h * h) * (i == m ? 2 : 1);
-    if (i < m) A(i, i + 1) = -EI / (h * h) * (i == 0 ? 2 : 1);
+    if (i > 0) l[i] = -EI / (h * h) * (i == m ? 2 : 1);
+    if (i < m) u[i] = -EI / (h * h) * (i == 0 ? 2 : 1);
   }
-  const Eigen::VectorXd th = A.partialPivLu().solve(b);
+  for (int i = 1; i <= m; ++i) {
+    const double f = l[i] / d[i - 1];
+    d[i] -= f * u[i - 1];
+    th[i] -= f * th[i - 1];
+  }
+  th[m] /= d[m];
+  for (int i = m; i-- > 0;) th[i] = (th[i] - u[i] * th[i + 1]) / d[i];
   double y = 0;
   for (int i = 0; i < m; ++i) y += 0.5 * h * (th[i] + th[i + 1]);
   return y;
