@@ -1,6 +1,9 @@
-// Seabed contact on the cable's joints and the bodies' hull points
-// (docs/theory.md §3.2; the contact law: towsim/model/seabed.hpp).
+// Seabed contact on the cable (at its joints, or along its elements) and at
+// the bodies' hull points (docs/theory.md §3.2; the contact law:
+// towsim/model/seabed.hpp, along a segment: towsim/model/seabed_segment.hpp).
 #include "towsim/hydro/loads.hpp"
+
+#include <algorithm>
 
 namespace towsim {
 
@@ -24,10 +27,20 @@ void hull_contact(const Seabed& sb, const Body& body, BodyWork& bw, double& norm
 
 }  // namespace
 
-void seabed_loads(const Model& model, Workspace& ws) {
-  ws.seabed_normal = ws.seabed_friction = 0;
-  if (!model.seabed) return;
-  const Seabed& sb = *model.seabed;
+SegmentContact element_seabed_contact(const Model& model, const Workspace& ws, std::size_t k) {
+  const int bi = ws.body_at[k + 1];
+  const BodyWork* q = bi >= 0 && model.bodies[static_cast<std::size_t>(bi)].inline_body
+                          ? &ws.body[static_cast<std::size_t>(bi)]
+                          : nullptr;
+  return segment_contact(*model.seabed, ws.P[k], ws.vP[k], q ? q->Q : ws.P[k + 1], q ? q->vQ : ws.vP[k + 1]);
+}
+
+namespace {
+
+/// The joint law: each joint P_k below the bottom carries the contact of
+/// half of each adjacent element, added to ws.Fa[k] (the end body's Fb at Q;
+/// an in-line body's upper link Q carries the half-element above).
+void joint_contact(const Model& model, const Seabed& sb, Workspace& ws) {
   const auto& els = model.cable.elements;
   const std::size_t n = els.size();
   auto account = [&](const SeabedForce& f) {
@@ -61,6 +74,44 @@ void seabed_loads(const Model& model, Workspace& ws) {
       account(fq);
     }
   }
+}
+
+/// The law along elements: each element's contact (element_seabed_contact)
+/// as a force at G and a couple in its loads; its end shares in ws.Fs, ws.ls
+/// (BodyWork's Fs_q, ls_q at an in-line body's Q) for the outputs and the
+/// stage solve's local Jacobian only.
+void element_contact(const Model& model, Workspace& ws) {
+  std::fill(ws.Fs.begin(), ws.Fs.end(), Vec3::Zero());
+  std::fill(ws.ls.begin(), ws.ls.end(), 0.0);
+  for (BodyWork& bw : ws.body) bw.Fs_q.setZero(), bw.ls_q = 0;
+  for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
+    const SegmentContact c = element_seabed_contact(model, ws, k);
+    if (c.length <= 0) continue;
+    const int bi = ws.body_at[k + 1];
+    BodyWork* q = bi >= 0 && model.bodies[static_cast<std::size_t>(bi)].inline_body
+                      ? &ws.body[static_cast<std::size_t>(bi)]
+                      : nullptr;
+    ws.F[k] += c.total();
+    ws.Mom[k] += c.moment(ws.P[k], q ? q->Q : ws.P[k + 1], ws.G[k]);
+    ws.seabed_normal += c.normal;
+    ws.seabed_friction += c.friction.norm();
+    ws.Fs[k] += c.at_a;
+    ws.ls[k] += c.length_a;
+    (q ? q->Fs_q : ws.Fs[k + 1]) += c.at_b;
+    (q ? q->ls_q : ws.ls[k + 1]) += c.length_b;
+  }
+}
+
+}  // namespace
+
+void seabed_loads(const Model& model, Workspace& ws) {
+  ws.seabed_normal = ws.seabed_friction = 0;
+  if (!model.seabed) return;
+  const Seabed& sb = *model.seabed;
+  if (sb.along_elements)
+    element_contact(model, ws);
+  else
+    joint_contact(model, sb, ws);
   for (std::size_t b = 0; b < model.bodies.size(); ++b)
     hull_contact(sb, model.bodies[b], ws.body[b], ws.seabed_normal, ws.seabed_friction);
 }

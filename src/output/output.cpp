@@ -415,7 +415,9 @@ std::vector<std::string> timeseries_columns(const Model& model) {
       c.push_back(b.name + s);
   }
   if (has_sea(model)) c.insert(c.end(), {"wave_elevation", "tow_wave_x", "tow_wave_y", "tow_wave_z"});
-  if (model.seabed) c.insert(c.end(), {"contact_length", "seabed_normal_force", "seabed_friction_force"});
+  if (model.seabed)
+    c.insert(c.end(), {"contact_length", "seabed_normal_force", "seabed_friction_force", "touchdown_arc_length",
+                       "touchdown_x", "touchdown_y", "touchdown_z", "lying_length"});
   // Depth controllers: <body>_surface<j>_... (j: the surface's index in its body's list).
   for (const Body& b : model.bodies)
     for (std::size_t j = 0; j < b.surfaces.size(); ++j) {
@@ -474,7 +476,11 @@ void raw_timeseries_values(const Model& model, const Sample& s, std::vector<doub
     v.push_back(s.wave_elevation);
     add3(s.tow_wave);
   }
-  if (model.seabed) v.insert(v.end(), {s.contact_length, s.seabed_normal, s.seabed_friction});
+  if (model.seabed) {
+    v.insert(v.end(), {s.contact_length, s.seabed_normal, s.seabed_friction, s.touchdown_arc_length});
+    add3(s.touchdown);
+    v.push_back(s.lying_length);
+  }
   for (std::size_t b = 0; b < model.bodies.size() && b < s.bodies.size(); ++b)  // depth controllers
     for (const ControlSample& c : s.bodies[b].controls)
       v.insert(v.end(), {c.deflection_deg, c.rate_deg_s, c.depth_error});

@@ -137,6 +137,32 @@ void sample_of(const Model& model, System& sys, const StateVector& y, double t, 
   }
 }
 
+/// The touchdown point of a sample (the first point of the cable below the
+/// bottom from the top, along the elements' segments, element_seabed_contact),
+/// its arc length along the elements, and the cable length beyond it.
+void touchdown_sample(const Model& model, const Workspace& ws, Sample& out) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  out.touchdown_arc_length = nan;
+  out.touchdown = Vec3::Constant(nan);
+  out.lying_length = 0;
+  if (!model.seabed) return;
+  double arc = 0;  // [m]
+  for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
+    if (std::isnan(out.touchdown_arc_length)) {
+      const SegmentContact c = element_seabed_contact(model, ws, k);
+      if (!std::isnan(c.first)) {
+        const int b = ws.body_at[k + 1];
+        const bool inl = b >= 0 && model.bodies[static_cast<std::size_t>(b)].inline_body;
+        const Vec3& bottom = inl ? ws.body[static_cast<std::size_t>(b)].Q : ws.P[k + 1];
+        out.touchdown_arc_length = arc + c.first * ws.L[k];
+        out.touchdown = ws.P[k] + c.first * (bottom - ws.P[k]);
+      }
+    }
+    arc += ws.L[k];
+  }
+  if (!std::isnan(out.touchdown_arc_length)) out.lying_length = arc - out.touchdown_arc_length;
+}
+
 }  // namespace
 
 Sample make_sample(const Model& model, const PhysicalState& s, const Workspace& ws, double t) {
@@ -196,6 +222,7 @@ void make_sample(const Model& model, const PhysicalState& s, const Workspace& ws
     }
     out.contact_length += ws.ls[k];
   }
+  touchdown_sample(model, ws, out);
   out.seabed_normal = ws.seabed_normal;
   out.seabed_friction = ws.seabed_friction;
   out.bodies.resize(model.bodies.size());

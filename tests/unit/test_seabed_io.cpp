@@ -139,6 +139,16 @@ TEST_F(SeabedIo, OutputsOfACableOnTheBottom) {
   // bottom, the one before hangs on to it.
   EXPECT_NEAR(ts.num(ts.rows.size() - 1, "contact_length"), 20, 20);
   EXPECT_GT(ts.num(ts.rows.size() - 1, "seabed_normal_force"), 0);
+  // The touchdown point: on the bottom (within 1 cm: the sink w/k and the
+  // last row's motion), and the lying length the rest of the 100 m (1e-9:
+  // the columns' 12 digits).
+  for (const char* c : {"touchdown_arc_length", "touchdown_x", "touchdown_y", "touchdown_z", "lying_length"})
+    ASSERT_GE(ts.col(c), 0) << c;
+  const std::size_t last = ts.rows.size() - 1;
+  EXPECT_NEAR(ts.num(last, "touchdown_z"), -80, 0.01);
+  EXPECT_NEAR(ts.num(last, "touchdown_arc_length") + ts.num(last, "lying_length"), ts.num(last, "deployed_length"),
+              1e-9);
+  EXPECT_GT(ts.num(last, "lying_length"), 0);
   const TextCsv nodes = read_text_csv(out / "nodes.csv");
   EXPECT_GE(nodes.col("seabed_force"), 0);
   EXPECT_LT(nodes.col("utilisation"), 0);  // no breaking load
@@ -146,6 +156,7 @@ TEST_F(SeabedIo, OutputsOfACableOnTheBottom) {
   EXPECT_TRUE(sm["extremes"].contains("max_contact_length"));
   EXPECT_TRUE(sm["extremes"].contains("max_seabed_normal_force"));
   EXPECT_TRUE(sm["extremes"].contains("max_seabed_friction_force"));
+  EXPECT_NEAR(sm["final"]["lying_length"].get<double>(), ts.num(last, "lying_length"), 1e-12);
   // No strength warning (no breaking load). The rigid cable's round-off
   // compression at rest on the bottom (-7e-4 N) is warned about, as on
   // stderr, and so is the element count: 20 m elements place the touchdown

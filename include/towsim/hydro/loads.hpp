@@ -2,6 +2,7 @@
 #pragma once
 
 #include "towsim/dynamics/state.hpp"
+#include "towsim/model/seabed_segment.hpp"
 
 namespace towsim {
 
@@ -51,15 +52,27 @@ void body_loads(const Fluid& fluid, const Body& body, double t, BodyWork& ws);
 void attachment_loads(const Model& model, double t, Workspace& ws);
 
 /// Seabed contact (model.seabed; nothing without one; docs/theory.md §3.2).
-/// Each joint P_k below the bottom gets the contact force of the cable it
-/// represents (half of each adjacent element), added to ws.Fa[k] (at the end
-/// body's joint: to its Fb, Mb at the link point Q; at an in-line body: the
-/// half-element above acts at Q on the body, the one below at Q2 = P_k).
-/// Each body's hull points (the lowest point of each sphere, of each
-/// cylinder's end discs; a body with neither: its CG) add theirs to Fb, Mb.
-/// Fills ws.Fs, ws.ls, ws.seabed_normal, ws.seabed_friction and each
-/// BodyWork's Fs_q, ls_q. Call after attachment_loads and body_loads.
+/// At the joints (the default): each joint P_k below the bottom gets the
+/// contact force of the cable it represents (half of each adjacent element),
+/// added to ws.Fa[k] (at the end body's joint: to its Fb, Mb at the link
+/// point Q; at an in-line body: the half-element above acts at Q on the
+/// body, the one below at Q2 = P_k). Along elements (Seabed::along_elements):
+/// each element's segment below the bottom gets the law integrated along its
+/// length in contact (element_seabed_contact), added to its loads ws.F (at
+/// G) and ws.Mom (the couple about G); ws.Fs, ws.ls (and Fs_q, ls_q at an
+/// in-line body's Q) then hold the end shares of that load and of the length
+/// in contact, for the outputs and the stage solve's local Jacobian, not
+/// added to the loads a second time. Each body's hull points (the lowest
+/// point of each sphere, of each cylinder's end discs; a body with neither:
+/// its CG) add theirs to Fb, Mb. Fills ws.Fs, ws.ls, ws.seabed_normal,
+/// ws.seabed_friction and each BodyWork's Fs_q, ls_q. Call after the element
+/// loads, attachment_loads and body_loads.
 void seabed_loads(const Model& model, Workspace& ws);
+
+/// The seabed's contact along element k (0-based), from its top joint P_k to
+/// its bottom end (an in-line body's upper link Q, else P_{k+1}), for the
+/// kinematics in ws (segment_contact). Needs model.seabed.
+SegmentContact element_seabed_contact(const Model& model, const Workspace& ws, std::size_t k);
 
 /// Length of hull a body with no sphere or cylinder represents at its CG [m].
 inline constexpr double kBareBodyLength = 1.0;
@@ -88,8 +101,9 @@ void hull_points(const Seabed& sb, const Body& body, const BodyWork& bw, Visit&&
 }
 
 /// Normal stiffness of the seabed contact at joint k (0..n) for the current
-/// kinematics: d|F_n|/d(penetration) = stiffness * length in contact [N/m]
-/// (at an in-line body's joint: of the half-element below, at Q2); 0 off the
+/// kinematics: d|F_n|/d(penetration) = stiffness * length in contact the
+/// joint stands for (its share along elements) [N/m] (at an in-line body's
+/// joint: of the element below, at Q2); 0 off the
 /// bottom or without a seabed. For implicit integrators (a joint's local stiffness).
 double seabed_normal_stiffness(const Model& model, const Workspace& ws, int k);
 

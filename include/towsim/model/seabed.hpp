@@ -39,6 +39,11 @@ struct Seabed {
   double damping = 1e3;                  // c: normal damping per metre in contact [N s/m per m]
   double friction = 0.5;                 // mu: Coulomb coefficient [-]
   double slip_speed = kSeabedSlipSpeed;  // v_s of the smoothed friction [m/s]
+  // Where the cable feels the law: false, at its joints (each standing for
+  // half of each adjacent element); true, along each element's straight
+  // segment (segment_contact, MODEL.md 10) [-]. No scenario key: models
+  // built in code choose it.
+  bool along_elements = false;
 
   /// A flat bottom at depth d [m].
   static Seabed flat(double d, double stiffness = 1e5, double damping = 1e3, double friction = 0.5);

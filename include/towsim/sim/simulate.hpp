@@ -53,6 +53,10 @@ struct Sample {
   std::vector<double> bending;      // per node: |bending moment| of the joint's spring [N m] (0 at the
                                     // ends and at bodies); empty without bending stiffness
   double contact_length = 0;        // cable length in contact with the seabed [m]
+  double touchdown_arc_length = 0;  // arc length along the elements from the tow point to the first point
+                                    // of the cable below the bottom [m] (NaN: none, or no seabed)
+  Vec3 touchdown = Vec3::Zero();    // that point [m, R_g] (NaN: none)
+  double lying_length = 0;          // cable length beyond the touchdown point [m] (0: none)
   double seabed_normal = 0;         // sum of |normal force| of the seabed on the cable and the bodies [N]
   double seabed_friction = 0;       // sum of |friction force| [N]
   std::vector<BodySample> bodies;   // per Model::bodies entry
