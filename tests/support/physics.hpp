@@ -228,4 +228,24 @@ inline void integrate_rk4(System& sys, StateVector& y, double t0, double h, long
   }
 }
 
+/// Integrate m's system from the physical state s for `duration` [s] with
+/// fixed RK4 steps h (step window and projection as simulate()); returns the
+/// state. `each` (optional) sees the state after every step.
+inline PhysicalState integrate_state(const Model& m, const PhysicalState& s, double duration, double h,
+                                     const std::function<void(const PhysicalState&)>& each = {}) {
+  auto sys = make_system(m);
+  StateVector y = sys->initial(s, 0.0);
+  boost::numeric::odeint::runge_kutta4<StateVector> rk4;
+  double t = 0;
+  const long steps = std::lround(duration / h);
+  for (long i = 0; i < steps; ++i) {
+    sys->set_window(t, t + h);
+    rk4.do_step(std::ref(*sys), y, t, h);
+    t += h;
+    sys->project(y, t);
+    if (each) each(sys->physical(y));
+  }
+  return sys->physical(y);
+}
+
 }  // namespace towsim::testing

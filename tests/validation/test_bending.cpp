@@ -14,17 +14,19 @@
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <numbers>
 #include <random>
 
 #include "../support/models.hpp"
+#include "../support/physics.hpp"
 #include "../support/rosenbrock.hpp"
 #include "towsim/dynamics/bending.hpp"
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/paper.hpp"
 #include "towsim/integrators/system.hpp"
-#include "towsim/sim/statics.hpp"
 #include "towsim/sim/simulate.hpp"
+#include "towsim/sim/statics.hpp"
 
 namespace towsim {
 namespace {
@@ -140,20 +142,10 @@ double beam_energy(const Model& m, const PhysicalState& s) {
   return E;
 }
 
-/// Integrate m from s for `duration` with fixed RK4 steps h.
-PhysicalState integrate(const Model& m, const PhysicalState& s, double duration, double h) {
-  auto sys = make_system(m);
-  StateVector y = sys->initial(s, 0.0);
-  boost::numeric::odeint::runge_kutta4<StateVector> rk4;
-  double t = 0;
-  const long steps = std::lround(duration / h);
-  for (long i = 0; i < steps; ++i) {
-    sys->set_window(t, t + h);
-    rk4.do_step(std::ref(*sys), y, t, h);
-    t += h;
-    sys->project(y, t);
-  }
-  return sys->physical(y);
+/// Fixed-step RK4 from s (tests/support/physics.hpp).
+PhysicalState integrate(const Model& m, const PhysicalState& s, double duration, double h,
+                        const std::function<void(const PhysicalState&)>& each = {}) {
+  return testing::integrate_state(m, s, duration, h, each);
 }
 
 /// A 3-D bent and moving beam: 8 elements of two sections (EI 50 and 20
@@ -281,10 +273,10 @@ RunStats towed_run(double EI) {
 TEST(BendingRosenbrock, StepIsBoundedByAccuracyNotByTheStiffness) {
   // The elements' bending periods fall from ~10 s at EI = 10 N m^2 to ~10 ms
   // at EI = 1e7 N m^2: an explicit step would shrink ~1000x (and with the
-  // springs' self-stiffness alone in W, without their coupling, the steps
-  // grew 150x, 102 -> 15283). With the springs in the stage solve the step
-  // is set by the cable's motion: fewer steps for the stiffer cable, whose
-  // shape changes less (measured 102 and 63).
+  // springs' self-stiffness alone in W, without their coupling, a like run's
+  // steps grew 150x, 102 -> 15283). With the springs in the stage solve the
+  // step is set by the cable's motion: fewer steps for the stiffer cable,
+  // whose shape changes less (measured 118 and 93).
   const RunStats soft = towed_run(10), stiff = towed_run(1e7);
   std::printf("steps: EI 10: %ld (%ld rejected), EI 1e7: %ld (%ld rejected)\n", soft.steps, soft.rejected_steps,
               stiff.steps, stiff.rejected_steps);

@@ -199,23 +199,10 @@ Body simple_body(double mb, const Vec3& link, const Vec3& lower, const Vec3& cg)
   return b;
 }
 
-/// Integrate the system from s for `duration` with fixed RK4 steps h; returns
-/// the state. `each` (optional) sees the state after every step.
+/// Fixed-step RK4 from s (tests/support/physics.hpp).
 PhysicalState integrate(const Model& m, const PhysicalState& s, double duration, double h,
                         const std::function<void(const PhysicalState&)>& each = {}) {
-  auto sys = make_system(m);
-  StateVector y = sys->initial(s, 0.0);
-  boost::numeric::odeint::runge_kutta4<StateVector> rk4;
-  double t = 0;
-  const long steps = std::lround(duration / h);
-  for (long i = 0; i < steps; ++i) {
-    sys->set_window(t, t + h);
-    rk4.do_step(std::ref(*sys), y, t, h);
-    t += h;
-    sys->project(y, t);
-    if (each) each(sys->physical(y));
-  }
-  return sys->physical(y);
+  return testing::integrate_state(m, s, duration, h, each);
 }
 
 TEST(ElasticEnergy, MixedChainInVacuumConservesEnergyAtFourthOrder) {
