@@ -6,7 +6,10 @@
 // - energy (kinetic + bending) conserved by a free 3-D vibration in vacuum,
 //   at RK4's order, in both formulations;
 // - the recursion against the paper's dense Lagrange formulation;
-// - the Rosenbrock step bounded by accuracy, not by the bending stiffness.
+// - the Rosenbrock step bounded by accuracy, not by the bending stiffness,
+//   and the stage solve's W against the dynamics' Jacobian;
+// - a heavy beam's static shape under a side load at its tip against the
+//   small-deflection continuum.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -342,6 +345,7 @@ StaticsResult heavy_beam(int n, double EI) {
   c.mass_per_length = 3.0;
   c.diameter = 0.04;
   c.cd = 0;
+  c.ca = 0;  // no added mass: no Munk couple from the current on the elements
   Model m = cable_model(c);
   for (Element& el : m.cable.elements) el.bending_stiffness = EI;
   m.cable.attachments.push_back({n, 20.0, 20.0, 0.0, 0.02, 0.0});
@@ -385,27 +389,25 @@ TEST(BendingStatics, HeavyBeamWithASideLoadMatchesTheContinuum) {
   // air, no volume; P = 1/2 rho Cd A U^2.
   const double rho = 1025, g = 9.81, w = (3.0 - rho * std::numbers::pi * 0.04 * 0.04 / 4) * g;
   const double Wa = 20.0 * g, P = 0.5 * rho * 0.02 * 0.25, L = 20;
-  const double ref = continuum_tip_offset(1e4, w, Wa, P, L, 20000);
+  const double ref = continuum_tip_offset(1e5, w, Wa, P, L, 20000);
   const double string = continuum_tip_offset(0, w, Wa, P, L, 20000);  // no bending stiffness
   std::printf("continuum tip offset %.6e m (EI 0: %.6e m)\n", ref, string);
   double err[3];
-  const int counts[] = {20, 40, 80};
+  const int counts[] = {10, 20, 40};
   for (int c = 0; c < 3; ++c) {
-    const StaticsResult r = heavy_beam(counts[c], 1e4);
+    const StaticsResult r = heavy_beam(counts[c], 1e5);
     ASSERT_TRUE(r.converged) << r.message;
     const Vec3 tip = r.sample.node_pos.back() - r.sample.node_pos.front();
     err[c] = tip.x() / ref - 1;
     std::printf("n = %d: tip offset %.6e m, error %.3e\n", counts[c], tip.x(), err[c]);
   }
-  // The bending stiffness changes the offset by 30 % here: far above what
-  // is asked of the chain.
-  EXPECT_GT(std::abs(string / ref - 1), 0.2);
-  // 40 elements: within 0.5 % of the continuum (the small-deflection
-  // reference's own error is ~theta^2 ~ 1e-4 at these slopes of ~0.01 rad).
-  EXPECT_LT(std::abs(err[1]), 5e-3);
-  const double order = std::log2(err[1] / err[2]);
-  std::printf("order %.3f\n", order);
-  EXPECT_GT(order, 1.5);
+  // The bending stiffness changes the offset by 7 % here (a bending length
+  // sqrt(EI / T) of 13-16 m on a 20 m beam): far above what is asked below.
+  EXPECT_GT(std::abs(string / ref - 1), 0.05);
+  // Every count within 1e-4 of the small-deflection continuum: the chain's
+  // own error is already below the reference's (slopes ~7e-3 rad: terms in
+  // theta^2 ~ 5e-5 left out of it); measured -3.6e-5, -2.8e-5, -2.6e-5.
+  for (int c = 0; c < 3; ++c) EXPECT_LT(std::abs(err[c]), 1e-4) << "n = " << counts[c];
 }
 
 }  // namespace
