@@ -39,7 +39,7 @@ double joint_stiffness(const Model& model, const Workspace& ws, std::size_t k) {
 }  // namespace
 
 void bending_loads(const Model& model, const PhysicalState& s, Workspace& ws) {
-  if (!has_bending(model)) return;
+  if (!ws.bending) return;
   const std::size_t n = model.cable.elements.size();
   // Each interior joint's couple, +M on the element above, -M below.
   for (std::size_t k = 1; k < n; ++k) {
@@ -55,7 +55,7 @@ double element_bending_stiffness(const Model& model, const Workspace& ws, std::s
 }
 
 void bending_local_stiffness(const Model& model, const Workspace& ws, std::vector<double>& element_stiffness) {
-  if (!has_bending(model)) return;
+  if (!ws.bending) return;
   const std::size_t n = model.cable.elements.size();
   // The spring at joint k resists the rotation of both its elements.
   for (std::size_t k = 1; k < n; ++k) {
@@ -68,7 +68,7 @@ void bending_local_stiffness(const Model& model, const Workspace& ws, std::vecto
 void bending_stage_couplings(const Model& model, const Workspace& ws, std::vector<double>& kappa) {
   const auto& els = model.cable.elements;
   kappa.assign(els.size() + 1, 0.0);
-  if (!has_bending(model)) return;
+  if (!ws.bending) return;
   for (std::size_t k = 1; k < els.size(); ++k)
     if (!is_elastic(els[k - 1]) && !is_elastic(els[k])) kappa[k] = joint_stiffness(model, ws, k);
 }

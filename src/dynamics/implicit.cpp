@@ -429,6 +429,28 @@ Eigen::Matrix<double, 3, 2> rotation_basis(const Eigen::Matrix<double, 3, 2>& T)
   return E;
 }
 
+/// The bending springs the stage solve couples (kappa, any_coupled, coupled).
+void couple_bending_springs(const Model& model, const Workspace& ws, ImplicitWorkspace& iw) {
+  bending_stage_couplings(model, ws, iw.kappa);
+  iw.any_coupled = std::any_of(iw.kappa.begin(), iw.kappa.end(), [](double x) { return x > 0; });
+  const std::size_t n = iw.coupled.size();
+  for (std::size_t k = 0; k < n; ++k) iw.coupled[k] = static_cast<char>(iw.kappa[k] > 0 || iw.kappa[k + 1] > 0);
+}
+
+/// The coupled springs' off-diagonal terms of -hg K (hg dw + rot): a couple on
+/// each element from its neighbour's turn (dw, rot normal to its own e).
+void coupled_spring_loads(const PhysicalState& s, double hg, const StageRhs& r, ImplicitWorkspace& iw) {
+  auto turn = [&](std::size_t k) {
+    const Vec3 u = hg * r.dw[k] + r.rot[k];
+    return Vec3(u - u.dot(s.e[k]) * s.e[k]);
+  };
+  for (std::size_t j = 1; j + 1 < iw.kappa.size(); ++j) {
+    if (!(iw.kappa[j] > 0)) continue;
+    iw.Mom[j - 1] += hg * iw.kappa[j] * turn(j);
+    iw.Mom[j] += hg * iw.kappa[j] * turn(j - 1);
+  }
+}
+
 /// A rigid element whose rotation a bending spring couples to a neighbour's
 /// (docs/theory.md §6.3 "Bending in the stage solve"), factor step: from the
 /// part below's response at its bottom joint (K, Qb, Rb, Sb at k+1, spring
@@ -440,9 +462,9 @@ struct CoupledBelow {
   const Mat3& R;
   const Mat3& S;
 };
-void coupled_element_factor(const Eigen::Matrix<double, 3, 2>& T, double L, const Mat3& Mt, double Ir,
-                            const CoupledBelow& below, double kappa_b, double kappa_t, double hg, std::size_t k,
-                            ImplicitWorkspace& iw) {
+[[gnu::noinline]] void coupled_element_factor(const Eigen::Matrix<double, 3, 2>& T, double L, const Mat3& Mt, double Ir,
+                                              const CoupledBelow& below, double kappa_b, double kappa_t, double hg,
+                                              std::size_t k, ImplicitWorkspace& iw) {
   const Eigen::Matrix<double, 3, 2> E = rotation_basis(T);
   const double cb = hg * hg * kappa_b, ct = hg * hg * kappa_t;  // the springs in the stage [N m s^2/rad]
   // The rotation equation D z = r0' - G~ a + ct E^T alpha_above (2x2).
@@ -465,10 +487,43 @@ void coupled_element_factor(const Eigen::Matrix<double, 3, 2>& T, double L, cons
   iw.Sb[k] = ct * E * iw.PE[k];
 }
 
+/// The same element's bias step: r0' = E^T Mom + L/2 T^T F - L T^T b_below +
+/// cb E^T q_below; z at zero inputs Phi r0'; b = H' Phi r0' - F + b_below (- Fa);
+/// q = E Phi r0'. body_below: a body's ball joint below (no spring there).
+[[gnu::noinline]] void coupled_element_bias(std::size_t k, double L, bool body_below, const Vec3& b_below, bool joints,
+                                            ImplicitWorkspace& iw) {
+  const Eigen::Matrix<double, 3, 2>& T = iw.T[k];
+  const Eigen::Matrix<double, 3, 2> E = rotation_basis(T);
+  const double cb = body_below ? 0.0 : iw.hg * iw.hg * iw.kappa[k + 1];
+  const Vec3 qk = cb > 0 ? iw.qb[k + 1] : Vec3::Zero().eval();
+  const Eigen::Vector2d r0 = E.transpose() * iw.Mom[k] + T.transpose() * (0.5 * L * iw.F[k] - L * b_below) +
+                             cb * (E.transpose() * qk);
+  iw.zr[k] = iw.Phi[k] * r0;
+  iw.b[k] = iw.H[k] * r0 - iw.F[k] + b_below;
+  if (joints) iw.b[k] -= iw.Fa[k];
+  iw.qb[k] = E * iw.zr[k];
+}
+
+/// The same element's forward step from its top joint's a: z = Phi (r0' -
+/// G~ a + ct E^T alpha_above), alpha = E z; returns the move of the bottom
+/// joint, L T z.
+[[gnu::noinline]] Vec3 coupled_element_acceleration(std::size_t k, double L, const Vec3& a, ImplicitWorkspace& iw) {
+  const double ct = iw.hg * iw.hg * iw.kappa[k];
+  Eigen::Vector2d z = iw.zr[k] - iw.PG[k] * a;
+  if (ct > 0) z += ct * (iw.PE[k] * iw.alpha[k - 1]);
+  const Eigen::Matrix<double, 3, 2>& T = iw.T[k];
+  iw.alpha[k] = z[0] * T.col(1) - z[1] * T.col(0);  // E z
+  return L * (T * z);
+}
+
 }  // namespace
 
-void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
-                     ImplicitWorkspace& iw) {
+namespace {
+
+/// implicit_factor's backward sweep; kCoupled: some bending spring couples
+/// two rigid elements (else the coupled branch is compiled out of the loop).
+template <bool kCoupled>
+void factor_sweep(const Model& model, const PhysicalState& s, const Workspace& ws, double hg, ImplicitWorkspace& iw) {
   const auto& els = model.cable.elements;
   const std::size_t n = els.size();
   const LocalJacobian& jac = iw.jac;
@@ -479,13 +534,7 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
     return joints ? Mat3(hg * jac.joint_damping[k] + hg * hg * jac.joint_stiffness[k]) : Mat3::Zero().eval();
   };
   iw.K[n] = ws.Ma[n] + joint_terms(n);
-  // Bending springs between rigid elements: those elements' rotations are
-  // eliminated together with their neighbours' (coupled_element_factor).
-  bending_stage_couplings(model, ws, iw.kappa);
-  const bool was_coupled = iw.any_coupled;
-  iw.any_coupled = std::any_of(iw.kappa.begin(), iw.kappa.end(), [](double x) { return x > 0; });
-  if (iw.any_coupled || was_coupled)
-    for (std::size_t k = 0; k < n; ++k) iw.coupled[k] = static_cast<char>(iw.kappa[k] > 0 || iw.kappa[k + 1] > 0);
+  const char* coupled = iw.coupled.data();  // per element (all 0 without bending springs)
   const Mat3 zero = Mat3::Zero();
   // The arrays' data through local pointers (as stage_loads).
   const Mat3 *Mts = ws.Mt.data(), *Cs = jac.element_damping.data();
@@ -533,7 +582,7 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
       iw.K[k] += ws.Ma[k] + joint_terms(k);
       continue;
     }
-    if (iw.coupled[k]) {
+    if (kCoupled && coupled[k]) {
       Ts[k] = ws.T[k];
       const bool body = bi >= 0;  // a body's link is a ball joint: no spring, no coupling
       const CoupledBelow below{*Kk, body ? zero : iw.Qb[k + 1], body ? zero : iw.Rb[k + 1], body ? zero : iw.Sb[k + 1]};
@@ -567,6 +616,19 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
         Kn(r, q) = Kn(q, r) = 0.5 * (Mt(r, q) + Mt(q, r) + (*Kk)(r, q) + (*Kk)(q, r)) - (h1[r] * g1[q] + h2[r] * g2[q]);
     if (joints) Kn += ws.Ma[k], Kn += joint_terms(k);
   }
+}
+
+}  // namespace
+
+void implicit_factor(const Model& model, const PhysicalState& s, const Workspace& ws, double hg,
+                     ImplicitWorkspace& iw) {
+  // Bending springs between rigid elements: those elements' rotations are
+  // eliminated together with their neighbours' (coupled_element_factor).
+  if (ws.bending) couple_bending_springs(model, ws, iw);
+  if (iw.any_coupled)
+    factor_sweep<true>(model, s, ws, hg, iw);
+  else
+    factor_sweep<false>(model, s, ws, hg, iw);
   iw.hg = hg;
 }
 
@@ -656,17 +718,8 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
     }
     if (joints) iw.dvP[k + 1] = dv, iw.dxP[k + 1] = dx;
   }
-  // Bending springs coupling two rigid elements: the off-diagonal terms of
-  // -hg K (hg dw + rot), a couple on each element from its neighbour's turn.
-  for (std::size_t j = 1; j < n && iw.any_coupled; ++j) {
-    if (!(iw.kappa[j] > 0)) continue;
-    auto turn = [&](std::size_t k) {
-      const Vec3 u = hg * rdw[k] + rrot[k];
-      return Vec3(u - u.dot(es[k]) * es[k]);
-    };
-    Moms[j - 1] += hg * iw.kappa[j] * turn(j);
-    Moms[j] += hg * iw.kappa[j] * turn(j - 1);
-  }
+  // Bending springs coupling two rigid elements: their off-diagonal terms.
+  if (iw.any_coupled) coupled_spring_loads(s, hg, r, iw);
   // Joint terms exist only with attachments or a seabed (else Fa stays +0,
   // as constructed, and the bias sweep skips it).
   if (joints)
@@ -676,6 +729,7 @@ void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws
 }
 
 /// Bias sweep up the chain.
+template <bool kCoupled>
 void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws, ImplicitWorkspace& iw) {
   const auto& els = model.cable.elements;
   const std::size_t n = els.size();
@@ -691,6 +745,7 @@ void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws,
   const int* body_at = ws.body_at.data();
   Vec3 *bs = iw.b.data(), *qs = iw.q.data();
   Eigen::Vector2d* Tr0s = iw.Tr0.data();
+  const char* coupled = iw.coupled.data();
   for (std::size_t k = n; k-- > 0;) {
     const int bi = body_at[k + 1];
     const Vec3* bk = bs + k + 1;
@@ -706,19 +761,9 @@ void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws,
       if (joints) iw.b[k] -= iw.Fa[k];
       continue;
     }
-    if (iw.coupled[k]) {
-      // Coupled by a bending spring: r0' = E^T Mom + L/2 T^T F - L T^T b_below
-      // + cb E^T q_below; z at zero inputs Phi r0', b = H' Phi r0' - F + b_below.
+    if (kCoupled && coupled[k]) {  // coupled by a bending spring (out of line: the common loop stays lean)
       const double L = k == 0 && ws.winch ? ws.top.length : els[k].length;  // current_element
-      const Eigen::Matrix<double, 3, 2> E = rotation_basis(Ts[k]);
-      const double cb = bi >= 0 ? 0.0 : iw.hg * iw.hg * iw.kappa[k + 1];
-      const Vec3 qk = cb > 0 ? iw.qb[k + 1] : Vec3::Zero().eval();
-      const Eigen::Vector2d r0 = E.transpose() * Moms[k] + Ts[k].transpose() * (0.5 * L * Fs[k] - L * *bk) +
-                                 cb * (E.transpose() * qk);
-      iw.zr[k] = Phis[k] * r0;
-      bs[k] = Hs[k] * r0 - Fs[k] + *bk;
-      if (joints) bs[k] -= iw.Fa[k];
-      iw.qb[k] = E * iw.zr[k];
+      coupled_element_bias(k, L, bi >= 0, *bk, joints, iw);
       continue;
     }
     // b = H T^T r0 + b_below - F - Fa, r0 = r0' - L b_below: the part
@@ -737,6 +782,7 @@ void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws,
 }
 
 /// Accelerations (the increments z) down the chain.
+template <bool kCoupled>
 void stage_accelerations(const Model& model, const PhysicalState& s, const Workspace& ws, ImplicitWorkspace& iw) {
   const auto& els = model.cable.elements;
   const std::size_t n = els.size();
@@ -759,6 +805,7 @@ void stage_accelerations(const Model& model, const PhysicalState& s, const Works
   const int* body_at = ws.body_at.data();
   Vec3* alphas = iw.alpha.data();
   double* zls = iw.zl.data();
+  const char* coupled = iw.coupled.data();
   for (std::size_t k = 0; k < n; ++k) {
     if (is_elastic(els[k])) {
       // z_d = A^-1 (r - G a): its part along e is l', normal to it l (alpha x e).
@@ -767,15 +814,9 @@ void stage_accelerations(const Model& model, const PhysicalState& s, const Works
       iw.zl[k] = e.dot(zd);
       iw.alpha[k] = e.cross(zd) / s.length_of(model, k);
       a += zd;
-    } else if (iw.coupled[k]) {
-      // z = Phi (r0' - G~ a + ct E^T alpha_above), alpha = E z, beta = T z.
+    } else if (kCoupled && coupled[k]) {  // coupled by a bending spring (out of line)
       zls[k] = 0;
-      const double ct = iw.hg * iw.hg * iw.kappa[k];
-      Eigen::Vector2d z = iw.zr[k] - iw.PG[k] * a;
-      if (ct > 0) z += ct * (iw.PE[k] * alphas[k - 1]);
-      const Eigen::Matrix<double, 3, 2>& T = iw.T[k];
-      alphas[k] = z[0] * T.col(1) - z[1] * T.col(0);  // E z
-      a += (k == 0 && ws.winch ? ws.top.length : els[k].length) * (T * z);
+      a += coupled_element_acceleration(k, k == 0 && ws.winch ? ws.top.length : els[k].length, a, iw);
     } else {
       zls[k] = 0;
       const Vec3 beta = qs[k] - THs[k] * a;  // T Phi (T^T r0 - (G T)^T a)
@@ -798,8 +839,13 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
                           ImplicitWorkspace& iw) {
   if (iw.hg != hg) implicit_factor(model, s, ws, hg, iw);
   stage_loads(model, s, ws, hg, r, iw);
-  stage_bias(model, s, ws, iw);
-  stage_accelerations(model, s, ws, iw);
+  if (iw.any_coupled) {
+    stage_bias<true>(model, s, ws, iw);
+    stage_accelerations<true>(model, s, ws, iw);
+  } else {
+    stage_bias<false>(model, s, ws, iw);
+    stage_accelerations<false>(model, s, ws, iw);
+  }
 }
 
 }  // namespace towsim

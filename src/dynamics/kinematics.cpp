@@ -54,6 +54,8 @@ Workspace::Workspace(const Model& model) {
   for (std::size_t i = 0; i < model.bodies.size(); ++i)
     body[i].deflection.assign(static_cast<std::size_t>(control_count(model.bodies[i])), 0.0);
   body_at.assign(n + 1, -1);
+  bending = std::any_of(model.cable.elements.begin(), model.cable.elements.end(),
+                        [](const Element& el) { return el.bending_stiffness > 0; });
   for (std::size_t i = 0; i < model.bodies.size(); ++i)
     body_at[static_cast<std::size_t>(body_joint(model, model.bodies[i]))] = static_cast<int>(i);
   acc.alpha.assign(n, Vec3::Zero());

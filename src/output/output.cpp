@@ -511,7 +511,7 @@ void raw_node_values(const Model* model, const Sample& s, std::size_t k, std::ve
   if (model == nullptr) return;
   if (!s.utilisation.empty()) out.push_back(k < s.utilisation.size() ? s.utilisation[k] : nan);
   if (model->seabed) out.push_back(k < s.node_seabed.size() ? s.node_seabed[k].norm() : nan);
-  if (has_bending(*model)) out.push_back(k < s.bending.size() ? s.bending[k] : nan);
+  if (!s.bending.empty()) out.push_back(k < s.bending.size() ? s.bending[k] : nan);  // make_sample: with bending
 }
 
 }  // namespace

@@ -188,7 +188,7 @@ void make_sample(const Model& model, const PhysicalState& s, const Workspace& ws
   const auto& els = model.cable.elements;
   const bool strength = std::any_of(model.cable.sections.begin(), model.cable.sections.end(),
                                     [](const Section& sec) { return sec.breaking_load > 0; });
-  const bool bending = has_bending(model);
+  const bool bending = ws.bending;
   auto node = [&](const Vec3& p, const Vec3& v, const Vec3& f, std::size_t el, const Vec3& fs, const Vec3& M) {
     out.node_pos.push_back(p);
     out.node_vel.push_back(v);
@@ -256,7 +256,7 @@ void make_sample(const Model& model, const PhysicalState& s, const Workspace& ws
 double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* element, double* tension) {
   double best = std::numeric_limits<double>::infinity();
   const auto& els = model.cable.elements;
-  const bool bending = has_bending(model);
+  const bool bending = ws.bending;
   for (std::size_t k = 0; k < els.size(); ++k) {
     const Element& el = current_element(model, ws, k);
     const int b = ws.body_at[k + 1];

@@ -38,7 +38,7 @@ Vec3 bending_angle(const Vec3& a, const Vec3& b);
 /// The bending springs' couples at the state whose kinematics ws holds
 /// (compute_kinematics: the winch's current top element): ws.bend[k] for
 /// every joint, and +bend[k] added to ws.Mom[k-1], -bend[k] to ws.Mom[k].
-/// Nothing (ws.bend stays zero) without bending stiffness.
+/// Nothing (ws.bend stays zero) without bending stiffness (ws.bending).
 void bending_loads(const Model& model, const PhysicalState& s, Workspace& ws);
 
 /// Element k's (0-based) bending self-stiffness kappa_k + kappa_{k+1}: the

@@ -121,6 +121,7 @@ struct Workspace {
   // (index k = 0..n): the moment the joint's spring exerts on the element
   // above it; the element below takes its opposite [N m, R_g].
   std::vector<Vec3> bend;
+  bool bending = false;  // some element of the model has bending stiffness (has_bending, at construction)
   // Attachments: inertia and known force at their joint (index k = 0..n)
   std::vector<Mat3> Ma;  // summed mass + added mass [kg]
   std::vector<Vec3> Fa;  // summed loads [N, R_g]
