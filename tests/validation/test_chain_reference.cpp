@@ -172,6 +172,7 @@ class KktReference {
 struct ChainCase {
   int n_top, n_low;
   bool current;
+  double EI = 0;  // bending stiffness of every element [N m^2] (joint springs: couples in ws.Mom)
 };
 
 class ChainReference : public ::testing::TestWithParam<ChainCase> {};
@@ -188,6 +189,7 @@ TEST_P(ChainReference, RecursionEqualsDenseMultiplierSolution) {
     m.fluid.current_depth = {0, 40, 300};
     m.fluid.current_velocity = {Vec3(0.8, 0.3, 0), Vec3(0.4, 0.1, 0), Vec3(0.1, 0, 0)};
   }
+  for (Element& el : m.cable.elements) el.bending_stiffness = c.EI;
   m.tow.pieces.push_back(testing::ramp_piece(Vec3(1, 0.2, 0), 2.0, 15.0));
   std::mt19937 rng(77 + c.n_top);
   Workspace ws(m);
@@ -222,10 +224,10 @@ TEST_P(ChainReference, RecursionEqualsDenseMultiplierSolution) {
 
 INSTANTIATE_TEST_SUITE_P(Topologies, ChainReference,
                          ::testing::Values(ChainCase{3, 4, false}, ChainCase{3, 4, true}, ChainCase{1, 1, false},
-                                           ChainCase{12, 20, true}),
+                                           ChainCase{12, 20, true}, ChainCase{3, 4, true, 500.0}),
                          [](const auto& i) {
                            return "top" + std::to_string(i.param.n_top) + "_low" + std::to_string(i.param.n_low) +
-                                  (i.param.current ? "_current" : "_still");
+                                  (i.param.current ? "_current" : "_still") + (i.param.EI > 0 ? "_bending" : "");
                          });
 
 }  // namespace
