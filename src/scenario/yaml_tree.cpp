@@ -1,5 +1,6 @@
 #include "towsim/scenario/yaml_tree.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "scalar.hpp"
@@ -90,6 +92,62 @@ YNode convert(const YAML::Node& n, const Origin& o, const SourceLoc& fallback, s
   return out;
 }
 
+/// The documents of a YAML stream as yaml-cpp's parser reports them, without
+/// building them: where the first value of a document after the first one
+/// is. yaml-cpp 0.7's LoadAll loops for ever, allocating, on a stream whose
+/// next token no node takes (a value starting with ',': ", {"; its issue
+/// 1040): such a document starts where the one before it started. That is
+/// reported as a syntax error at that character.
+class DocumentScan final : public YAML::EventHandler {
+ public:
+  explicit DocumentScan(const std::string& text) : text_(text) {}
+  std::optional<YAML::Mark> later_value;  // the first value of the second or a later document
+
+  void OnDocumentStart(const YAML::Mark& m) override {
+    if (documents_ > 0 && m.pos == start_.pos) {
+      const char c = m.pos >= 0 && static_cast<std::size_t>(m.pos) < text_.size()
+                         ? text_[static_cast<std::size_t>(m.pos)]
+                         : ' ';
+      throw YAML::ParserException(m,
+                                  c > ' ' && c < 0x7f ? std::string("unexpected '") + c + "'" : "unexpected character");
+    }
+    start_ = m;
+    ++documents_;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { value(m); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { value(m); }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    value(m);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    value(m);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void value(const YAML::Mark& m) {
+    if (documents_ > 1 && !later_value) later_value = m;
+  }
+  const std::string& text_;
+  YAML::Mark start_;
+  int documents_ = 0;
+};
+
+/// The first document of `text` (a null node when empty), after a scan of
+/// the whole stream: a later document holding a value sets `later_value`.
+YAML::Node first_document(const std::string& text, std::optional<YAML::Mark>& later_value) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentScan scan(text);
+  while (parser.HandleNextDocument(scan)) {
+  }
+  later_value = scan.later_value;
+  return YAML::Load(text);
+}
+
 /// " (line N is indented with a tab: ...)" when a line up to the error's
 /// (0-based `err_line`) has a tab in its indentation, else "".
 std::string tab_hint(const std::string& text, int err_line, const Origin& o) {
@@ -109,14 +167,13 @@ std::string tab_hint(const std::string& text, int err_line, const Origin& o) {
 YNode parse_with_origin(const std::string& text, const Origin& o, Diagnostics& diags, const std::string& err_path) {
   try {
     // One document: what follows a second `---` would be silently ignored.
-    const std::vector<YAML::Node> docs = YAML::LoadAll(text);
-    for (std::size_t i = 1; i < docs.size(); ++i)
-      if (!docs[i].IsNull()) {
-        diags.error(loc_of(docs[i].Mark(), o.file, o.line_override, o.col_offset), err_path,
-                    "a second YAML document (after ---): a scenario is one document");
-        return YNode{};
-      }
-    const YAML::Node n = docs.empty() ? YAML::Node() : docs.front();
+    std::optional<YAML::Mark> later;
+    const YAML::Node n = first_document(text, later);
+    if (later) {
+      diags.error(loc_of(*later, o.file, o.line_override, o.col_offset), err_path,
+                  "a second YAML document (after ---): a scenario is one document");
+      return YNode{};
+    }
     const SourceLoc start{o.file, o.line_override > 0 ? o.line_override : 1, 1 + o.col_offset};
     std::size_t budget = max_values(text.size());
     return convert(n, o, start, budget);

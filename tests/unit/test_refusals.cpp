@@ -127,6 +127,16 @@ TEST_F(Refusal, SecondYamlDocument) {
   EXPECT_TRUE(trailing.ok()) << trailing.diags.str();
 }
 
+// A value starting with ',' before a flow collection: yaml-cpp's LoadAll
+// looped for ever on it, allocating (the fuzzer's timeout), in a file and in
+// a --set value alike.
+TEST_F(Refusal, ValueStartingWithACommaBeforeAFlowCollection) {
+  const auto file = load(", {\n");
+  EXPECT_EQ(file.diags.str(), at("1:1: (yaml): YAML syntax error: unexpected ','"));
+  const auto set = load(kCable + kSim, {"tow.force=, 4]\n- {\n[]"});
+  EXPECT_EQ(set.diags.str(), "--set:1:11: tow.force: YAML syntax error: unexpected ','\n");
+}
+
 // Not a scenario file: a directory (once "the scenario is empty"), a device
 // without end (once read until memory ran out), a file beyond 4 MiB.
 TEST_F(Refusal, ScenarioPathNotARegularFileOrTooLarge) {
