@@ -89,7 +89,9 @@ int check_command(const InputOptions& in, std::ostream& out, std::ostream& err);
 int examples_command(const std::string& name, std::ostream& out, std::ostream& err);
 
 /// Print a compiled model's derived quantities (element length, masses,
-/// apparent weights, added mass, drag factors, body, tow law, run settings).
-void describe_model(const Model& model, std::ostream& out);
+/// apparent weights, added mass, drag factors, body, tow law, run settings)
+/// and, with `accuracy`, the discretisation error estimate and the element
+/// count advised (steady solves: their cost grows with the element count).
+void describe_model(const Model& model, std::ostream& out, bool accuracy = true);
 
 }  // namespace towsim::io

@@ -266,7 +266,7 @@ void describe_accuracy(const Model& m, std::ostream& out) {
 
 }  // namespace
 
-void describe_model(const Model& m, std::ostream& out) {
+void describe_model(const Model& m, std::ostream& out, bool accuracy) {
   out << "scenario " << m.name << ": valid\n";
   describe_fluid(m.fluid, out);
   describe_seabed(m, out);
@@ -277,7 +277,7 @@ void describe_model(const Model& m, std::ostream& out) {
   describe_sea(m, out);
   describe_winch(m.winch, out);
   describe_run(m, out);
-  describe_accuracy(m, out);
+  if (accuracy) describe_accuracy(m, out);
 }
 
 }  // namespace towsim::io
