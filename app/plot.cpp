@@ -35,40 +35,6 @@ constexpr int kInvalid = 2;
 
 // ---------------------------------------------------------------- reading
 
-/// A CSV file's header and numeric rows (enough of it to plan the figures).
-struct Table {
-  std::vector<std::string> names;
-  std::map<std::string, int> index;
-  std::vector<std::vector<double>> rows;
-  bool has(const std::string& n) const { return index.count(n) != 0; }
-  /// Column `n` of row `r` (NaN when absent or short).
-  double at(std::size_t r, const std::string& n) const {
-    const auto it = index.find(n);
-    if (it == index.end() || r >= rows.size() || it->second >= static_cast<int>(rows[r].size())) return std::nan("");
-    return rows[r][static_cast<std::size_t>(it->second)];
-  }
-};
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : line) {
-    if (c == ',') {
-      out.push_back(cur);
-      cur.clear();
-    } else if (c != '\r' && c != '\n') {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  for (auto& s : out) {  // trim blanks
-    const auto b = s.find_first_not_of(" \t");
-    const auto e = s.find_last_not_of(" \t");
-    s = b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-  }
-  return out;
-}
-
 /// The whole file's text ("" when it cannot be read).
 std::string read_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -83,34 +49,6 @@ bool ends_cut(const fs::path& path) {
   if (!in || in.tellg() <= 0) return false;
   in.seekg(-1, std::ios::end);
   return in.get() != '\n';
-}
-
-/// Read a CSV file with a header row; `max_cols` (0 = all) limits the
-/// numeric columns kept per row. False when the file cannot be opened or has
-/// no header.
-bool read_csv(const fs::path& path, Table& t, std::size_t max_cols = 0) {
-  std::ifstream in(path);
-  if (!in) return false;
-  std::string line;
-  if (!whole_line(in, line)) return false;
-  t.names = split(line);
-  for (std::size_t i = 0; i < t.names.size(); ++i) t.index[t.names[i]] = static_cast<int>(i);
-  while (whole_line(in, line)) {
-    if (line.empty() || line == "\r") continue;
-    std::vector<double> row;
-    std::size_t pos = 0;
-    while (pos <= line.size() && (max_cols == 0 || row.size() < max_cols)) {
-      const std::size_t comma = line.find(',', pos);
-      const std::string cell = line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
-      char* end = nullptr;
-      const double v = std::strtod(cell.c_str(), &end);
-      row.push_back(end == cell.c_str() ? std::nan("") : v);
-      if (comma == std::string::npos) break;
-      pos = comma + 1;
-    }
-    t.rows.push_back(std::move(row));
-  }
-  return true;
 }
 
 // --------------------------------------------------------------- gnuplot
@@ -735,8 +673,10 @@ int render_scripts(const fs::path& plots, const std::vector<std::pair<std::strin
 /// speed, into DIR/plots/towing_table.png and .svg.
 int plot_towing_table(const fs::path& root, std::ostream& log, const PlotOptions& o) {
   const fs::path csv = root / "towing_table.csv";
-  Table t;
-  if (!read_csv(csv, t) || !t.has("layback") || !t.has("depth") || !t.has("tow_speed_kn") || !t.has("case")) {
+  CsvTable t;
+  std::string error;
+  if (!read_csv_table(csv.string(), t, error) || !t.has("layback") || !t.has("depth") || !t.has("tow_speed_kn") ||
+      !t.has("case")) {
     log << "towsim plot: " << csv.string() << ": cannot read it, or no column case, layback, depth or tow_speed_kn\n";
     return kInvalid;
   }
@@ -879,8 +819,9 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
     // An unusual echo: plot without the body details.
   }
 
-  Table ts;
-  if (!read_csv(root / "timeseries.csv", ts)) {
+  CsvTable ts;
+  std::string read_error;  // the readers' own message (the plot's names the file its way)
+  if (!read_csv_table((root / "timeseries.csv").string(), ts, read_error)) {
     log << "towsim plot: " << (root / "timeseries.csv").string() << ": cannot read it or it has no header\n";
     return kInvalid;
   }
@@ -908,10 +849,8 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
     return kInvalid;
   }
   if (run.has_nodes) {
-    std::ifstream in(root / "nodes.csv");
-    std::string header;
-    whole_line(in, header);
-    const auto names = split(header);
+    std::vector<std::string> names;  // none when it cannot be read: every column is then reported absent
+    read_csv_header((root / "nodes.csv").string(), names, read_error);
     for (const char* c : {"time", "node", "x", "y", "z"})
       if (std::find(names.begin(), names.end(), c) == names.end()) absent.push_back(c);
     if (!absent.empty()) {
@@ -985,8 +924,9 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
 
   // A sea-state run's spectra.csv, with at least one estimate.
   if (exists_file(root / "spectra.csv")) {
-    Table sp;
-    if (read_csv(root / "spectra.csv", sp) && !sp.rows.empty() && sp.has("omega") && sp.has("tow_heave")) {
+    CsvTable sp;
+    if (read_csv_table((root / "spectra.csv").string(), sp, read_error) && !sp.rows.empty() && sp.has("omega") &&
+        sp.has("tow_heave")) {
       run.has_spectra = true;
       double peak = 0;
       for (std::size_t r = 0; r < sp.rows.size(); ++r) {

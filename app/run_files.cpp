@@ -83,6 +83,17 @@ bool read_csv_table(const std::string& path, CsvTable& table, std::string& error
   return true;
 }
 
+bool read_csv_header(const std::string& path, std::vector<std::string>& names, std::string& error) {
+  names.clear();
+  std::ifstream in;
+  std::string line;
+  if (!open_csv(path, in, line, error)) return false;
+  std::vector<std::string_view> f;
+  split_views(line, f);
+  for (auto v : f) names.emplace_back(v);
+  return true;
+}
+
 bool read_node_frames(const std::string& path, const std::vector<double>& wanted, std::vector<NodeFrame>& frames,
                       std::string& error) {
   frames.clear();

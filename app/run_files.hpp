@@ -21,11 +21,19 @@ struct CsvTable {
   int col(const std::string& name) const;
   /// Row r's value in column c (NaN when c < 0 or the row is short).
   double at(std::size_t r, int c) const;
+  /// True when the header names column `name`.
+  bool has(const std::string& name) const { return col(name) >= 0; }
+  /// Row r's value in column `name` (NaN when absent or the row is short).
+  double at(std::size_t r, const std::string& name) const { return at(r, col(name)); }
 };
 
 /// Read a whole CSV file (timeseries.csv). False with `error` set when it
 /// cannot be opened or has no header.
 bool read_csv_table(const std::string& path, CsvTable& table, std::string& error);
+
+/// Read only the header of a CSV file into `names`. False with `error` set
+/// when it cannot be opened or has no header.
+bool read_csv_header(const std::string& path, std::vector<std::string>& names, std::string& error);
 
 /// The nodes of one output time (nodes.csv rows of that time, in node order).
 struct NodeFrame {
