@@ -430,6 +430,87 @@ double force_scale(const Model& model) {
   return std::max(w, 1.0);
 }
 
+/// The run's time stepper (simulation.integrator), built in one place: at
+/// the start and again for the chain that a winch event makes (the state
+/// changes size; Rosenbrock-W holds its system). rk4 and the odeint
+/// controlled steppers size themselves on first use.
+class Steppers {
+ public:
+  explicit Steppers(const Model& model) : model_(model) {}
+
+  /// Fresh steppers for `chain_model` and its system; a Rosenbrock-W
+  /// stepper's largest errors so far go into stats first. `check` gets the
+  /// refusal of an integrator that the system cannot serve.
+  void reset(const Model& chain_model, System& sys, RunStats& stats, std::string& check) {
+    const double tol = model_.sim.tolerance;
+    rk4_ = odeint::runge_kutta4<StateVector>();
+    dopri_ = odeint::make_controlled(tol, tol, odeint::runge_kutta_dopri5<StateVector>());
+    cashkarp_ = odeint::make_controlled(tol, tol, odeint::runge_kutta_cash_karp54<StateVector>());
+    if (ros_) keep_ros_errors(*ros_, stats);
+    if (model_.sim.integrator != Integrator::Rosenbrock) return;
+    if (!sys.has_stage_solve())
+      check = "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)";
+    // W's time column (f_t): not with a winch. f_t is right there (fixed
+    // steps: more accurate, order 3), but on fish-depth-change it does not
+    // pay (docs/performance.md "W's time column", "With a winch"): in the
+    // schedule's speed ramps the steps grow up to 2x and the fish's attitude
+    // error, ~tol per step and of one sign, adds up (link tension 2.8x less
+    // accurate); between them max_step binds, f_t only costs (6 % more
+    // evaluations). More evaluations for equal accuracy at every tolerance.
+    // Without a winch: by a difference on every other step, extrapolated
+    // between (6-8 % fewer evaluations, docs/performance.md "W's time
+    // column extrapolated").
+    const auto td = model_.winch.active() ? RosenbrockW::TimeDerivative::None
+                                          : RosenbrockW::TimeDerivative::Extrapolated;
+    ros_ = std::make_unique<RosenbrockW>(sys, tol, force_scale(chain_model), RosenbrockW::ForceEstimate::Embedded, td);
+  }
+
+  /// Rosenbrock-W steps pass output times (dense output) and land only on
+  /// breakpoints and the run's end; the others land on every output time.
+  bool dense() const { return model_.sim.integrator == Integrator::Rosenbrock; }
+
+  /// Advance y from t towards `target` (an output time or a breakpoint),
+  /// landing on `land` (dense output; else `target`): see advance_fixed and
+  /// advance_adaptive.
+  std::string advance(const Model& m, System& sys, StateVector& y, double& t, double land, double target, double& h,
+                      RunStats& stats, bool& event, const StopCheck& stopping) {
+    switch (model_.sim.integrator) {
+      case Integrator::RK4:
+        return advance_fixed(m, sys, rk4_, y, t, target, stats, event, stopping);
+      case Integrator::DOPRI5:
+        return advance_odeint(m, sys, dopri_, y, t, target, h, stats, event, stopping);
+      case Integrator::CashKarp54:
+        return advance_odeint(m, sys, cashkarp_, y, t, target, h, stats, event, stopping);
+      case Integrator::Rosenbrock:
+        return advance_rosenbrock(m, sys, *ros_, y, t, land, target, h, stats, event, stopping);
+    }
+    return "internal: unknown integrator";
+  }
+
+  /// At a breakpoint of the tow law: its acceleration (and maybe y) jumps.
+  void invalidate() {
+    if (ros_) ros_->invalidate();
+  }
+
+  /// The state at `time`, passed by the last step (dense output): false when
+  /// the stepper has none.
+  bool dense_output(double time, StateVector& y) const { return ros_ && ros_->dense_output(time, y); }
+
+  /// At the run's end: the largest error estimates into stats.
+  void finish(RunStats& stats) const {
+    if (ros_) keep_ros_errors(*ros_, stats);
+  }
+
+ private:
+  const Model& model_;  // the run's settings (simulation, winch)
+  odeint::runge_kutta4<StateVector> rk4_;
+  decltype(odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_dopri5<StateVector>())) dopri_ =
+      odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_dopri5<StateVector>());
+  decltype(odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_cash_karp54<StateVector>())) cashkarp_ =
+      odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_cash_karp54<StateVector>());
+  std::unique_ptr<RosenbrockW> ros_;
+};
+
 /// The run's current chain: the model given, or one derived from it by
 /// winch events (one element more or less in the top section), with its
 /// system and the material identities of its nodes.
@@ -528,34 +609,8 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   sink.write(sample(y, t));
   track_elastic(model, *chain.sys, y, t, stats);
 
-  odeint::runge_kutta4<StateVector> rk4;
-  auto dopri = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
-                                       odeint::runge_kutta_dopri5<StateVector>());
-  auto cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
-                                          odeint::runge_kutta_cash_karp54<StateVector>());
-  // Rosenbrock-W holds its system: made again after a winch event.
-  std::unique_ptr<RosenbrockW> ros;
-  auto make_ros = [&]() {
-    if (ros) keep_ros_errors(*ros, stats);
-    if (model.sim.integrator != Integrator::Rosenbrock) return;
-    if (!chain.sys->has_stage_solve())
-      check = "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)";
-    // W's time column (f_t): not with a winch. f_t is right there (fixed
-    // steps: more accurate, order 3), but on fish-depth-change it does not
-    // pay (docs/performance.md "W's time column", "With a winch"): in the
-    // schedule's speed ramps the steps grow up to 2x and the fish's attitude
-    // error, ~tol per step and of one sign, adds up (link tension 2.8x less
-    // accurate); between them max_step binds, f_t only costs (6 % more
-    // evaluations). More evaluations for equal accuracy at every tolerance.
-    // Without a winch: by a difference on every other step, extrapolated
-    // between (6-8 % fewer evaluations, docs/performance.md "W's time
-    // column extrapolated").
-    const auto td = model.winch.active() ? RosenbrockW::TimeDerivative::None
-                                         : RosenbrockW::TimeDerivative::Extrapolated;
-    ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model),
-                                        RosenbrockW::ForceEstimate::Embedded, td);
-  };
-  make_ros();
+  Steppers steppers(model);
+  steppers.reset(*chain.model, *chain.sys, stats, check);
   double h = model.sim.time_step;
   const double T = model.sim.duration, dT = model.sim.output_interval;
   const long n_out = static_cast<long>(std::ceil(T / dT - 1e-9));
@@ -566,7 +621,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   // Rosenbrock steps pass output times (dense output) and land only on
   // breakpoints and the run's end; a winch event after a step that passed
   // output times waits until they are written from the old chain.
-  const bool dense = model.sim.integrator == Integrator::Rosenbrock;
+  const bool dense = steppers.dense();
   bool pending_event = false;
   StateVector y_out;   // dense output state
   double written = t;  // time of the last sample written [s]
@@ -591,41 +646,21 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
         if (t > out_time + 1e-12 * std::max(1.0, out_time)) break;  // write this output first
         pending_event = false;
         winch_event_at(chain, y, t, stats);
-        rk4 = odeint::runge_kutta4<StateVector>();
-        dopri = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
-                                        odeint::runge_kutta_dopri5<StateVector>());
-        cashkarp = odeint::make_controlled(model.sim.tolerance, model.sim.tolerance,
-                                           odeint::runge_kutta_cash_karp54<StateVector>());
-        make_ros();
+        steppers.reset(*chain.model, *chain.sys, stats, check);
       }
       while (next_break != breaks.end() && *next_break < t - eps) ++next_break;
       const bool at_break = next_break != breaks.end() && std::abs(*next_break - t) <= eps;
       if (at_break) {
         chain.sys->apply_tow_jump(y, t);
-        if (ros) ros->invalidate();  // the law's acceleration (and maybe y) jumps here
+        steppers.invalidate();
         ++next_break;
       }
       if (t >= out_time - 1e-12 * std::max(1.0, out_time)) break;
       const double target = (next_break != breaks.end() && *next_break < out_time) ? *next_break : out_time;
       // Dense output: land on the next breakpoint or the run's end only.
       const double land = dense ? (next_break != breaks.end() ? std::min(*next_break, T) : T) : target;
-      const Model& m = *chain.model;
-      System& sys = *chain.sys;
       bool event = false;
-      switch (model.sim.integrator) {
-        case Integrator::RK4:
-          err = advance_fixed(m, sys, rk4, y, t, target, stats, event, stopping);
-          break;
-        case Integrator::DOPRI5:
-          err = advance_odeint(m, sys, dopri, y, t, target, h, stats, event, stopping);
-          break;
-        case Integrator::CashKarp54:
-          err = advance_odeint(m, sys, cashkarp, y, t, target, h, stats, event, stopping);
-          break;
-        case Integrator::Rosenbrock:
-          err = advance_rosenbrock(m, sys, *ros, y, t, land, target, h, stats, event, stopping);
-          break;
-      }
+      err = steppers.advance(*chain.model, *chain.sys, y, t, land, target, h, stats, event, stopping);
       // The state changes size: new chain, fresh steppers (sized on first
       // use), at the top of this loop once the outputs passed are written.
       if (event && err.empty()) pending_event = true;
@@ -645,7 +680,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     }
     if (std::abs(t - out_time) <= 1e-12 * std::max(1.0, out_time)) {
       sink.write(sample(y, out_time));  // a step ended here (to round-off)
-    } else if (ros && ros->dense_output(out_time, y_out)) {
+    } else if (steppers.dense_output(out_time, y_out)) {
       sink.write(sample(y_out, out_time));  // the step passed out_time
     } else {
       stats.status = "failed";
@@ -659,7 +694,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     stats.status = "failed";
     stats.message = check;
   }
-  if (ros) keep_ros_errors(*ros, stats);
+  steppers.finish(stats);
   stats.end_time = stats.status == "interrupted" ? written : t;
   stats.slack.finish(t);
   stats.rhs_evaluations += chain.sys->rhs_evaluations;
