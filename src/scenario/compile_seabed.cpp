@@ -5,6 +5,7 @@
 
 #include "checks.hpp"
 #include "towsim/dynamics/state.hpp"
+#include "towsim/hydro/loads.hpp"
 #include "towsim/integrators/system.hpp"
 
 namespace towsim::io {
@@ -86,16 +87,12 @@ void check_seabed_start(const ScenarioSpec& s, const Model& m, Diagnostics& d) {
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const BodyWork& bw = ws.body[b];
     const Body& body = m.bodies[b];
-    // Its lowest hull point: sphere bottoms, cylinder ends (with their radius), else the CG.
-    double lowest = sb.gap(bw.O + bw.R * body.cg);
-    Vec3 where = bw.O + bw.R * body.cg;
-    auto consider = [&](const Vec3& c, double r) {
-      if (sb.gap(c) - r < lowest) lowest = sb.gap(c) - r, where = c;
-    };
-    for (const SphereLoad& sp : body.spheres) consider(bw.O + bw.R * sp.center, sp.radius);
-    for (const CylinderLoad& cy : body.cylinders)
-      for (double side : {-0.5, 0.5})
-        consider(bw.O + bw.R * (cy.center + side * cy.length * cy.axis), 0.5 * cy.diameter);
+    // Its lowest contact point, by the rule the contact uses (hull_points).
+    double lowest = 0;
+    Vec3 where = Vec3::Zero();
+    hull_points(sb, body, bw, [&](const Vec3& p, double) {
+      if (sb.gap(p) < lowest) lowest = sb.gap(p), where = p;
+    });
     if (lowest < 0) {
       d.error(w.loc, w.path, "body " + body.name + " starts below the seabed " + below_text(sb, where) + fix);
       return;

@@ -68,6 +68,28 @@ TEST_F(SeabedIo, TowPointBelowTheSeabedIsRefused) {
   EXPECT_EQ(out, s.diags.str());
 }
 
+// A body's start is checked at the points where the seabed touches it
+// (hull_points: each sphere's lowest point, each cylinder's end discs, a bare
+// body's CG): a sphere reaching 0.5 m below the bottom is refused at its
+// lowest point; a CG below the bottom inside a hull that stays above is not.
+TEST_F(SeabedIo, BodyStartBelowTheSeabedIsCheckedAtItsContactPoints) {
+  const std::string body =  // hangs from the cable's end at z = -100 m (Q at O_t)
+      "body:\n  mass: 50\n  inertia: [1, 1, 1]\n  link_point: [0, 0, 0]\n"
+      "  center_of_gravity: [0, 0, CGZ]\n  spheres:\n    - {center: [0, 0, -1], radius: 1}\n";
+  auto with_cg = [&](const std::string& z) {
+    std::string b = body;
+    b.replace(b.find("CGZ"), 3, z);
+    return b;
+  };
+  const auto reaching = load("environment:\n  seabed: {depth: 101.5}\n" + kCable + kSim + with_cg("-1"));
+  EXPECT_EQ(reaching.diags.str(),
+            at("2:19: environment.seabed.depth: body body starts below the seabed (z = -102 m; the bottom is at "
+               "z = -101.5 m there): start with initial: steady (the cable settles on the bottom), a direction that "
+               "keeps it above, or a shorter cable"));
+  const auto cg_low = load("environment:\n  seabed: {depth: 102.5}\n" + kCable + kSim + with_cg("-2.8"));
+  EXPECT_TRUE(cg_low.ok()) << cg_low.diags.str();
+}
+
 TEST_F(SeabedIo, HangingStartBelowTheSeabedIsRefused) {
   // 100 m hanging in 50 m of water: joint 3 (60 m) is the first below.
   const auto s = load("environment:\n  seabed: {depth: 50}\n" + kCable + kSim);
