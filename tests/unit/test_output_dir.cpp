@@ -102,6 +102,30 @@ TEST_F(OutputDir, RowFileOnAFullDiskKeepsWholeRowsAndTheCause) {
   EXPECT_EQ(why, "cannot create " + (dir_ / "none" / "summary.json.part").string() + ": No such file or directory");
 }
 
+// An existing output directory on a read-only file system (a tmpfs remounted
+// read-only, where the test may mount one): statics --out once aborted on the
+// exception (exit 134); it exits 1 naming the file and the cause, as run does.
+TEST_F(OutputDir, ReadOnlyFileSystemExits1ForStaticsAndRun) {
+  const fs::path mnt = dir_ / "ro";
+  fs::create_directories(mnt);
+  if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=64k") != 0) GTEST_SKIP() << "cannot mount a tmpfs here";
+  const fs::path out = mnt / "out";
+  fs::create_directories(out);
+  if (::mount("tmpfs", mnt.c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, "size=64k") != 0) {
+    ::umount(mnt.c_str());
+    GTEST_SKIP() << "cannot remount the tmpfs read-only here";
+  }
+  const std::string cause = "cannot create " + (out / "timeseries.csv").string() + ": Read-only file system\n";
+  const CliResult statics = run_towsim("statics --example cable-tow --out " + quoted(out));
+  EXPECT_EQ(statics.status, 1) << statics.out;
+  EXPECT_NE(statics.out.find("towsim: statics: " + cause), std::string::npos) << statics.out;
+  const CliResult run = run_towsim("run" + kShortRun + quoted(out));
+  EXPECT_EQ(run.status, 1) << run.out;
+  EXPECT_EQ(run.out, "towsim: " + cause);
+  EXPECT_TRUE(fs::is_empty(out));
+  ::umount(mnt.c_str());
+}
+
 // A full file system (a 256 KiB tmpfs, where the test may mount one): exit 1
 // naming the file and the cause (once only "cannot write summary.json"), every
 // file ending in a whole row, no empty summary.json.

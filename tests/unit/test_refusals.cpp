@@ -431,6 +431,32 @@ TEST_F(Refusal, ProgramExits2AndWritesNothingForEachClass) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// An empty section list crashed statics and sweep too (exit 139): both exit 2
+// with the message and write nothing, whether the base scenario or a case's
+// override empties the list (a sweep's case: at the sweep file).
+TEST_F(Refusal, EmptySectionListIsRefusedByStaticsAndSweep) {
+  const std::string scen = write("cable: {sections: [], mass_per_length: 1.5, diameter: 0.02}\n" + kSim, "se.yaml");
+  const std::string message =
+      ":1:19: cable.sections: the list is empty (give at least one section, or leave sections "
+      "out)\n";
+  const fs::path out = dir_ / "out";
+  const auto [status, text] = run_towsim("statics '" + scen + "' --out '" + out.string() + "'");
+  EXPECT_EQ(status, 2) << text;
+  EXPECT_EQ(text, scen + message);
+  const std::string sweep = write("scenario: se.yaml\ngrid: {simulation.duration: [1, 2]}\n", "sweep.yaml");
+  const auto [sweep_status, sweep_text] = run_towsim("sweep '" + sweep + "' --out '" + out.string() + "' --quiet");
+  EXPECT_EQ(sweep_status, 2) << sweep_text;
+  EXPECT_EQ(sweep_text, scen + message);
+  const std::string by_case =
+      write("example: two-part-tow\ncases:\n  - {cable.sections: []}\n  - {simulation.duration: 0.5}\n", "case.yaml");
+  const auto [case_status, case_text] = run_towsim("sweep '" + by_case + "' --out '" + out.string() + "' --quiet");
+  EXPECT_EQ(case_status, 2) << case_text;
+  EXPECT_EQ(case_text, by_case +
+                           ":3:22: cable.sections: the list is empty (give at least one section, or leave sections "
+                           "out)\n");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // Not a refusal: text in another encoding is kept, and the run still writes
 // its summary (invalid UTF-8 becomes U+FFFD in summary.json).
 TEST_F(Refusal, NonUtf8NameStillWritesTheSummary) {
