@@ -510,21 +510,34 @@ SweepSpec read_sweep(const std::string& path, Diagnostics& diags) {
   return read_sweep_with_locs(path, diags, locs);
 }
 
-int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err, const volatile int* stop_flag) {
-  Diagnostics d;
-  d.set_primary(opts.file);
+namespace {
+
+/// A sweep file read and checked, as `towsim sweep` runs it.
+struct CheckedSweep {
+  SweepSpec spec;
   SweepLocs locs;
-  const SweepSpec spec = read_sweep_with_locs(opts.file, d, locs);
+  LoadedScenario base;  // the base scenario with the common overrides
+};
+
+/// Read `file` and load the base scenario and the first `max_cases` cases
+/// (each with its overrides; a steady-tow sweep's cases need a tow law):
+/// false with every problem in `err` as FILE:LINE:COL messages, a case's
+/// override errors at the override in the sweep file.
+bool check_sweep(const std::string& file, std::ostream& err, CheckedSweep& c, std::size_t max_cases) {
+  Diagnostics d;
+  d.set_primary(file);
+  c.spec = read_sweep_with_locs(file, d, c.locs);
   if (!d.ok()) {
     err << d.str();
-    return kExitInvalid;
+    return false;
   }
-  // The base scenario with the common overrides, then every case: all valid
-  // before anything runs. A case's override errors point into the sweep file.
-  const LoadedScenario base = load_input(case_input(spec, spec.common));
+  const SweepSpec& spec = c.spec;
+  const SweepLocs& locs = c.locs;
+  c.base = load_input(case_input(spec, spec.common));
+  const LoadedScenario& base = c.base;
   if (!base.ok()) {
     Diagnostics moved;
-    moved.set_primary(opts.file);
+    moved.set_primary(file);
     for (const auto& e : base.diags.list()) {
       const bool from_set = e.loc.file == "--set" && e.loc.line >= 1 &&
                             static_cast<std::size_t>(e.loc.line) <= locs.common.size();
@@ -534,12 +547,12 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
         moved.error(from_set ? locs.common[static_cast<std::size_t>(e.loc.line) - 1] : e.loc, e.path, e.message);
     }
     err << moved.str();
-    return kExitInvalid;
+    return false;
   }
   Diagnostics case_errors;
-  case_errors.set_primary(opts.file);
+  case_errors.set_primary(file);
   std::set<std::string> reported;
-  for (std::size_t i = 0; i < spec.cases.size(); ++i) {
+  for (std::size_t i = 0; i < spec.cases.size() && i < max_cases; ++i) {
     const ExpandedCase e = expand(spec, locs.common, spec.cases[i], locs.cases[i]);
     const LoadedScenario sc = load_input(case_input(spec, e.sets));
     for (const auto& x : sc.diags.list()) {
@@ -561,8 +574,24 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
   }
   if (!case_errors.ok()) {
     err << case_errors.str();
-    return kExitInvalid;
+    return false;
   }
+  return true;
+}
+
+}  // namespace
+
+bool check_sweep_file(const std::string& file, std::ostream& err, std::size_t max_cases) {
+  CheckedSweep c;
+  return check_sweep(file, err, c, max_cases);
+}
+
+int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err, const volatile int* stop_flag) {
+  CheckedSweep checked;
+  if (!check_sweep(opts.file, err, checked, std::numeric_limits<std::size_t>::max())) return kExitInvalid;
+  const SweepSpec& spec = checked.spec;
+  const SweepLocs& locs = checked.locs;
+  const LoadedScenario& base = checked.base;
 
   std::error_code ec;
   std::filesystem::create_directories(opts.out_dir, ec);

@@ -81,6 +81,12 @@ constexpr std::size_t kMaxSweepCases = 100000;
 /// Read a sweep file; every problem goes to `diags` as FILE:LINE:COL: key: problem.
 SweepSpec read_sweep(const std::string& path, Diagnostics& diags);
 
+/// Read a sweep file and load its base scenario and its first `max_cases`
+/// cases as `towsim sweep` does before it runs anything: true when all are
+/// valid; else false with every problem in `err` (FILE:LINE:COL: key: problem,
+/// a case's override errors at the override in the sweep file).
+bool check_sweep_file(const std::string& file, std::ostream& err, std::size_t max_cases);
+
 /// Options of `towsim sweep`.
 struct SweepOptions {
   std::string file;     // the sweep file

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Build the libFuzzer targets with clang in build-fuzz/ and run each for a
-# bounded time. Exit status non-zero when any target crashes, hangs (> 5 s on
+# Build the libFuzzer targets (scenario, track CSV, sweep file) with clang in
+# build-fuzz/ and run each for a bounded time; then fuzz the Python module's
+# entry points (fuzz/fuzz_python.py) when build/python holds the module.
+# Exit status non-zero when any target crashes, hangs (> 5 s on
 # one input), exceeds 2 GB of memory or reports a sanitizer error.
 #
 #   scripts/fuzz.sh [SECONDS]   fuzz each target for SECONDS (default 60)
@@ -31,14 +33,14 @@ mkdir -p "$BUILD"
 cmake -S . -B "$BUILD" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DTOWSIM_FUZZ=ON -DTOWSIM_BUILD_TESTS=OFF -DTOWSIM_BUILD_BENCH=OFF >"$BUILD/configure.log" 2>&1 ||
   { cat "$BUILD/configure.log" >&2; exit 1; }
-cmake --build "$BUILD" --target fuzz_scenario fuzz_track_csv -j "$JOBS" >"$BUILD/build.log" 2>&1 ||
+cmake --build "$BUILD" --target fuzz_scenario fuzz_track_csv fuzz_sweep -j "$JOBS" >"$BUILD/build.log" 2>&1 ||
   { tail -50 "$BUILD/build.log" >&2; exit 1; }
 
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 mkdir -p "$BUILD/artifacts"
 failed=0
-for target in scenario track_csv; do
+for target in scenario track_csv sweep; do
   exe="$BUILD/fuzz/fuzz_$target"
   seeds="fuzz/corpus/$target"
   work="$BUILD/corpus/$target"
@@ -64,6 +66,18 @@ for target in scenario track_csv; do
     failed=1
   fi
 done
+# The Python entry points (towsim.run, statics, sweep), in the module that
+# scripts/test.sh built (build/python; PYTHON_BUILD to change it).
+pybuild="${PYTHON_BUILD:-build/python}"
+if [[ -d "$pybuild/towsim" ]]; then
+  if [[ "$SECONDS_EACH" == 0 ]]; then pyruns=200; else pyruns="${FUZZ_RUNS:-1000000}"; fi
+  echo "== fuzz_python: ${SECONDS_EACH} s at most, $pyruns inputs, seed ${FUZZ_SEED:-1}"
+  PYTHONPATH="$pybuild" /usr/bin/python3 fuzz/fuzz_python.py --runs "$pyruns" --seed "${FUZZ_SEED:-1}" \
+    --seconds "$([[ "$SECONDS_EACH" == 0 ]] && echo 60 || echo "$SECONDS_EACH")" \
+    --repro "$BUILD/artifacts/python-finding.txt" || { echo "fuzz_python FAILED (exit $?)" >&2; failed=1; }
+else
+  echo "== fuzz_python: skipped ($pybuild/towsim not built: run scripts/test.sh first)"
+fi
 if [[ $failed -ne 0 ]]; then
   echo "fuzz.sh: FAILED (reproducers in $BUILD/artifacts/)" >&2
   exit 1
