@@ -166,24 +166,15 @@ struct SteadyProblem {
   }
 };
 
-/// How far the body's lowest point in contact lies below its link Q along
-/// the bottom's normal n (attitude R): its hull's contact points (as
-/// seabed_loads: each sphere's lowest point, each cylinder's end discs'
-/// lowest points, else the CG) and an in-line body's lower link Q2 [m, >= 0].
-double body_drop(const Body& body, const Mat3& R, const Vec3& n) {
+/// How far the body's lowest point in contact lies below its link Q [m, R_g]
+/// along the bottom's normal n, at attitude R: its hull's contact points
+/// (hull_points, the contact's own rule) and an in-line body's lower link Q2
+/// [m, >= 0].
+double body_drop(const Seabed& sb, const Body& body, const Mat3& R, const Vec3& Q, const Vec3& n) {
   double drop = 0;
-  auto below = [&](const Vec3& r) { drop = std::max(drop, -n.dot(R * (r - body.link_point))); };  // r: body axes
-  for (const SphereLoad& sp : body.spheres)
-    drop = std::max(drop, -n.dot(R * (sp.center - body.link_point)) + sp.radius);
-  for (const CylinderLoad& cy : body.cylinders) {
-    const Vec3 a = R * cy.axis;
-    const Vec3 d = n - n.dot(a) * a;  // towards the bottom in the discs' plane: -d
-    const double r = d.norm() > 1e-12 ? 0.5 * cy.diameter * d.norm() : 0.0;  // the disc's reach along -n
-    for (double side : {-0.5, 0.5})
-      drop = std::max(drop, -n.dot(R * (cy.center - body.link_point)) - side * cy.length * n.dot(a) + r);
-  }
-  if (body.spheres.empty() && body.cylinders.empty()) below(body.cg);
-  if (body.inline_body) below(body.lower_link_point);
+  const Vec3 O = Q - R * body.link_point;  // the body origin [m, R_g]
+  hull_points(sb, body, O, R, [&](const Vec3& p, double) { drop = std::max(drop, -n.dot(p - Q)); });
+  if (body.inline_body) drop = std::max(drop, -n.dot(R * (body.lower_link_point - body.link_point)));
   return drop;
 }
 
@@ -222,7 +213,8 @@ Eigen::VectorXd on_bottom(SteadyProblem& p, const Eigen::VectorXd& x) {
     bool touches = sb.gap(end) < 0;
     if (bi >= 0) {
       const auto ub = static_cast<std::size_t>(bi);
-      touches = sb.gap(end) < body_drop(m.bodies[ub], p.base.bodies[ub].q.toRotationMatrix(), sb.normal(end.x()));
+      touches = sb.gap(end) <
+                body_drop(sb, m.bodies[ub], p.base.bodies[ub].q.toRotationMatrix(), end, sb.normal(end.x()));
     }
     if (touches) {
       const Vec3 nb = sb.normal(end.x());
@@ -279,7 +271,8 @@ void lay_on_seabed(SteadyProblem& p) {
       Quat& q = s.bodies[ub].q;
       const Vec3 axis = q.toRotationMatrix() * (body.link_point - body.lower_link_point);  // Q2 -> Q [m]
       const Vec3 Q = p.ws.body[ub].Q;
-      if (body.inline_body && axis.norm() > 0 && sb.gap(Q) < body_drop(body, q.toRotationMatrix(), sb.normal(Q.x()))) {
+      if (body.inline_body && axis.norm() > 0 &&
+          sb.gap(Q) < body_drop(sb, body, q.toRotationMatrix(), Q, sb.normal(Q.x()))) {
         q = (Quat::FromTwoVectors(axis, -s.e[k - 1]) * q).normalized();
         compute_kinematics(m, s, p.ws);  // the cable below from the turned body's Q2
         p.sweeps = false;                // (the sweeps, contact left out, lift it off: relax first)
@@ -296,7 +289,7 @@ void lay_on_seabed(SteadyProblem& p) {
     double need = 0;  // [m]
     if (const int bi = p.ws.body_at[k + 1]; bi >= 0 && !(p.V.norm() > 0)) {
       const auto ub = static_cast<std::size_t>(bi);
-      need = body_drop(m.bodies[ub], s.bodies[ub].q.toRotationMatrix(), sb.normal((top + L * e).x()));
+      need = body_drop(sb, m.bodies[ub], s.bodies[ub].q.toRotationMatrix(), top + L * e, sb.normal((top + L * e).x()));
     }
     if (sb.gap(top + L * e) >= need) continue;
     // Along the bottom at the top joint, in the heading h.

@@ -1,6 +1,8 @@
 // Fluid and gravity loads on cable elements and on the towed body (docs/theory.md §3-4).
 #pragma once
 
+#include <utility>
+
 #include "towsim/dynamics/state.hpp"
 #include "towsim/model/seabed_segment.hpp"
 
@@ -77,27 +79,36 @@ SegmentContact element_seabed_contact(const Model& model, const Workspace& ws, s
 /// Length of hull a body with no sphere or cylinder represents at its CG [m].
 inline constexpr double kBareBodyLength = 1.0;
 
-/// A body's hull contact points (docs/theory.md §3.2), for seabed_loads and
-/// the implicit integrator's local Jacobian alike: visit(p, length) for each
-/// sphere's lowest point towards the bottom (length: its diameter), each
-/// cylinder's end discs' lowest points (half its length each, as a cable
-/// element), else the CG (kBareBodyLength); p [m, R_g], length [m].
+/// A body's hull contact points (docs/theory.md §3.2), the one rule for
+/// where the seabed touches a body (the contact loads, the implicit
+/// integrator's local Jacobian, the statics' lay-down and the start check):
+/// visit(p, length) for each sphere's lowest point towards the bottom
+/// (length: its diameter), each cylinder's end discs' lowest points (half its
+/// length each, as a cable element), else the CG (kBareBodyLength); for the
+/// body origin O [m, R_g] and attitude R (body axes to R_g); p [m, R_g],
+/// length [m].
 template <class Visit>
-void hull_points(const Seabed& sb, const Body& body, const BodyWork& bw, Visit&& visit) {
+void hull_points(const Seabed& sb, const Body& body, const Vec3& O, const Mat3& R, Visit&& visit) {
   for (const SphereLoad& sp : body.spheres) {
-    const Vec3 c = bw.O + bw.R * sp.center;
+    const Vec3 c = O + R * sp.center;
     visit(Vec3(c - sp.radius * sb.normal(c.x())), 2 * sp.radius);
   }
   for (const CylinderLoad& cy : body.cylinders) {
-    const Vec3 a = bw.R * cy.axis;
+    const Vec3 a = R * cy.axis;
     for (double side : {-0.5, 0.5}) {
-      const Vec3 ce = bw.O + bw.R * cy.center + side * cy.length * a;
+      const Vec3 ce = O + R * cy.center + side * cy.length * a;
       const Vec3 nrm = sb.normal(ce.x());
       const Vec3 d = nrm - nrm.dot(a) * a;  // towards the bottom in the disc's plane: -d
       visit(d.norm() > 1e-12 ? Vec3(ce - 0.5 * cy.diameter * d.normalized()) : ce, 0.5 * cy.length);
     }
   }
-  if (body.spheres.empty() && body.cylinders.empty()) visit(Vec3(bw.O + bw.R * body.cg), kBareBodyLength);
+  if (body.spheres.empty() && body.cylinders.empty()) visit(Vec3(O + R * body.cg), kBareBodyLength);
+}
+
+/// The same at the body's pose in an evaluation (bw.O, bw.R).
+template <class Visit>
+void hull_points(const Seabed& sb, const Body& body, const BodyWork& bw, Visit&& visit) {
+  hull_points(sb, body, bw.O, bw.R, std::forward<Visit>(visit));
 }
 
 /// Normal stiffness of the seabed contact at joint k (0..n) for the current
