@@ -554,6 +554,9 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
                                          : RosenbrockW::TimeDerivative::Extrapolated;
     ros = std::make_unique<RosenbrockW>(*chain.sys, model.sim.tolerance, force_scale(*chain.model),
                                         RosenbrockW::ForceEstimate::Embedded, td);
+    // In a sea state the error varies from step to step with the waves: the PI
+    // controller (the plain one rejected 28 % of sea-state-tow's steps).
+    if (has_sea(model)) ros->set_step_control(RosenbrockW::StepControl::PI);
   };
   make_ros();
   double h = model.sim.time_step;
