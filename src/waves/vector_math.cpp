@@ -20,8 +20,9 @@ TOWSIM_VECTOR_CLONES void sincos_n(std::size_t n, const double* __restrict x, do
                                    double* __restrict c) {
   constexpr double kTwoOverPi = 0.63661977236758134308;
   constexpr double kMagic = 0x1.8p52;  // adding it rounds to an integer, held in the low bits
-  // pi/2 = P1 + P2 + P3 (Cody-Waite; P1 has 33 significant bits, so q P1 is exact for |q| < 2^20).
-  constexpr double kP1 = 1.57079632673412561417e+00, kP2 = 6.07710050650619224932e-11, kP3 = 2.02226624879595063154e-21;
+  // pi/2 = P1 + P2 + P3 (Cody-Waite, fdlibm's pio2_1, pio2_2, pio2_2t: P1 and P2 have 33
+  // significant bits, so q P1 and q P2 are exact for |q| < 2^20).
+  constexpr double kP1 = 1.57079632673412561417e+00, kP2 = 6.07710050630396597660e-11, kP3 = 2.02226624879595063154e-21;
   for (std::size_t i = 0; i < n; ++i) {
     const double xi = x[i];
     const double qm = xi * kTwoOverPi + kMagic;
