@@ -322,7 +322,7 @@ TowKinematics tow_kinematics(const Tow& tow, double t) {
 }
 
 TowKinematics tow_kinematics(const Tow& tow, double t, CourseCursor& cursor) {
-  const TowKinematics k = tow_law_kinematics(tow, t, cursor);
+  TowKinematics k = tow_law_kinematics(tow, t, cursor);  // not const: returned as is without a vessel
   if (!tow.vessel) return k;
   // The same vessel, time and law as the last call: the same tow point.
   const auto same = [](const TowKinematics& a, const TowKinematics& b) {
