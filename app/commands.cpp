@@ -197,6 +197,11 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
       if (!writer.sea_statistics().write_spectra((std::filesystem::path(opts.out_dir) / "spectra.csv").string()))
         throw std::runtime_error("cannot write spectra.csv");
       summary["files"]["spectra"] = "spectra.csv";
+      // A maximum above its Rayleigh mpm: the Gaussian assumption fails (said in summary.json and on stderr).
+      for (const std::string& w : writer.sea_statistics().warnings()) {
+        summary["warnings"].push_back(w);
+        if (!opts.quiet) err << "towsim: warning: " << w << "\n";
+      }
     }
     // A file the disk could not take (full, I/O error): said in summary.json and on exit (status 1).
     const std::string csv_error = writer.error();

@@ -18,7 +18,10 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
 
   // Velocity relative to the water, split along and across the element (in
   // still water, no current nor waves, the water's velocity is +0: u = vG).
-  const Vec3 u = fluid.has_current() || fluid.waves ? Vec3(vG - fluid.velocity(xG, t)) : vG;
+  // With waves, the water's velocity and accelerations from one sum over the harmonics.
+  Vec3 uw = Vec3::Zero(), rate = Vec3::Zero(), aw = Vec3::Zero();
+  if (fluid.waves) fluid.flow(xG, vG, t, uw, rate, aw);
+  const Vec3 u = fluid.waves ? Vec3(vG - uw) : fluid.has_current() ? Vec3(vG - fluid.velocity(xG, t)) : vG;
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
 
@@ -49,12 +52,11 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   // Added mass: the relative velocity also changes as G moves through a
   // non-uniform flow, du/dt = a_G - rate seen by G; that rate is known here.
   if (!fluid.uniform()) {
-    const Vec3 dU = fluid.rate_seen(xG, vG, t);
+    const Vec3 dU = fluid.waves ? rate : fluid.rate_seen(xG, vG, t);
     F += el.added_mass * (dU - dU.dot(e) * e);
   }
   // Waves: Froude-Krylov rho V a_w (the added mass's part is in rate_seen).
-  if (fluid.waves)
-    F += fluid.rho * std::numbers::pi / 4 * el.diameter * el.diameter * el.length * fluid.acceleration(xG, t);
+  if (fluid.waves) F += fluid.rho * std::numbers::pi / 4 * el.diameter * el.diameter * el.length * aw;
   // Ideal fluid: -dP/dt velocity terms and the Munk moment (paper 2.42).
   if (model.cable.added_mass_model == AddedMassModel::IdealFluid) {
     F += el.added_mass * (edot * ue + e * edot.dot(u));

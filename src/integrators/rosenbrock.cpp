@@ -388,7 +388,12 @@ double RosenbrockW::force_error(const Accelerations* acc) const {
 // Measured against a PI (Gustafsson) controller and safeties 0.8..1
 // (docs/performance.md): this plain controller took the fewest
 // evaluations; 1.0 rejects a third.
-double RosenbrockW::step_factor(double err) {
+double RosenbrockW::step_factor(double err) const {
+  // PI after an accepted step with a predecessor: the last error's memory damps the
+  // controller's overshoot. Measured on sea-state-tow (docs/performance.md "Sea states"):
+  // 4.6 % of the steps rejected instead of 28 %, 3.6 % fewer evaluations.
+  if (control_ == StepControl::PI && prev_err_ > 0 && err > 0 && err <= 1)
+    return std::clamp(kSafety * std::pow(err, -0.7 / 3.0) * std::pow(prev_err_, 0.4 / 3.0), 0.2, 5.0);
   return err == 0 ? 5.0 : std::clamp(kSafety * std::pow(err, -1.0 / 3.0), 0.2, 5.0);
 }
 
@@ -403,6 +408,7 @@ void RosenbrockW::reject(double& h, double fac) {
 void RosenbrockW::accept(StateVector& y, double& t, double& h, double t1, double err, double ferr, double fac) {
   // No growth right after a rejection.
   if (last_rejected_) fac = std::min(fac, 1.0);
+  prev_err_ = std::max(err, 1e-4);
   last_rejected_ = false;
   // y1 and f(y1) become the next step's start; y the dense output's.
   y.swap(y1_);

@@ -39,6 +39,16 @@ Vec3 Fluid::acceleration(const Vec3& x, double t) const {
   return current_gradient(x.z()) * current(x.z()).z();
 }
 
+void Fluid::flow(const Vec3& x, const Vec3& v, double t, Vec3& velocity, Vec3& rate_seen, Vec3& acceleration) const {
+  // As velocity(), rate_seen() and acceleration() (with waves), one wave sum.
+  Vec3 uw = Vec3::Zero(), aw = Vec3::Zero();
+  if (waves) waves->kinematics(x, t, &uw, &aw);
+  const Vec3 U = current(x.z()), G = current_gradient(x.z());
+  velocity = U + uw;
+  rate_seen = G * v.z() + aw;
+  acceleration = aw + G * U.z();
+}
+
 Vec3 Fluid::current(double z) const {
   if (current_velocity.empty()) return Vec3::Zero();
   return interpolate(current_depth, current_velocity, -z);

@@ -7,6 +7,8 @@
 #include <iomanip>
 #include <limits>
 #include <numbers>
+#include <sstream>
+#include <tuple>
 
 namespace towsim::io {
 
@@ -32,13 +34,75 @@ SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>
       last = tc;
       ++n;
     }
-  s.mpm = std::numeric_limits<double>::quiet_NaN();
+  // Third and fourth central moments: skewness and kurtosis.
+  double m3 = 0, m4 = 0;
+  for (double v : x) {
+    const double d2 = (v - s.mean) * (v - s.mean);
+    m3 += d2 * (v - s.mean), m4 += d2 * d2;
+  }
+  const double var = s.std * s.std, cnt = static_cast<double>(x.size());
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  s.skewness = var > 0 ? m3 / cnt / (var * s.std) : kNaN;
+  s.kurtosis = var > 0 ? m4 / cnt / (var * var) : kNaN;
+  // Cycle maxima: the largest excess over the mean between consecutive up-crossings.
+  std::vector<double> peaks;
+  double top = -1;  // < 0: before the first up-crossing
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    if (x[i - 1] < s.mean && x[i] >= s.mean) {
+      if (top >= 0) peaks.push_back(top);
+      top = 0;
+    }
+    if (top >= 0) top = std::max(top, x[i] - s.mean);
+  }
+  s.peaks = static_cast<long>(peaks.size());
+  s.mpm = s.weibull_mpm = s.weibull_shape = s.weibull_scale = kNaN;
   if (n >= 2) {
     s.zero_crossing_period = (last - first) / static_cast<double>(n - 1);
     const double N = kMpmDuration / s.zero_crossing_period;
     if (N > 1) s.mpm = s.mean + s.std * std::sqrt(2 * std::log(N));
+    std::vector<double> positive;
+    for (double p : peaks)
+      if (p > 0) positive.push_back(p);
+    if (static_cast<long>(positive.size()) >= kMinPeaks) {
+      std::tie(s.weibull_shape, s.weibull_scale) = weibull_fit(positive);
+      // Most probable largest of N independent Weibull peaks: scale (ln N)^(1/shape).
+      if (N > 1 && std::isfinite(s.weibull_shape))
+        s.weibull_mpm = s.mean + s.weibull_scale * std::pow(std::log(N), 1 / s.weibull_shape);
+    }
   }
+  s.max_above_mpm = std::isfinite(s.mpm) && s.max > s.mpm;
   return s;
+}
+
+std::pair<double, double> weibull_fit(const std::vector<double>& y) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  if (y.size() < 2) return {kNaN, kNaN};
+  const double n = static_cast<double>(y.size());
+  // Scaled by the largest value (the likelihood equation is scale-free): no overflow of y^b.
+  const double ymax = *std::max_element(y.begin(), y.end());
+  std::vector<double> ly(y.size());
+  double mean_ly = 0;
+  for (std::size_t i = 0; i < y.size(); ++i) ly[i] = std::log(y[i] / ymax), mean_ly += ly[i] / n;
+  if (!(mean_ly < 0)) return {kNaN, kNaN};  // all equal
+  // g(b) = sum y^b ln y / sum y^b - 1/b - mean ln y increases in b.
+  auto g = [&](double b) {
+    double sw = 0, swl = 0;
+    for (double l : ly) {
+      const double w = std::exp(b * l);
+      sw += w, swl += w * l;
+    }
+    return swl / sw - 1 / b - mean_ly;
+  };
+  double lo = 0.05, hi = 50;
+  if (g(lo) > 0 || g(hi) < 0) return {kNaN, kNaN};
+  while (hi - lo > 1e-12 * hi) {
+    const double mid = 0.5 * (lo + hi);
+    (g(mid) < 0 ? lo : hi) = mid;
+  }
+  const double b = 0.5 * (lo + hi);
+  double mean_yb = 0;
+  for (double l : ly) mean_yb += std::exp(b * l) / n;
+  return {b, ymax * std::pow(mean_yb, 1 / b)};
 }
 
 void SeaStatistics::add(const Model& model, const Sample& s) {
@@ -97,10 +161,12 @@ bool SeaStatistics::write_spectra(const std::string& path) const {
       f << ',';
       if (!sd.empty()) f << sd[j].second;
       f << ',';
-      // Gains only where the input carries energy (>= 1e-3 of its peak): elsewhere 0/0.
-      if (!sd.empty() && peak > 0 && se[j].second >= 1e-3 * peak) f << std::sqrt(sd[j].second / se[j].second);
+      // Gains only where the input carries energy (>= kTransferMask of its peak): elsewhere
+      // the input is the record's leakage and the ratio meaningless.
+      if (!sd.empty() && peak > 0 && se[j].second >= kTransferMask * peak) f << std::sqrt(sd[j].second / se[j].second);
       f << ',' << sh[j].second << ',';
-      if (!sd.empty() && peak_h > 0 && sh[j].second >= 1e-3 * peak_h) f << std::sqrt(sd[j].second / sh[j].second);
+      if (!sd.empty() && peak_h > 0 && sh[j].second >= kTransferMask * peak_h)
+        f << std::sqrt(sd[j].second / sh[j].second);
       f << '\n';
     }
   }
@@ -119,6 +185,13 @@ nlohmann::ordered_json SeaStatistics::json() const {
     j["max"] = num(s.max);
     j["zero_crossing_period"] = s.zero_crossing_period > 0 ? num(s.zero_crossing_period) : nullptr;
     j["mpm"] = num(s.mpm);
+    j["max_above_mpm"] = s.max_above_mpm;
+    j["skewness"] = num(s.skewness);
+    j["kurtosis"] = num(s.kurtosis);
+    j["peaks"] = s.peaks;
+    j["weibull_shape"] = num(s.weibull_shape);
+    j["weibull_scale"] = num(s.weibull_scale);
+    j["weibull_mpm"] = num(s.weibull_mpm);
     return j;
   };
   nlohmann::ordered_json j;
@@ -132,6 +205,25 @@ nlohmann::ordered_json SeaStatistics::json() const {
     j["body_depth"] = one(depth_);
   }
   return j;
+}
+
+std::vector<std::string> SeaStatistics::warnings() const {
+  std::vector<std::string> out;
+  auto one = [&](const char* name, const std::vector<double>& x) {
+    if (x.empty()) return;
+    const SignalStats s = signal_stats(t_, x);
+    if (!s.max_above_mpm) return;
+    std::ostringstream os;
+    os << std::setprecision(6) << "statistics." << name << ": the record's maximum " << s.max
+       << " exceeds its Gaussian (Rayleigh) " << kMpmDuration / 3600 << "-hour most probable maximum " << s.mpm
+       << ": the process is not Gaussian (skewness " << s.skewness << ", kurtosis " << s.kurtosis
+       << "); see weibull_mpm " << s.weibull_mpm;
+    out.push_back(os.str());
+  };
+  one("tow_tension", tension_);
+  one("link_force", link_);
+  one("body_depth", depth_);
+  return out;
 }
 
 }  // namespace towsim::io

@@ -3,12 +3,17 @@
 #include "towsim/waves/vessel.hpp"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 
 #include "towsim/model/spline.hpp"
+#include "towsim/waves/vector_math.hpp"
 
 namespace towsim {
+
+std::atomic<std::uint64_t> Vessel::next_id_{0};
 
 namespace {
 
@@ -49,7 +54,11 @@ void bracket(const std::vector<double>& xs, double x, std::size_t& i0, std::size
 
 Vessel::Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<const WaveField> waves,
                const RaoTable& raos)
-    : sheave_(tow_point), course0_(initial_course), waves_(std::move(waves)), headings_(raos.headings) {
+    : sheave_(tow_point),
+      course0_(initial_course),
+      waves_(std::move(waves)),
+      headings_(raos.headings),
+      id_(++next_id_) {
   mirror_ = raos.headings.back() <= 180;
   const std::size_t nh = raos.headings.size();
   const auto& comps = waves_->components;
@@ -70,6 +79,14 @@ Vessel::Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<con
         lag_[j] = ph * kDeg;
       }
   }
+  // Lag differences to the next heading (the last one's: to the first, a periodic table).
+  dlag_.assign(lag_.size(), 0.0);
+  for (std::size_t i = 0; i < comps.size(); ++i)
+    for (std::size_t h = 0; h < nh; ++h)
+      for (std::size_t d = 0; d < 6; ++d) {
+        const std::size_t j0 = (i * nh + h) * 6 + d, j1 = (i * nh + (h + 1) % nh) * 6 + d;
+        dlag_[j0] = std::remainder(lag_[j1] - lag_[j0], 2 * std::numbers::pi);
+      }
 }
 
 Vessel::Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<const WaveField> waves,
@@ -82,7 +99,24 @@ Vessel::Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<con
   curv_ = natural_spline_curvatures(time_, rec_);
 }
 
-VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
+const Vessel::LagTable& Vessel::lag_table(std::size_t h0, std::size_t h1, double w) const {
+  // One table per thread, for the last vessel and heading weight asked: a
+  // straight course keeps its weight, so the table is computed once.
+  thread_local LagTable table;
+  if (table.id == id_ && table.h0 == h0 && table.h1 == h1 && table.w == w) return table;
+  const std::size_t nh = headings_.size(), nc = amp_.size() / (6 * nh);
+  table.cos.resize(nc * 6), table.sin.resize(nc * 6);
+  for (std::size_t i = 0; i < nc; ++i)
+    for (std::size_t j = 0; j < 6; ++j) {
+      const std::size_t k = (i * nh + h0) * 6 + j;
+      const double lag = lag_[k] + w * (h1 == h0 ? 0.0 : dlag_[k]);
+      table.cos[i * 6 + j] = std::cos(lag), table.sin[i * 6 + j] = std::sin(lag);
+    }
+  table.id = id_, table.h0 = h0, table.h1 = h1, table.w = w;
+  return table;
+}
+
+VesselMotion Vessel::motion(const TowKinematics& origin, double t, bool with_elevation) const {
   VesselMotion m;
   // Course from the horizontal velocity of the RAO origin; its rate (the
   // course's second derivative is not used, see tow_point).
@@ -92,7 +126,7 @@ VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
     m.course = std::atan2(vy, vx);
     m.course_rate = (vx * origin.acc.y() - vy * origin.acc.x()) / vh2;
   }
-  if (waves_) m.elevation = waves_->elevation(origin.pos, t);
+  if (waves_ && with_elevation) m.elevation = waves_->elevation(origin.pos, t);
   if (!time_.empty()) {  // measured record: natural cubic spline, held at the ends
     if (time_.size() == 1 || t <= time_.front()) {
       m.x = rec_.front();
@@ -149,31 +183,79 @@ VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
   };
   const Weights common = weights(d.x(), d.y());  // long-crested: one heading for all components
   const auto& comps = wf.components;
-  for (std::size_t i = 0; i < comps.size(); ++i) {
-    const auto& c = comps[i];
-    // Short-crested: each component at its own direction and relative heading.
-    const Weights q = wf.spread ? weights(c.dx, c.dy) : common;
-    const double cx = wf.spread ? c.dx * origin.pos.x() + c.dy * origin.pos.y() : dx;
-    const double cv = wf.spread ? c.dx * origin.vel.x() + c.dy * origin.vel.y() : dv;
-    const double ca = wf.spread ? c.dx * origin.acc.x() + c.dy * origin.acc.y() : da;
-    const double th = c.omega * t - c.k * cx - c.phase, thd = c.omega - c.k * cv, thdd = -c.k * ca;
-    const double* A0 = &amp_[(i * nh + q.h0) * 6];
-    const double* A1 = &amp_[(i * nh + q.h1) * 6];
-    const double* L0 = &lag_[(i * nh + q.h0) * 6];
-    const double* L1 = &lag_[(i * nh + q.h1) * 6];
-    const double w = q.w, wd = q.wd;
-    for (int j = 0; j < 6; ++j) {
-      // A and the lag are linear in the heading weight w (A'' = lag'' = 0
-      // within a table interval; beta'' = -psi'' is taken as 0, see tow_point).
-      const double A = q.sign[j] * ((1 - w) * A0[j] + w * A1[j]);
-      const double Ad = q.sign[j] * wd * (A1[j] - A0[j]);
-      if (A == 0 && Ad == 0) continue;
-      const double dL = std::remainder(L1[j] - L0[j], 2 * std::numbers::pi);
-      const double lag = L0[j] + w * dL, phd = thd - wd * dL;  // phase th - lag and its rate
-      const double cs = std::cos(th - lag), sn = std::sin(th - lag);
-      m.x[j] += A * cs;
-      m.v[j] += Ad * cs - A * sn * phd;
-      m.a[j] += -2 * Ad * sn * phd - A * (cs * phd * phd + sn * thdd);
+  // Per harmonic and motion: the phase th - lag, its rate and the amplitudes;
+  // the sin and cos of the phases in one vectorised pass per chunk, summed in
+  // the order harmonic, then dof.
+  constexpr std::size_t kChunk = 32, kTerms = kChunk * 6;  // harmonics, terms per pass [-]
+  if (!wf.spread) {
+    // Long-crested: one heading weight for every harmonic, so the lags' cos and
+    // sin come from this thread's table for it; cos(th - lag) and sin(th - lag)
+    // by the angle sums from one sin and cos of th per harmonic.
+    const LagTable& L = lag_table(common.h0, common.h1, common.w);
+    std::array<double, kChunk> th, sth, cth;
+    for (std::size_t b = 0; b < comps.size(); b += kChunk) {
+      const std::size_t nc = std::min(kChunk, comps.size() - b);
+      for (std::size_t l = 0; l < nc; ++l) th[l] = comps[b + l].omega * t - comps[b + l].k * dx - comps[b + l].phase;
+      vecmath::sincos_n(nc, th.data(), sth.data(), cth.data());
+      for (std::size_t l = 0; l < nc; ++l) {
+        const std::size_t i = b + l;
+        const auto& c = comps[i];
+        const double thd = c.omega - c.k * dv, thdd = -c.k * da;
+        const double* A0 = &amp_[(i * nh + common.h0) * 6];
+        const double* A1 = &amp_[(i * nh + common.h1) * 6];
+        const double* D = &dlag_[(i * nh + common.h0) * 6];
+        const double w = common.w, wd = common.wd;
+        for (int j = 0; j < 6; ++j) {
+          const double A = common.sign[j] * ((1 - w) * A0[j] + w * A1[j]);
+          const double Ad = common.sign[j] * wd * (A1[j] - A0[j]);
+          if (A == 0 && Ad == 0) continue;
+          const double dL = common.h1 == common.h0 ? 0.0 : D[j];
+          const double phd = thd - wd * dL;
+          const std::size_t e = i * 6 + static_cast<std::size_t>(j);
+          const double cs = cth[l] * L.cos[e] + sth[l] * L.sin[e], sn = sth[l] * L.cos[e] - cth[l] * L.sin[e];
+          m.x[j] += A * cs;
+          m.v[j] += Ad * cs - A * sn * phd;
+          m.a[j] += -2 * Ad * sn * phd - A * (cs * phd * phd + sn * thdd);
+        }
+      }
+    }
+  }
+
+  std::array<double, kTerms> ph, sn, cs, A, Ad, phd, thdd;
+  std::array<int, kTerms> dof;
+  for (std::size_t b = 0; wf.spread && b < comps.size(); b += kChunk) {
+    const std::size_t nc = std::min(kChunk, comps.size() - b);
+    std::size_t n = 0;  // terms with a motion
+    for (std::size_t i = b; i < b + nc; ++i) {
+      const auto& c = comps[i];
+      // Short-crested: each component at its own direction and relative heading.
+      const Weights q = wf.spread ? weights(c.dx, c.dy) : common;
+      const double cx = wf.spread ? c.dx * origin.pos.x() + c.dy * origin.pos.y() : dx;
+      const double cv = wf.spread ? c.dx * origin.vel.x() + c.dy * origin.vel.y() : dv;
+      const double ca = wf.spread ? c.dx * origin.acc.x() + c.dy * origin.acc.y() : da;
+      const double th = c.omega * t - c.k * cx - c.phase, thd = c.omega - c.k * cv;
+      const double* A0 = &amp_[(i * nh + q.h0) * 6];
+      const double* A1 = &amp_[(i * nh + q.h1) * 6];
+      const double* L0 = &lag_[(i * nh + q.h0) * 6];
+      const double* D = &dlag_[(i * nh + q.h0) * 6];
+      const double w = q.w, wd = q.wd;
+      for (int j = 0; j < 6; ++j) {
+        // A and the lag are linear in the heading weight w (A'' = lag'' = 0
+        // within a table interval; beta'' = -psi'' is taken as 0, see tow_point).
+        const double Aj = q.sign[j] * ((1 - w) * A0[j] + w * A1[j]);
+        const double Adj = q.sign[j] * wd * (A1[j] - A0[j]);
+        if (Aj == 0 && Adj == 0) continue;
+        const double dL = q.h1 == q.h0 ? 0.0 : D[j];  // lag difference to the next heading, shorter arc
+        ph[n] = th - (L0[j] + w * dL), phd[n] = thd - wd * dL, A[n] = Aj, Ad[n] = Adj, thdd[n] = -c.k * ca;
+        dof[n++] = j;
+      }
+    }
+    vecmath::sincos_n(n, ph.data(), sn.data(), cs.data());
+    for (std::size_t e = 0; e < n; ++e) {
+      const auto j = static_cast<Eigen::Index>(dof[e]);
+      m.x[j] += A[e] * cs[e];
+      m.v[j] += Ad[e] * cs[e] - A[e] * sn[e] * phd[e];
+      m.a[j] += -2 * Ad[e] * sn[e] * phd[e] - A[e] * (cs[e] * phd[e] * phd[e] + sn[e] * thdd[e]);
     }
   }
   // Build-up: r xi, (r xi)' and (r xi)''.
@@ -188,7 +270,7 @@ VesselMotion Vessel::motion(const TowKinematics& origin, double t) const {
 }
 
 TowKinematics Vessel::tow_point(const TowKinematics& origin, double t) const {
-  const VesselMotion m = motion(origin, t);
+  const VesselMotion m = motion(origin, t, false);
   // Sheave in vessel axes: s = r_s + xi + theta x r_s (small angles, linear in
   // the motions), theta = (roll, -pitch, yaw) about (x, y, z): pitch + = bow up.
   const auto theta = [](const Vec6& x) { return Vec3(x[3], -x[4], x[5]); };
@@ -240,8 +322,18 @@ TowKinematics tow_kinematics(const Tow& tow, double t) {
 }
 
 TowKinematics tow_kinematics(const Tow& tow, double t, CourseCursor& cursor) {
-  const TowKinematics k = tow_law_kinematics(tow, t, cursor);
-  return tow.vessel ? tow.vessel->tow_point(k, t) : k;
+  TowKinematics k = tow_law_kinematics(tow, t, cursor);  // not const: returned as is without a vessel
+  if (!tow.vessel) return k;
+  // The same vessel, time and law as the last call: the same tow point.
+  const auto same = [](const TowKinematics& a, const TowKinematics& b) {
+    return a.pos == b.pos && a.vel == b.vel && a.acc == b.acc;
+  };
+  if (cursor.vessel.get() == tow.vessel.get() && cursor.vessel_t == t && same(cursor.vessel_law, k))
+    return cursor.vessel_point;
+  cursor.vessel_point = tow.vessel->tow_point(k, t);
+  if (cursor.vessel.get() != tow.vessel.get()) cursor.vessel = tow.vessel;
+  cursor.vessel_t = t, cursor.vessel_law = k;
+  return cursor.vessel_point;
 }
 
 }  // namespace towsim

@@ -3,9 +3,12 @@
 #include "towsim/waves/waves.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
+
+#include "towsim/waves/vector_math.hpp"
 
 namespace towsim {
 
@@ -51,30 +54,24 @@ double cut_height(double k, double depth) {
   return std::acosh(c) / k - depth;
 }
 
-/// Depth factors of the horizontal (C) and vertical (S) kinematics:
-/// cosh(k(z+h))/sinh(kh) and sinh(k(z+h))/sinh(kh); e^{kz} for deep water.
-void depth_factors(double k, double z, double depth, double& C, double& S) {
-  const double ekz = std::exp(k * z);
-  if (!std::isfinite(depth)) {
-    C = S = ekz;
-    return;
-  }
-  const double zc = std::max(z, -depth);  // at or above the seabed
-  const double a = std::exp(k * zc), b = std::exp(-k * (zc + 2 * depth)), den = 1 - std::exp(-2 * k * depth);
-  C = (a + b) / den;
-  S = (a - b) / den;
-}
-
 /// Sort components deepest cut first and fill their wavenumbers and cuts.
 void finish(WaveField& w) {
   for (auto& c : w.components) {
     c.k = wave_number(c.omega, w.depth, w.g);
     c.z_cut = cut_height(c.k, w.depth);
+    c.e2kh = std::isfinite(w.depth) ? std::exp(-2 * c.k * w.depth) : 0.0;
   }
   for (auto& c : w.components) c.dx = w.direction.x(), c.dy = w.direction.y();
   std::stable_sort(w.components.begin(), w.components.end(),
                    [](const WaveComponent& a, const WaveComponent& b) { return a.z_cut < b.z_cut; });
 }
+
+/// Work arrays of one vectorised pass over up to kChunk harmonics.
+constexpr std::size_t kChunk = 64;  // [-]: 9 arrays of 512 bytes on the stack
+struct Chunk {
+  std::array<double, kChunk> th, sn, cs, kz, ez;  // phase [rad], its sin and cos, k z and e^{kz} [-]
+  std::array<double, kChunk> uc, as, ws, ac;      // the terms a w C cos, a w^2 C sin, a w S sin, a w^2 S cos
+};
 
 }  // namespace
 
@@ -160,9 +157,16 @@ void WaveField::ramp(double t, double& r, double& rd, double& rdd) const {
 double WaveField::elevation(const Vec3& x, double t) const {
   const double s = direction.x() * x.x() + direction.y() * x.y();
   double eta = 0;
-  for (const auto& c : components) {
-    const double si = spread ? c.dx * x.x() + c.dy * x.y() : s;  // distance along its direction
-    eta += c.amplitude * std::cos(c.omega * t - c.k * si - c.phase);
+  Chunk ch;
+  for (std::size_t b = 0; b < components.size(); b += kChunk) {
+    const std::size_t m = std::min(kChunk, components.size() - b);
+    const WaveComponent* c = &components[b];
+    for (std::size_t j = 0; j < m; ++j) {
+      const double si = spread ? c[j].dx * x.x() + c[j].dy * x.y() : s;  // distance along its direction
+      ch.th[j] = c[j].omega * t - c[j].k * si - c[j].phase;
+    }
+    vecmath::sincos_n(m, ch.th.data(), ch.sn.data(), ch.cs.data());
+    for (std::size_t j = 0; j < m; ++j) eta += c[j].amplitude * ch.cs[j];
   }
   double r, rd, rdd;
   ramp(t, r, rd, rdd);
@@ -174,62 +178,82 @@ double WaveField::stretched(double z, double eta) const {
   return std::isfinite(depth) ? (z - eta) * depth / (depth + eta) : z - eta;
 }
 
-Vec3 WaveField::velocity(const Vec3& x, double t) const {
+void WaveField::kinematics(const Vec3& x, double t, Vec3* u, Vec3* a) const {
+  if (u) u->setZero();
+  if (a) a->setZero();
   const double eta = wheeler ? elevation(x, t) : 0.0;  // kinematics up to eta (Wheeler) or z = 0
-  if (x.z() > eta) return Vec3::Zero();
+  if (x.z() > eta) return;
   const double z = stretched(x.z(), eta);
   const double s = direction.x() * x.x() + direction.y() * x.y();
-  double uh = 0, w = 0, ux = 0, uy = 0;
-  for (const auto& c : components) {
-    if (c.z_cut > z) break;  // this one and all later ones are negligible here
-    double C, S;
-    depth_factors(c.k, z, depth, C, S);
-    const double si = spread ? c.dx * x.x() + c.dy * x.y() : s;
-    const double th = c.omega * t - c.k * si - c.phase, aw = c.amplitude * c.omega;
-    const double u = aw * C * std::cos(th);
-    if (spread)
-      ux += u * c.dx, uy += u * c.dy;
+  const bool deep = !std::isfinite(depth);
+  const double zc = deep ? z : std::max(z, -depth);  // at or above the seabed
+  // The harmonics not cut off at z: a prefix (sorted by z_cut; a NaN z keeps them all).
+  const auto n = static_cast<std::size_t>(std::partition_point(components.begin(), components.end(),
+                                                               [z](const WaveComponent& c) { return !(c.z_cut > z); }) -
+                                          components.begin());
+  // Sums over the harmonics: U = sum a w C cos, W = sum a w S sin, AH = sum a w^2 C sin,
+  // AZ = sum a w^2 S cos (short-crested: U and AH as vectors along each d_i).
+  double U = 0, W = 0, AH = 0, AZ = 0;
+  Eigen::Vector2d Uv = Eigen::Vector2d::Zero(), Av = Eigen::Vector2d::Zero();
+  Chunk ch;
+  for (std::size_t b = 0; b < n; b += kChunk) {
+    const std::size_t m = std::min(kChunk, n - b);
+    const WaveComponent* c = &components[b];
+    // Phases and depth exponents, then their sin, cos and exp in vectorised passes.
+    for (std::size_t j = 0; j < m; ++j) {
+      const double si = spread ? c[j].dx * x.x() + c[j].dy * x.y() : s;
+      ch.th[j] = c[j].omega * t - c[j].k * si - c[j].phase;
+      ch.kz[j] = c[j].k * zc;
+    }
+    vecmath::sincos_n(m, ch.th.data(), ch.sn.data(), ch.cs.data());
+    vecmath::exp_n(m, ch.kz.data(), ch.ez.data());
+    // Depth factors C = cosh k(z+h) / sinh kh, S = sinh k(z+h) / sinh kh (deep: e^{kz}),
+    // as exponentials: (e^{kz} +- e^{-2kh} / e^{kz}) / (1 - e^{-2kh}); here kz <- C, ez <- S.
+    if (!deep)
+      for (std::size_t j = 0; j < m; ++j) {
+        const double e = c[j].e2kh / ch.ez[j], den = 1 - c[j].e2kh;
+        ch.kz[j] = (ch.ez[j] + e) / den;
+        ch.ez[j] = (ch.ez[j] - e) / den;
+      }
     else
-      uh += u;
-    w -= aw * S * std::sin(th);
+      for (std::size_t j = 0; j < m; ++j) ch.kz[j] = ch.ez[j];
+    // The terms, then their sums in the harmonics' order.
+    for (std::size_t j = 0; j < m; ++j) {
+      const double aw = c[j].amplitude * c[j].omega, aw2 = aw * c[j].omega;
+      ch.uc[j] = aw * ch.kz[j] * ch.cs[j], ch.as[j] = aw2 * ch.kz[j] * ch.sn[j];
+      ch.ws[j] = aw * ch.ez[j] * ch.sn[j], ch.ac[j] = aw2 * ch.ez[j] * ch.cs[j];
+    }
+    if (spread)
+      for (std::size_t j = 0; j < m; ++j) {
+        Uv += ch.uc[j] * Eigen::Vector2d(c[j].dx, c[j].dy);
+        Av += ch.as[j] * Eigen::Vector2d(c[j].dx, c[j].dy);
+      }
+    else
+      for (std::size_t j = 0; j < m; ++j) U += ch.uc[j], AH += ch.as[j];
+    for (std::size_t j = 0; j < m; ++j) W += ch.ws[j], AZ += ch.ac[j];
   }
-  if (!spread) ux = uh * direction.x(), uy = uh * direction.y();
   double r, rd, rdd;
   ramp(t, r, rd, rdd);
-  return r * Vec3(ux, uy, w);
+  if (!spread)
+    Uv = U * Eigen::Vector2d(direction.x(), direction.y()), Av = AH * Eigen::Vector2d(direction.x(), direction.y());
+  // u = r (U d, -W); du/dt with the build-up's rate: d(r u)/dt = r' u + r du/dt.
+  if (u) *u = r * Vec3(Uv.x(), Uv.y(), -W);
+  if (a) {
+    const Eigen::Vector2d h = -r * Av + rd * Uv;
+    *a = Vec3(h.x(), h.y(), -r * AZ - rd * W);
+  }
+}
+
+Vec3 WaveField::velocity(const Vec3& x, double t) const {
+  Vec3 u;
+  kinematics(x, t, &u, nullptr);
+  return u;
 }
 
 Vec3 WaveField::acceleration(const Vec3& x, double t) const {
-  const double eta = wheeler ? elevation(x, t) : 0.0;
-  if (x.z() > eta) return Vec3::Zero();
-  const double z = stretched(x.z(), eta);
-  const double s = direction.x() * x.x() + direction.y() * x.y();
-  double r, rd, rdd;
-  ramp(t, r, rd, rdd);
-  double ah = 0, az = 0, uh = 0, w = 0;
-  Eigen::Vector2d ahv = Eigen::Vector2d::Zero(), uhv = Eigen::Vector2d::Zero();  // short-crested: horizontal vectors
-  for (const auto& c : components) {
-    if (c.z_cut > z) break;
-    double C, S;
-    depth_factors(c.k, z, depth, C, S);
-    const double si = spread ? c.dx * x.x() + c.dy * x.y() : s;
-    const double th = c.omega * t - c.k * si - c.phase, aw = c.amplitude * c.omega, aw2 = aw * c.omega;
-    const double cs = std::cos(th), sn = std::sin(th);
-    if (spread) {
-      ahv -= aw2 * C * sn * Eigen::Vector2d(c.dx, c.dy);
-      if (rd != 0) uhv += aw * C * cs * Eigen::Vector2d(c.dx, c.dy);
-    } else {
-      ah -= aw2 * C * sn;
-      if (rd != 0) uh += aw * C * cs;
-    }
-    az -= aw2 * S * cs;
-    if (rd != 0) w -= aw * S * sn;  // d(r u)/dt = r' u + r du/dt during the build-up
-  }
-  if (spread) {
-    const Eigen::Vector2d h = r * ahv + rd * uhv;
-    return Vec3(h.x(), h.y(), r * az + rd * w);
-  }
-  return Vec3((r * ah + rd * uh) * direction.x(), (r * ah + rd * uh) * direction.y(), r * az + rd * w);
+  Vec3 a;
+  kinematics(x, t, nullptr, &a);
+  return a;
 }
 
 void spread_directions(WaveField& w, double s, std::uint64_t seed) {

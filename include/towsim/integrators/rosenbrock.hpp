@@ -27,6 +27,13 @@ class RosenbrockW {
   /// column keeps the order (it is part of W). docs/theory.md §6.3.
   enum class TimeDerivative { FiniteDifference, Extrapolated, None };
 
+  /// The step size controller: plain, h <- h 0.95 err^(-1/3); or PI
+  /// (Gustafsson, Soderlind), after an accepted step h <- h 0.95
+  /// err_n^(-0.7/3) err_(n-1)^(0.4/3), which follows an error that varies from
+  /// step to step (a sea state) without rejecting a quarter of the steps
+  /// (docs/theory.md §6.3 "The controller").
+  enum class StepControl { Plain, PI };
+
   /// tol: relative and absolute tolerance [-]; force_scale: absolute force
   /// floor of the force error norm [N] (the system's apparent weight).
   RosenbrockW(System& sys, double tol, double force_scale, ForceEstimate force_estimate = ForceEstimate::Embedded,
@@ -38,7 +45,10 @@ class RosenbrockW {
 
   /// The state was changed from outside (a tow velocity jump, a breakpoint):
   /// the cached derivative at the step's start is stale.
-  void invalidate() { have_f0_ = false, have_ft_ = false, ft_zero_ = false, ft_held_ = 0; }
+  void invalidate() { have_f0_ = false, have_ft_ = false, ft_zero_ = false, ft_held_ = 0, prev_err_ = 0; }
+
+  /// The step size controller (Plain unless set).
+  void set_step_control(StepControl control) { control_ = control; }
 
   /// Dense output: the state at t inside the last accepted step [t0, t1]
   /// (the method's continuous extension, docs/theory.md §6.3), projected.
@@ -69,8 +79,8 @@ class RosenbrockW {
   /// max over tow and link forces of |F(y1) - F_hat| / (force_scale + |F(y1)|) [-]
   /// (acc: y1's accelerations, or none: 0); inf if not finite.
   double force_error(const Accelerations* acc) const;
-  /// The step size factor for the error err [-]: 0.95 err^(-1/3) in [0.2, 5].
-  static double step_factor(double err);
+  /// The step size factor for the error err [-] (StepControl), in [0.2, 5].
+  double step_factor(double err) const;
   /// Rejected: h [s] shrunk by fac (at most 0.9), an extrapolated column dropped.
   void reject(double& h, double fac);
   /// Accepted: y, t advanced to y1_, t1, f(y1) the next start, dense output
@@ -88,6 +98,8 @@ class RosenbrockW {
   double gamma_ = 0;
   bool have_f0_ = false;
   bool last_rejected_ = false;
+  StepControl control_ = StepControl::Plain;
+  double prev_err_ = 0;   // the last accepted step's error (floored at 1e-4), 0: none since invalidate() [-]
   bool have_ft_ = false;  // ft_ holds f_t at the step's start (kept over rejections)
   bool use_ft_ = false;   // ... and it is nonzero (a difference was taken)
   bool ft_zero_ = false;  // f_t was exactly zero since the last invalidate(): not evaluated

@@ -34,6 +34,10 @@ struct Fluid {
   /// Material acceleration of the water Du/Dt = du/dt + (u . grad) u at x
   /// [m/s^2, R_g] (Froude-Krylov and added-mass inertia forces).
   Vec3 acceleration(const Vec3& x, double t) const;
+  /// velocity(), rate_seen() and acceleration() at one point with waves, the
+  /// harmonics summed once: what an element's loads ask for (all three from
+  /// the same sums, so equal to the separate calls to round-off).
+  void flow(const Vec3& x, const Vec3& v, double t, Vec3& velocity, Vec3& rate_seen, Vec3& acceleration) const;
   /// True when the water velocity is the same at every point and time, so
   /// that rate_seen() and acceleration() are zero.
   bool uniform() const { return current_velocity.size() < 2 && !waves; }

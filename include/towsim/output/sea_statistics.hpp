@@ -21,8 +21,25 @@ struct SignalStats {
   long samples = 0;
   double mean = 0, std = 0, min = 0, max = 0;  // [unit of x]
   double zero_crossing_period = 0;             // record length / up-crossings of the mean [s]; 0 = none
-  double mpm = 0;  // mean + std sqrt(2 ln(kMpmDuration / Tz)) (Rayleigh maxima); NaN without crossings
+  double mpm = 0;              // mean + std sqrt(2 ln(kMpmDuration / Tz)) (Rayleigh maxima); NaN without crossings
+  double skewness = 0;         // m3 / std^3 (0 for a Gaussian process) [-]; NaN when std = 0
+  double kurtosis = 0;         // m4 / std^4 (3 for a Gaussian process) [-]; NaN when std = 0
+  bool max_above_mpm = false;  // the record's max exceeds its Rayleigh 3-hour mpm: the Gaussian model fails
+  long peaks = 0;              // cycle maxima: the largest sample between consecutive mean up-crossings
+  double weibull_shape = 0;    // beta of the Weibull law fitted to the peaks above the mean (Rayleigh: 2) [-]
+  double weibull_scale = 0;    // its scale [unit of x]
+  double weibull_mpm = 0;      // mean + scale (ln(kMpmDuration / Tz))^(1 / beta); NaN below kMinPeaks peaks
 };
+
+/// Fewest cycle maxima for the Weibull fit (its shape's standard error,
+/// ~0.78 beta / sqrt(n), is then below 0.2 for beta = 2).
+inline constexpr long kMinPeaks = 50;
+
+/// Maximum-likelihood Weibull law F(y) = 1 - exp(-(y / scale)^shape) of the
+/// positive values y: the shape solves sum y^b ln y / sum y^b - 1/b = mean ln y
+/// (bisection on [0.05, 50] to 1e-12), scale = (mean y^shape)^(1/shape).
+/// Returns {shape, scale}; {NaN, NaN} for fewer than 2 values or equal ones.
+std::pair<double, double> weibull_fit(const std::vector<double>& y);
 
 /// Statistics of samples x at times t (equal length, increasing times).
 SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>& x);
@@ -35,6 +52,12 @@ SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>
 /// divides N/2 (Parseval). Returns (omega_j, S_j) at the band centres.
 std::vector<std::pair<double, double>> spectral_density_estimate(const std::vector<double>& x, double dt, int band);
 
+/// Share of its peak below which an input spectrum is taken as negligible
+/// and spectra.csv leaves the transfer function blank: a 300 s record without
+/// a window leaks ~2e-3 of the peak into bands with no wave energy, where a
+/// slow drift of the output then read as gains of 3-7 [-].
+inline constexpr double kTransferMask = 1e-2;
+
 /// Collects tow tension, link force and body depth from `start` on.
 class SeaStatistics {
  public:
@@ -43,11 +66,13 @@ class SeaStatistics {
   void add(const Model& model, const Sample& s);
   /// {"from_time", "duration", "mpm_duration", "tow_tension": {...}, ...}.
   nlohmann::ordered_json json() const;
+  /// One warning per signal whose maximum exceeds its Rayleigh mpm.
+  std::vector<std::string> warnings() const;
   /// spectra.csv: omega, spectral densities of wave elevation, tow tension,
   /// link force and body depth, and sqrt(S_depth / S_eta) (the body heave per
-  /// metre of wave, blank where S_eta < 1e-3 of its peak), then the tow
+  /// metre of wave, blank where S_eta < kTransferMask of its peak), then the tow
   /// point's wave heave and sqrt(S_depth / S_tow_heave) (the ship -> fish
-  /// heave transfer function, blank where S_tow_heave < 1e-3 of its peak).
+  /// heave transfer function, blank where S_tow_heave < kTransferMask of its peak).
   /// False on I/O error.
   bool write_spectra(const std::string& path) const;
 

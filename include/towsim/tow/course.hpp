@@ -54,6 +54,12 @@ struct CourseCursor {
   std::shared_ptr<const CoursePlan> plan;  // the plan `last` was computed with (none: no last result)
   double last_t = 0;                       // [s]
   TowKinematics last{};                    // tow_law_kinematics at last_t
+  // The vessel's last tow point (an evaluation asks for it more than once):
+  // for this vessel (held, so that its address is not reused), time and law.
+  std::shared_ptr<const void> vessel;
+  double vessel_t = 0;           // [s]
+  TowKinematics vessel_law{};    // the tow law's kinematics it was computed for
+  TowKinematics vessel_point{};  // the tow point then
 };
 
 /// Horizontal position, velocity and acceleration at t >= c.t0 in c's segment.

@@ -8,6 +8,8 @@
 // moves the RAO origin; the course is the direction of its horizontal velocity.
 #pragma once
 
+#include <atomic>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -50,8 +52,9 @@ class Vessel {
   Vessel(const Vec3& tow_point, double initial_course, std::shared_ptr<const WaveField> waves, std::vector<double> time,
          std::vector<Vec6> motions);
 
-  /// The motions at t for the RAO origin moving as `origin` (the tow law).
-  VesselMotion motion(const TowKinematics& origin, double t) const;
+  /// The motions at t for the RAO origin moving as `origin` (the tow law);
+  /// the wave elevation there only `with_elevation` (else 0: one sum less).
+  VesselMotion motion(const TowKinematics& origin, double t, bool with_elevation = true) const;
   /// The tow point: sheave offset r_s moved by the motions (small angles:
   /// r_s + translation + theta x r_s, theta = (roll, -pitch, yaw)), turned to
   /// the course, on the origin.
@@ -72,8 +75,20 @@ class Vessel {
   // table heading: index (component * headings + heading) * 6 + dof.
   std::vector<double> headings_;   // [deg]
   std::vector<double> amp_, lag_;  // [m/m or rad/m], [rad]
+  std::vector<double> dlag_;       // lag at the next heading (periodic) minus this one's, in (-pi, pi] [rad]
   bool mirror_ = false;            // headings only in [0, 180]: port-starboard symmetry
   bool exact_ = false;             // exact rotation of the sheave offset
+  // cos and sin of every lag at one heading weight (long-crested seas):
+  // index component * 6 + dof, for this vessel (id) and heading interval h0-h1 at weight w.
+  struct LagTable {
+    std::uint64_t id = 0;
+    std::size_t h0 = 0, h1 = 0;
+    double w = 0;
+    std::vector<double> cos, sin;  // [-]
+  };
+  const LagTable& lag_table(std::size_t h0, std::size_t h1, double w) const;
+  std::uint64_t id_ = 0;  // this RAO vessel's number (0: a measured record), keys the lag tables
+  static std::atomic<std::uint64_t> next_id_;
   // Measured record.
   std::vector<double> time_;
   std::vector<Vec6> rec_, curv_;  // values and spline second derivatives

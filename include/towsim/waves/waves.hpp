@@ -23,6 +23,7 @@ struct WaveComponent {
   double phase;           // eps_i [rad]
   double z_cut;           // below this height its kinematics are skipped (kWaveCutoff) [m, R_g]
   double dx = 0, dy = 0;  // its unit horizontal travel direction (short-crested seas) [-, R_g]
+  double e2kh = 0;        // exp(-2 k h) in finite depth h, 0 in deep water [-]
 };
 
 /// Relative size of a component's kinematics (to their value at z = 0) below
@@ -57,6 +58,10 @@ struct WaveField {
   /// build-up's rate: d(r u)/dt); zero for z > 0 (`wheeler`: z > eta, and
   /// evaluated at z' like the velocity, without the rate of z' itself).
   Eigen::Vector3d acceleration(const Eigen::Vector3d& x, double t) const;
+  /// velocity() into *u and acceleration() into *a (either may be null) in
+  /// one pass over the harmonics: what a load at a point needs, at the cost
+  /// of one sum.
+  void kinematics(const Eigen::Vector3d& x, double t, Eigen::Vector3d* u, Eigen::Vector3d* a) const;
   /// The height at which the linear kinematics are evaluated for a point at
   /// height z under the surface eta: z itself, or Wheeler's stretched z' [m].
   double stretched(double z, double eta) const;
