@@ -70,7 +70,7 @@ def value(rng, depth=0):
     if r < 0.65:
         return np.array([number(rng) for _ in range(rng.randrange(4))], dtype=float)
     if r < 0.75 or depth >= 2:
-        return rng.choice(list(BASE["tow"]["motion"][0].values()) + [[0, 0, 1], 2.0, "port", "rk4", "steady"])
+        return copy.deepcopy(rng.choice(list(BASE["tow"]["motion"][0].values()) + [[0, 0, 1], 2.0, "port", "rk4", "steady"]))
     if r < 0.90:
         return [value(rng, depth + 1) for _ in range(rng.randrange(4))]
     return {rng.choice(KEYS + ["type", "radius", 7, None]): value(rng, depth + 1) for _ in range(rng.randrange(3))}
@@ -111,6 +111,8 @@ def scenario(rng, tmp):
     for _ in range(rng.randrange(1, 4)):
         mutate(rng, tree)
     if kind < 6:
+        if rng.random() < 0.02:  # a dict that contains itself
+            tree["self"] = tree
         return tree
     if kind < 8:
         return rng.choice(TEXTS) + rng.choice(["", "\n", "\nsimulation: {duration: 0.1}\n"])

@@ -36,9 +36,10 @@ constexpr std::size_t kMaxCheckedCases = 16;
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   g_dir = (std::filesystem::temp_directory_path() / ("towsim_fuzz_sweep_" + std::to_string(::getpid()))).string();
   std::filesystem::create_directories(g_dir);
-  std::ofstream(g_dir + "/base.yaml") << "cable: {length: 10, elements: 2, mass_per_length: 1, diameter: 0.01}\n"
-                                         "tow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: 1, ramp_time: 5}\n"
-                                         "simulation: {duration: 1}\n";
+  std::ofstream(g_dir + "/base.yaml")
+      << "cable: {length: 10, elements: 2, mass_per_length: 1, diameter: 0.01}\n"
+         "tow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: 1, ramp_time: 5}\n"
+         "simulation: {duration: 1}\n";
   std::atexit(remove_dir);
   return 0;
 }

@@ -150,12 +150,17 @@ def _source(scenario):
     raise TypeError(f"scenario: expected a path, a YAML string or a dict (got {type(scenario).__name__})")
 
 
-def _plain(value):
-    """NumPy scalars and arrays as plain Python values (for JSON)."""
+def _plain(value, _open=()):
+    """NumPy scalars and arrays as plain Python values (for JSON). A dict or
+    list that contains itself is a ValueError (it has no YAML form)."""
+    if isinstance(value, (Mapping, list, tuple)):
+        if id(value) in _open:
+            raise ValueError("scenario: a dict or list contains itself (a circular reference)")
+        _open = _open + (id(value),)
     if isinstance(value, Mapping):
-        return {str(k): _plain(v) for k, v in value.items()}
+        return {str(k): _plain(v, _open) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
+        return [_plain(v, _open) for v in value]
     if isinstance(value, np.ndarray):
         return _plain(value.tolist())
     if isinstance(value, np.generic):

@@ -119,6 +119,15 @@ def test_scenario_errors_carry_the_cli_messages(tmp_path):
         towsim.run(42)
 
 
+def test_a_scenario_that_contains_itself_is_a_value_error():
+    # fuzz/fuzz_python.py found a RecursionError here (the dict was walked for ever).
+    sc = {"cable": {"length": 20, "elements": 4, "mass_per_length": 1.5, "diameter": 0.02},
+          "simulation": {"duration": 0.2}}
+    sc["cable"]["sections"] = [sc["cable"]]
+    with pytest.raises(ValueError, match=r"^scenario: a dict or list contains itself \(a circular reference\)$"):
+        towsim.run(sc)
+
+
 def test_scenario_errors_quoting_other_encodings_and_empty_sections(tmp_path):
     # A message quoting a byte that is not UTF-8 (once UnicodeDecodeError): U+FFFD in its place.
     bad = tmp_path / "b.yaml"
