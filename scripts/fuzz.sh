@@ -70,7 +70,7 @@ done
 # scripts/test.sh built (build/python; PYTHON_BUILD to change it).
 pybuild="${PYTHON_BUILD:-build/python}"
 if [[ -d "$pybuild/towsim" ]]; then
-  # A fixed count (FUZZ_PY_RUNS, default 10000: about 2 min) rather than a
+  # A fixed count (FUZZ_PY_RUNS, default 10000: 6 s here) rather than a
   # time, so that a run from one seed is the same inputs on every machine.
   if [[ "$SECONDS_EACH" == 0 ]]; then pyruns=200; else pyruns="${FUZZ_PY_RUNS:-10000}"; fi
   echo "== fuzz_python: $pyruns inputs, seed ${FUZZ_SEED:-1}"
