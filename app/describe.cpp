@@ -56,6 +56,8 @@ void describe_seabed(const Model& m, std::ostream& out) {
   line(out, "stiffness", fmt_num(sb.stiffness) + " N/m per m in contact");
   line(out, "damping", fmt_num(sb.damping) + " N s/m per m in contact");
   line(out, "friction", fmt_num(sb.friction) + " (smoothed below " + fmt_num(sb.slip_speed) + " m/s)");
+  line(out, "cable contact",
+       sb.along_elements ? "along each element (contact: elements)" : "at the joints (contact: joints)");
 }
 
 /// The properties of one run of equal elements (e: its first element).

@@ -50,6 +50,7 @@ void build_seabed(const SeabedSpec& spec, Model& m) {
   sb.stiffness = spec.stiffness.value;
   sb.damping = spec.damping.value;
   sb.friction = spec.friction.value;
+  sb.along_elements = spec.contact.value == "elements";
   m.seabed = sb;
 }
 

@@ -37,12 +37,13 @@ void parse_initial(const YNode* n, InitialSpec& init, Diagnostics& d) {
 
 namespace {
 
-/// environment.seabed: {depth: D | [[x, D], ...], stiffness, damping, friction}.
+/// environment.seabed: {depth: D | [[x, D], ...], stiffness, damping, friction, contact}.
 void parse_seabed(MapReader& r, SeabedSpec& sb, Diagnostics& d) {
   sb.where = r.where();
   r.read("stiffness", sb.stiffness);
   r.read("damping", sb.damping);
   r.read("friction", sb.friction);
+  r.choice("contact", sb.contact, {"joints", "elements"});
   const YNode* n = r.get("depth", true);
   if (n == nullptr) return;
   sb.depth_where = r.where(*n, "depth");

@@ -52,9 +52,25 @@ TEST_F(SeabedIo, FlatAndTableRead) {
   EXPECT_EQ(t.stiffness, 1e5);
   EXPECT_EQ(t.damping, 1e3);
   EXPECT_EQ(t.friction, 0.5);
+  EXPECT_FALSE(t.along_elements);  // contact: joints, the default
   const auto none = load(kCable + kSim);
   ASSERT_TRUE(none.ok());
   EXPECT_FALSE(none.model->seabed.has_value());
+}
+
+// environment.seabed.contact chooses where the cable feels the law: at its
+// joints (the default) or along each element (docs/theory.md §3.2); a value
+// that is neither is refused with the choices.
+TEST_F(SeabedIo, ContactAtJointsOrAlongElements) {
+  const auto along = load("environment:\n  seabed: {depth: 500, contact: elements}\n" + kCable + kSim);
+  ASSERT_TRUE(along.ok()) << along.diags.str();
+  EXPECT_TRUE(along.model->seabed->along_elements);
+  const auto joints = load("environment:\n  seabed: {depth: 500, contact: joints}\n" + kCable + kSim);
+  ASSERT_TRUE(joints.ok()) << joints.diags.str();
+  EXPECT_FALSE(joints.model->seabed->along_elements);
+  const auto bad = load("environment:\n  seabed: {depth: 500, contact: element}\n" + kCable + kSim);
+  EXPECT_EQ(bad.diags.str(), at("2:37: environment.seabed.contact: expected one of joints, elements (got "
+                                "'element'; did you mean 'elements'?)"));
 }
 
 TEST_F(SeabedIo, TowPointBelowTheSeabedIsRefused) {

@@ -41,8 +41,8 @@ struct Seabed {
   double slip_speed = kSeabedSlipSpeed;  // v_s of the smoothed friction [m/s]
   // Where the cable feels the law: false, at its joints (each standing for
   // half of each adjacent element); true, along each element's straight
-  // segment (segment_contact, MODEL.md 10) [-]. No scenario key: models
-  // built in code choose it.
+  // segment (segment_contact, MODEL.md 10) [-]. Scenario key
+  // environment.seabed.contact: joints | elements.
   bool along_elements = false;
 
   /// A flat bottom at depth d [m].

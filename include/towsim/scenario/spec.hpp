@@ -44,6 +44,7 @@ struct SeabedSpec {
   Field<double> stiffness{1e5};  // [N/m per m of cable in contact]
   Field<double> damping{1e3};    // [N s/m per m]
   Field<double> friction{0.5};   // Coulomb coefficient [-]
+  Field<std::string> contact{"joints"};  // where the cable's contact acts: joints | elements
 };
 
 /// environment: water, gravity, current, seabed.
