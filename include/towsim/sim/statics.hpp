@@ -3,11 +3,47 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "towsim/dynamics/state.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim {
+
+/// Angle beyond which two balances of a body count as distinct [rad]: 0.1 deg
+/// (Newton leaves the same balance reached from two starts within ~1e-9 rad).
+inline constexpr double kDistinctBalance = 0.1 * 3.14159265358979323846 / 180;
+
+/// The starts of BodyEquilibria's search: the attitude solved and 11 trims.
+inline constexpr int kBodyStarts = 12;
+
+/// One balance of a body's moments about its link Q, the flow there and the
+/// force of the cable below held as in the equilibrium solved (docs/theory.md
+/// §7 "Equilibria of a body").
+struct BodyEquilibrium {
+  Quat q = Quat::Identity();      // attitude [-, body to R_g]
+  Vec3 rpy_deg = Vec3::Zero();    // roll, pitch, yaw as the outputs give them [deg]
+  Vec3 stiffness = Vec3::Zero();  // restoring stiffness about the body's x, y, z axes (roll, pitch,
+                                  // yaw): -dM/dtheta, the diagonal of K in body axes [N m/rad]
+  double min_stiffness = 0;       // smallest eigenvalue of K's symmetric part [N m/rad]
+  bool stable = false;            // see BodyEquilibria
+};
+
+/// The balances of one body at a converged equilibrium: Newton on its
+/// attitude from the attitude solved and from trims pitched -75..75 deg in
+/// 15 deg steps (level in the tow's heading); balances farther apart than
+/// kDistinctBalance (a rotation about a neutral axis, e.g. a sphere's about
+/// its link line, left out) are distinct. Each is classified from its
+/// restoring stiffness K = -dM/dtheta (central differences of the moment
+/// about Q, 1e-5 rad): stable when K's symmetric part has no eigenvalue below
+/// -1e-6 of the body's moment scale per radian (a zero one, a neutral
+/// rotation, is not unstable). A body whose lowest point reaches the seabed
+/// is not analysed (the contact is not part of its own balance).
+struct BodyEquilibria {
+  bool analysed = false;
+  std::vector<BodyEquilibrium> balances;  // distinct balances, highest pitch first
+  int chosen = -1;                        // index of the one in the equilibrium solved
+};
 
 /// Result of a statics solve.
 struct StaticsResult {
@@ -23,6 +59,7 @@ struct StaticsResult {
   bool converged = false;
   bool interrupted = false;  // the stop flag was set: the state is the last iterate
   std::string message;       // why it did not converge
+  std::vector<BodyEquilibria> equilibria;  // per body, when converged
 };
 
 /// The tow velocity a steady tow settles to: the sum of the ramps' final
