@@ -46,6 +46,8 @@ struct StaticsOptions {
   InputOptions input;
   std::string out_dir;                 // where to write timeseries.csv and nodes.csv of the configuration ("" = none)
   std::optional<double> target_depth;  // --target-depth D: find the deployed length for this depth [m]
+  std::string trim_body;               // --trim NAME: find the link point x for the body's pitch ("" = none)
+  double trim_pitch = 0;               // --trim-pitch DEG: the pitch --trim looks for [deg]
 };
 
 /// Load, override, check and compile the scenario named by `in` (exactly one

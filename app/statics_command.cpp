@@ -194,8 +194,46 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
     out << std::setprecision(7) << "deployed length for a depth of " << fmt_num(D) << " m: " << target->length << " m ("
         << (end_body(model) != nullptr ? "body" : "cable end") << " at " << target->depth << " m)\n";
   }
+  // --trim: the link point x for the body's pitch, and the statics there.
+  std::optional<TrimResult> trim;
+  if (!opts.trim_body.empty()) {
+    std::size_t b = model.bodies.size();
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+      if ((model.bodies[i].inline_body ? model.bodies[i].name : std::string("body")) == opts.trim_body) b = i;
+    if (b == model.bodies.size() || opts.target_depth) {
+      std::string names;
+      for (const Body& body : model.bodies) names += (names.empty() ? "" : ", ") + (body.inline_body ? body.name : std::string("body"));
+      err << "towsim: statics: --trim " << opts.trim_body << ": "
+          << (opts.target_depth ? std::string("not with --target-depth")
+                                : "no such body (the scenario's: " + (names.empty() ? std::string("none") : names) + ")")
+          << "\n";
+      return kExitInvalid;
+    }
+    trim = link_point_for_pitch(model, final_tow_velocity(model.tow), b, opts.trim_pitch, stop_flag);
+    if (trim->statics.interrupted) {
+      err << "towsim: statics: --trim " << opts.trim_body << ": interrupted\n";
+      return kExitInterrupted;
+    }
+    if (!trim->found) {
+      err << "towsim: statics: --trim " << opts.trim_body << ": " << trim->message << "\n";
+      return kExitFailed;
+    }
+    deployed = model;
+    deployed->bodies[b].link_point.x() = trim->link_x;
+    std::string key = "body.link_point";
+    for (const BodySpec& spec : sc.spec.cable.inline_bodies)
+      if (model.bodies[b].inline_body && spec.name.value == model.bodies[b].name) key = spec.where.path + ".link_point";
+    const Vec3 lp = deployed->bodies[b].link_point;
+    std::ostringstream set;
+    set << std::setprecision(17) << key << "=[" << lp.x() << ", " << lp.y() << ", " << lp.z() << "]";
+    out << std::setprecision(7) << "link point for a pitch of " << fmt_num(opts.trim_pitch) << " deg of "
+        << body_label(model, b) << ": x = " << trim->link_x << " m (pitch " << trim->pitch_deg << " deg; --set '"
+        << set.str() << "')\n";
+  }
   const Model& used = deployed ? *deployed : model;
-  const StaticsResult r = target ? target->statics : solve_statics(model, final_tow_velocity(model.tow), stop_flag);
+  const StaticsResult r = target ? target->statics
+                          : trim ? trim->statics
+                                 : solve_statics(model, final_tow_velocity(model.tow), stop_flag);
   const Sample& s = r.sample;
   print_statics(used, r, s, out);
   for (const std::string& w : equilibria_warnings(used, r)) err << "towsim: statics: warning: " << w << "\n";
@@ -211,6 +249,8 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
       remove_run_outputs(opts.out_dir);  // no stale file of a previous run
       RunWriter writer(opts.out_dir, used, true);
       auto summary = statics_summary(sc, r, writer);
+      if (trim)
+        summary["trim"] = {{"body", opts.trim_body}, {"pitch_deg", opts.trim_pitch}, {"link_x", trim->link_x}};
       if (target)
         summary["target_depth"] = {{"depth", *opts.target_depth},
                                    {"deployed_length", target->length},

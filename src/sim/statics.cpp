@@ -574,11 +574,11 @@ constexpr double kNeutral = 1e-6;        // an eigenvalue of K's symmetric part 
 /// The body's balance at q classified: its restoring stiffness K = -dM/dtheta
 /// (rotations theta in R_g, central differences), the diagonal of K in body
 /// axes and the smallest eigenvalue of K's symmetric part; stable when that
-/// eigenvalue is not below -kNeutral of the moment scale. `neutral` (may be
-/// null): the rotation axes (R_g) of eigenvalues within that band.
+/// eigenvalue is not below -kNeutral of the moment scale. bw: a copy of the
+/// body's work (its control surfaces' state). `neutral` (may be null): the
+/// rotation axes (R_g) of eigenvalues within that band.
 BodyEquilibrium classify_balance(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2,
-                                 const Quat& q, std::vector<Vec3>* neutral = nullptr) {
-  BodyWork bw;
+                                 const Quat& q, BodyWork bw, std::vector<Vec3>* neutral = nullptr) {
   steady_body(m, body, q, Q, V, bw);
   const double scale = body_moment_scale(bw, f2);
   Mat3 K;
@@ -622,7 +622,7 @@ std::vector<Quat> trim_starts(const Vec3& V) {
 bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2, Quat& q, BodyWork& bw) {
   const Quat start = q;
   const bool held = newton_body(m, body, Q, V, f2, q, bw);
-  if (held && classify_balance(m, body, Q, V, f2, q).stable) return true;
+  if (held && classify_balance(m, body, Q, V, f2, q, bw).stable) return true;
   const Quat from_start = q;
   const BodyWork at_start = bw;  // the best attitude from q, kept when no start balances
   bool found = held, found_stable = false;
@@ -630,7 +630,7 @@ bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, 
   BodyWork trial = bw;
   for (Quat t : trim_starts(V)) {
     if (!newton_body(m, body, Q, V, f2, t, trial)) continue;
-    const bool stable = classify_balance(m, body, Q, V, f2, t).stable;
+    const bool stable = classify_balance(m, body, Q, V, f2, t, trial).stable;
     const double angle = t.angularDistance(start);
     // A stable balance beats an unstable one; then the nearer.
     if (!found || (stable && !found_stable) || (stable == found_stable && angle < nearest)) {
@@ -675,10 +675,10 @@ std::vector<BodyEquilibria> find_equilibria(const Model& m, const PhysicalState&
         if (r.norm() <= kDistinctBalance) return;
       }
       neutral.emplace_back();
-      eq.balances.push_back(classify_balance(m, body, Q, V, f2, q, &neutral.back()));
+      eq.balances.push_back(classify_balance(m, body, Q, V, f2, q, ws.body[b], &neutral.back()));
     };
     add(solved);  // the balance of the equilibrium solved: index 0 until sorted
-    BodyWork bw;
+    BodyWork bw = ws.body[b];
     for (Quat t : trim_starts(V))
       if (newton_body(m, body, Q, V, f2, t, bw)) add(t);
     std::vector<std::size_t> order(eq.balances.size());

@@ -99,6 +99,27 @@ struct TargetDepthResult {
 TargetDepthResult length_for_depth(const Model& model, const Vec3& V, double depth,
                                    const volatile int* stop_flag = nullptr);
 
+/// The link point for a body's trim (`towsim statics --trim`).
+struct TrimResult {
+  double link_x = 0;     // the body's link_point x found [m, body axes]
+  double pitch_deg = 0;  // its pitch there [deg]
+  bool found = false;
+  std::string message;    // why not
+  StaticsResult statics;  // the steady configuration with that link point
+};
+
+/// Largest |pitch - target| the trim search leaves [deg].
+inline constexpr double kTrimTolerance = 1e-4;
+
+/// The x of body `body`'s link_point (y, z kept) that gives it `pitch_deg`
+/// of pitch when the tow point moves steadily at V: from the scenario's x,
+/// steps of 0.02, 0.04, ... 5.12 m forward and aft, alternately, until the
+/// pitch passes the target (a failed solve is skipped), then
+/// bisection-secant (Illinois) to kTrimTolerance. `stop_flag`, when
+/// non-null and set, ends the search (statics.interrupted, not found).
+TrimResult link_point_for_pitch(const Model& model, const Vec3& V, std::size_t body, double pitch_deg,
+                                const volatile int* stop_flag = nullptr);
+
 /// Equilibrium at the tow's velocity at t = 0 (what `initial: steady` starts
 /// from); throws std::runtime_error with the message when it does not converge.
 StaticsResult steady_state(const Model& model);
