@@ -103,10 +103,10 @@ std::vector<std::string> equilibria_warnings(const Model& model, const StaticsRe
       list += (i == 0 ? "" : i + 1 == stable.size() ? " and " : ", ") + stable[i];
     const std::string who = "trim of " + body_label(model, b) + ": ";
     if (!chosen.stable)
-      out.push_back(who + "the equilibrium reported, " + signed_deg(chosen.rpy_deg.y()) +
-                    " deg pitch, is statically unstable" +
-                    (stable.empty() ? std::string(" (no stable one found)")
-                                    : "; stable: " + list + " deg pitch (an initial_attitude_deg near one selects it)"));
+      out.push_back(
+          who + "the equilibrium reported, " + signed_deg(chosen.rpy_deg.y()) + " deg pitch, is statically unstable" +
+          (stable.empty() ? std::string(" (no stable one found)")
+                          : "; stable: " + list + " deg pitch (an initial_attitude_deg near one selects it)"));
     else if (stable.size() > 1)
       out.push_back(who + count_word(stable.size()) + " stable equilibria, " + list + " deg pitch; reported " +
                     signed_deg(chosen.rpy_deg.y()) +
@@ -202,10 +202,12 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
       if ((model.bodies[i].inline_body ? model.bodies[i].name : std::string("body")) == opts.trim_body) b = i;
     if (b == model.bodies.size() || opts.target_depth) {
       std::string names;
-      for (const Body& body : model.bodies) names += (names.empty() ? "" : ", ") + (body.inline_body ? body.name : std::string("body"));
+      for (const Body& body : model.bodies)
+        names += (names.empty() ? "" : ", ") + (body.inline_body ? body.name : std::string("body"));
       err << "towsim: statics: --trim " << opts.trim_body << ": "
-          << (opts.target_depth ? std::string("not with --target-depth")
-                                : "no such body (the scenario's: " + (names.empty() ? std::string("none") : names) + ")")
+          << (opts.target_depth
+                  ? std::string("not with --target-depth")
+                  : "no such body (the scenario's: " + (names.empty() ? std::string("none") : names) + ")")
           << "\n";
       return kExitInvalid;
     }
@@ -249,8 +251,7 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
       remove_run_outputs(opts.out_dir);  // no stale file of a previous run
       RunWriter writer(opts.out_dir, used, true);
       auto summary = statics_summary(sc, r, writer);
-      if (trim)
-        summary["trim"] = {{"body", opts.trim_body}, {"pitch_deg", opts.trim_pitch}, {"link_x", trim->link_x}};
+      if (trim) summary["trim"] = {{"body", opts.trim_body}, {"pitch_deg", opts.trim_pitch}, {"link_x", trim->link_x}};
       if (target)
         summary["target_depth"] = {{"depth", *opts.target_depth},
                                    {"deployed_length", target->length},

@@ -308,8 +308,8 @@ std::vector<std::string> trim_jumps(const std::vector<SweepCase>& cases, const s
           what += std::string(what.empty() ? "" : "; ") + "stable equilibria " + std::to_string(ta.stable_count) +
                   " to " + std::to_string(tb.stable_count) + ", a change of branch";
         if (!what.empty())
-          out.push_back("trim of " + ta.body + " between neighbouring cases " + named(i) + " and " +
-                        named(i + 1) + ": " + what);
+          out.push_back("trim of " + ta.body + " between neighbouring cases " + named(i) + " and " + named(i + 1) +
+                        ": " + what);
       }
   }
   return out;

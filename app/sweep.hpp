@@ -40,7 +40,6 @@ struct CaseResult {
   std::vector<BodyTrim> trims;  // statics cases: each analysed body's trim
 };
 
-
 /// Simulate a loaded, valid scenario. With `out_dir` non-empty, write the
 /// files of `towsim run` there (created if missing); otherwise nothing is
 /// written. Never throws: internal errors become a failed case. `progress`

@@ -660,8 +660,8 @@ std::vector<BodyEquilibria> find_equilibria(const Model& m, const PhysicalState&
     const Vec3 Q = ws.body[b].Q;
     const Vec3 f2 = body.inline_body ? below[b] : Vec3::Zero();
     const Quat solved = state.bodies[b].q;
-    if (m.seabed && m.seabed->gap(Q) < body_drop(*m.seabed, body, solved.toRotationMatrix(), Q,
-                                                   m.seabed->normal(Q.x())))
+    if (m.seabed &&
+        m.seabed->gap(Q) < body_drop(*m.seabed, body, solved.toRotationMatrix(), Q, m.seabed->normal(Q.x())))
       continue;  // on the bottom: the contact is not part of steady_body's balance
     BodyEquilibria& eq = out[b];
     eq.analysed = true;
@@ -1233,6 +1233,12 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
         "and speeds)";
   }
   return out;
+}
+
+BodyEquilibrium classify_body_balance(const Model& model, std::size_t body, const Vec3& Q, const Vec3& V,
+                                      const Vec3& f2, const Quat& q) {
+  Workspace ws(model);
+  return classify_balance(model, model.bodies[body], Q, V, f2, q, ws.body[body]);
 }
 
 StaticsResult newton_krylov_statics(const Model& model, const Vec3& V, const PhysicalState& start) {

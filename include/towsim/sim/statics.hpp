@@ -57,8 +57,8 @@ struct StaticsResult {
   double residual = 0;            // largest angular acceleration left [rad/s^2]
   int iterations = 0;             // Newton iterations
   bool converged = false;
-  bool interrupted = false;  // the stop flag was set: the state is the last iterate
-  std::string message;       // why it did not converge
+  bool interrupted = false;                // the stop flag was set: the state is the last iterate
+  std::string message;                     // why it did not converge
   std::vector<BodyEquilibria> equilibria;  // per body, when converged
 };
 
