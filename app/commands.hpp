@@ -46,6 +46,8 @@ struct StaticsOptions {
   InputOptions input;
   std::string out_dir;                 // where to write timeseries.csv and nodes.csv of the configuration ("" = none)
   std::optional<double> target_depth;  // --target-depth D: find the deployed length for this depth [m]
+  std::string trim_body;               // --trim NAME: find the link point x for the body's pitch ("" = none)
+  double trim_pitch = 0;               // --trim-pitch DEG: the pitch --trim looks for [deg]
 };
 
 /// Load, override, check and compile the scenario named by `in` (exactly one
@@ -74,6 +76,18 @@ std::optional<Diagnostic> statics_refusal(const LoadedScenario& sc);
 /// --target-depth) as its one sample (t = 0), status `ok`, `failed` or
 /// `interrupted`, `steps` = solver iterations.
 nlohmann::ordered_json statics_summary(const LoadedScenario& sc, const StaticsResult& r, RunRecord& rec);
+
+/// The warnings of a steady tow's body equilibria, one sentence each: a
+/// body with more than one stable balance ("trim of body depressor: two
+/// stable equilibria, +24.3 and -13.0 deg pitch; reported +24.3, ..."), or
+/// whose balance reported is statically unstable.
+std::vector<std::string> equilibria_warnings(const Model& model, const StaticsResult& r);
+
+/// summary.json `bodies` of a steady tow: per body its name, `equilibria`
+/// (roll_deg, pitch_deg, yaw_deg, stable, roll/pitch/yaw_stiffness,
+/// min_stiffness [N m/rad]) and `chosen`, the index of the one reported
+/// (both null when not analysed: not converged, or on the seabed).
+nlohmann::ordered_json bodies_json(const Model& model, const StaticsResult& r);
 
 /// The line `towsim run` prints at the end of a successful run: final
 /// layback, depth of the body (or cable end) and tow tension, the maximum

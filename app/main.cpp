@@ -116,6 +116,10 @@ void add_statics_command(CLI::App& app, int& status) {
   cmd->add_option("--out,-o", opts->out_dir, "Write the configuration (timeseries.csv, nodes.csv) here");
   cmd->add_option("--target-depth", opts->target_depth,
                   "Find the deployed cable length that puts the body (or the cable end) at this depth [m]");
+  cmd->add_option("--trim", opts->trim_body,
+                  "Find the link point (link_point x) that gives this body (an in-line body's name, or 'body') "
+                  "the pitch of --trim-pitch");
+  cmd->add_option("--trim-pitch", opts->trim_pitch, "The pitch --trim looks for [deg] (default 0: level)");
   cmd->callback([opts, &status] {
     require_one_input(opts->input);
     std::signal(SIGINT, on_stop_signal);

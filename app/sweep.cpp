@@ -252,11 +252,67 @@ CaseResult statics_case(const LoadedScenario& sc, const std::string& out_dir, co
     res.status = summary["status"].get<std::string>();
     res.message = summary["message"].is_string() ? summary["message"].get<std::string>() : std::string();
     res.figures = summary_figures(summary);
+    for (std::size_t b = 0; b < r.equilibria.size(); ++b) {
+      const BodyEquilibria& eq = r.equilibria[b];
+      if (!eq.analysed || eq.chosen < 0) continue;
+      std::size_t stable = 0;
+      for (const BodyEquilibrium& e : eq.balances) stable += e.stable ? 1 : 0;
+      const Body& body = model.bodies[b];
+      res.trims.push_back(BodyTrim{body.inline_body ? "body " + body.name : std::string("the body"),
+                                   eq.balances[static_cast<std::size_t>(eq.chosen)].rpy_deg, stable});
+    }
   } catch (const std::exception& e) {
     res.status = "failed";
     res.message = std::string("internal error: ") + e.what();
   }
   return res;
+}
+
+std::vector<std::string> trim_jumps(const std::vector<SweepCase>& cases, const std::vector<CaseResult>& results) {
+  std::vector<std::string> out;
+  // "case-0001 (KEY=VALUE, ...)".
+  const auto named = [&](std::size_t i) {
+    std::string s = case_name(i) + " (";
+    for (std::size_t k = 0; k < cases[i].sets.size(); ++k)
+      s += (k ? ", " : "") + cases[i].sets[k].first + "=" + cases[i].sets[k].second;
+    return s + ")";
+  };
+  const auto deg = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%+.1f", v);
+    return std::string(b);
+  };
+  const char* const axes[] = {"roll", "pitch", "yaw"};
+  for (std::size_t i = 0; i + 1 < cases.size() && i + 1 < results.size(); ++i) {
+    const SweepCase &a = cases[i], &b = cases[i + 1];
+    if (a.sets.size() != b.sets.size()) continue;
+    std::size_t differ = 0;
+    bool same_keys = true;
+    for (std::size_t k = 0; k < a.sets.size(); ++k) {
+      same_keys = same_keys && a.sets[k].first == b.sets[k].first;
+      differ += a.sets[k].second != b.sets[k].second ? 1 : 0;
+    }
+    if (!same_keys || differ != 1 || results[i].status != "ok" || results[i + 1].status != "ok") continue;
+    for (const BodyTrim& ta : results[i].trims)
+      for (const BodyTrim& tb : results[i + 1].trims) {
+        if (ta.body != tb.body) continue;
+        std::string what;
+        for (int c = 0; c < 3; ++c) {
+          double d = tb.rpy_deg[c] - ta.rpy_deg[c];
+          if (c != 1) d = std::remainder(d, 360.0);  // roll and yaw wrap; pitch lies in [-90, 90]
+          if (std::abs(d) > kTrimJumpDeg)
+            what += std::string(what.empty() ? "" : "; ") + axes[c] + " " + deg(ta.rpy_deg[c]) + " to " +
+                    deg(tb.rpy_deg[c]) + " deg, a change of more than " + fmt_num(kTrimJumpDeg) + " deg";
+        }
+        if (ta.stable_count != tb.stable_count)
+          what += std::string(what.empty() ? "" : "; ") + "stable equilibria " + std::to_string(ta.stable_count) +
+                  " to " + std::to_string(tb.stable_count) + ", a change of branch";
+        if (!what.empty())
+          out.push_back("trim of " + ta.body + " between neighbouring cases " + named(i) + " and " + named(i + 1) +
+                        ": " + what);
+      }
+  }
+  return out;
 }
 
 const std::vector<std::string>& towing_table_columns() {
@@ -447,6 +503,7 @@ class SweepTable {
     out_.flush();
   }
   bool good() const { return static_cast<bool>(out_); }
+  const std::vector<CaseResult>& rows() const { return rows_; }
   /// Every row as a towing table (towing_table_columns()); throws when it cannot be written.
   void write_towing_table(const std::string& path) const {
     std::ofstream t(path);
@@ -637,9 +694,11 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
     for (auto& t : pool) t.join();
     // Cases never started (interrupted sweep): rows all the same.
     for (std::size_t i = 0; i < n; ++i)
-      if (!started[i]) table.complete(i, CaseResult{"not_run", "the sweep was interrupted before this case", {}});
+      if (!started[i]) table.complete(i, CaseResult{"not_run", "the sweep was interrupted before this case", {}, {}});
     if (!table.good()) throw std::runtime_error("cannot write " + opts.out_dir + "/sweep.csv");
     table.write_towing_table((std::filesystem::path(opts.out_dir) / "towing_table.csv").string());
+    if (!opts.quiet)
+      for (const std::string& w : trim_jumps(spec.cases, table.rows())) err << "towsim: sweep: warning: " << w << "\n";
     if (stop_flag != nullptr && *stop_flag) {
       err << "towsim: sweep interrupted after " << completed << " of " << n << " cases (rows so far in " << opts.out_dir
           << "/sweep.csv)\n";

@@ -25,11 +25,19 @@ using Figure = std::pair<std::string, double>;
 /// `final` value as `final_<column>`. Names in that order.
 std::vector<Figure> summary_figures(const nlohmann::ordered_json& summary);
 
+/// A body's trim in a steady-tow case: the balance reported and how many are stable.
+struct BodyTrim {
+  std::string body;          // "body depressor", "the body"
+  Vec3 rpy_deg;              // roll, pitch, yaw of the balance reported [deg]
+  std::size_t stable_count;  // stable balances found (BodyEquilibria)
+};
+
 /// How one case ended and its figures.
 struct CaseResult {
   std::string status;           // ok | failed | interrupted | invalid | not_run
   std::string message;          // why it failed, or "" (invalid: every error, one per line)
   std::vector<Figure> figures;  // summary_figures() of its summary (empty when invalid)
+  std::vector<BodyTrim> trims;  // statics cases: each analysed body's trim
 };
 
 /// Simulate a loaded, valid scenario. With `out_dir` non-empty, write the
@@ -62,6 +70,16 @@ std::vector<double> towing_row(const std::vector<Figure>& figures);
 struct SweepCase {
   std::vector<std::pair<std::string, std::string>> sets;
 };
+
+/// A trim jump: more than this change of roll, pitch or yaw between neighbouring cases [deg].
+constexpr double kTrimJumpDeg = 10;
+
+/// The warnings of a statics sweep's trim jumps, one sentence each: for two
+/// neighbouring cases (consecutive, their overrides differing in one value
+/// only, both ok), each body whose reported roll, pitch or yaw differs by more
+/// than kTrimJumpDeg, or whose number of stable balances differs (a branch
+/// appears or disappears), naming both cases and their overrides.
+std::vector<std::string> trim_jumps(const std::vector<SweepCase>& cases, const std::vector<CaseResult>& results);
 
 /// A sweep file as read: the base scenario, the overrides every case
 /// shares, the varied keys (in column order) and the cases.

@@ -518,6 +518,12 @@ Vec3 body_moment(const Body& body, const BodyWork& bw, const Vec3& f2) {
   return r;
 }
 
+/// The size of the moments in the body's balance at bw: of each load's moment about Q [N m].
+double body_moment_scale(const BodyWork& bw, const Vec3& f2) {
+  return bw.Mb.norm() + bw.rQ.norm() * (bw.Fb.norm() + bw.hw.head<3>().norm() + f2.norm()) + bw.hw.tail<3>().norm() +
+         bw.rQ2.norm() * f2.norm() + 1e-300;
+}
+
 /// Body attitude balancing its moments about Q, from q: Newton with
 /// minimum-norm steps (a sphere's rotation about its link line is neutral).
 /// On return bw holds the body at q; false when no balance was found.
@@ -530,8 +536,7 @@ bool newton_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V,
   for (int it = 0; it < 100; ++it) {
     steady_body(m, body, q, Q, V, bw);
     const Vec3 g = body_moment(body, bw, f2);
-    const double scale = bw.Mb.norm() + bw.rQ.norm() * (bw.Fb.norm() + bw.hw.head<3>().norm() + f2.norm()) +
-                         bw.hw.tail<3>().norm() + bw.rQ2.norm() * f2.norm() + 1e-300;
+    const double scale = body_moment_scale(bw, f2);
     if (g.norm() <= kLocalTolerance * scale) return true;
     constexpr double h = 1e-7;  // [rad]
     Mat3 J;
@@ -561,35 +566,134 @@ bool newton_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V,
   return false;
 }
 
-/// newton_body from q, else from several trims: nose up and down in steps of
-/// 15 deg to 75 deg, level in the tow's heading. Newton from the attitude a
-/// body held may not reach a balance far from it (two-part-tow's depressor
-/// flies nose up below about 560 kg, 24 deg at 500 kg, from a level start);
-/// of the balances found, the one nearest q is taken.
-bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2, Quat& q, BodyWork& bw) {
-  if (newton_body(m, body, Q, V, f2, q, bw)) return true;
-  const Quat start = q;
-  const BodyWork at_start = bw;  // the best attitude from q, kept when no start balances
+constexpr double kStiffnessStep = 1e-5;  // [rad] central differences of the moment about Q: truncation
+                                         // ~1e-10, round-off ~1e-11 of its scale
+constexpr double kNeutral = 1e-6;        // an eigenvalue of K's symmetric part below -kNeutral times the
+                                         // moment scale (per radian) is unstable; above, zero to round-off
+
+/// The body's balance at q classified: its restoring stiffness K = -dM/dtheta
+/// (rotations theta in R_g, central differences), the diagonal of K in body
+/// axes and the smallest eigenvalue of K's symmetric part; stable when that
+/// eigenvalue is not below -kNeutral of the moment scale. bw: a copy of the
+/// body's work (its control surfaces' state). `neutral` (may be null): the
+/// rotation axes (R_g) of eigenvalues within that band.
+BodyEquilibrium classify_balance(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2,
+                                 const Quat& q, BodyWork bw, std::vector<Vec3>* neutral = nullptr) {
+  steady_body(m, body, q, Q, V, bw);
+  const double scale = body_moment_scale(bw, f2);
+  Mat3 K;
+  for (int j = 0; j < 3; ++j) {
+    steady_body(m, body, Quat(Eigen::AngleAxisd(kStiffnessStep, Vec3::Unit(j)) * q).normalized(), Q, V, bw);
+    const Vec3 gp = body_moment(body, bw, f2);
+    steady_body(m, body, Quat(Eigen::AngleAxisd(-kStiffnessStep, Vec3::Unit(j)) * q).normalized(), Q, V, bw);
+    K.col(j) = -(gp - body_moment(body, bw, f2)) / (2 * kStiffnessStep);
+  }
+  const Mat3 R = q.toRotationMatrix();
+  const Mat3 Kb = R.transpose() * K * R;  // in body axes
+  const Eigen::SelfAdjointEigenSolver<Mat3> sym(0.5 * (K + K.transpose()));
+  BodyEquilibrium e;
+  e.q = q;
+  e.rpy_deg = roll_pitch_yaw(q) * (180.0 / M_PI);
+  e.stiffness = Kb.diagonal();
+  e.min_stiffness = sym.eigenvalues()[0];
+  e.stable = e.min_stiffness >= -kNeutral * scale;
+  if (neutral != nullptr)
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(sym.eigenvalues()[i]) < kNeutral * scale) neutral->push_back(sym.eigenvectors().col(i));
+  return e;
+}
+
+/// The trims newton_body restarts from: pitched -75..75 deg in steps of 15 deg, level in the tow's heading.
+std::vector<Quat> trim_starts(const Vec3& V) {
   const Quat heading(Eigen::AngleAxisd(std::hypot(V.x(), V.y()) > 0 ? std::atan2(V.y(), V.x()) : 0.0, Vec3::UnitZ()));
-  bool found = false;
-  double nearest = 0;  // angle from q to the balance kept [rad]
+  std::vector<Quat> out;
+  for (int deg = -75; deg <= 75; deg += 15)
+    out.push_back((heading * Quat(Eigen::AngleAxisd(deg * M_PI / 180.0, Vec3::UnitY()))).normalized());
+  return out;
+}
+
+/// newton_body from q, else from several trims (trim_starts). Newton from
+/// the attitude a body held may not reach a balance far from it
+/// (two-part-tow's depressor flies nose up below about 560 kg, 24 deg at
+/// 500 kg, from a level start), or may reach a statically unstable one: a
+/// stable balance from q is kept; otherwise the stable balance from the
+/// trims nearest q, or when none is stable, the (unstable) balance from q,
+/// or when Newton from q found none, the balance from the trims nearest q.
+bool solve_body(const Model& m, const Body& body, const Vec3& Q, const Vec3& V, const Vec3& f2, Quat& q, BodyWork& bw) {
+  const Quat start = q;
+  const bool held = newton_body(m, body, Q, V, f2, q, bw);
+  if (held && classify_balance(m, body, Q, V, f2, q, bw).stable) return true;
+  const Quat from_start = q;
+  const BodyWork at_start = bw;  // the best attitude from q, kept when no start balances
+  bool found = held, found_stable = false;
+  double nearest = held ? q.angularDistance(start) : 0.0;  // angle from q to the balance kept [rad]
   BodyWork trial = bw;
-  for (int deg = -75; deg <= 75; deg += 15) {
-    Quat t = (heading * Quat(Eigen::AngleAxisd(deg * M_PI / 180.0, Vec3::UnitY()))).normalized();
+  for (Quat t : trim_starts(V)) {
     if (!newton_body(m, body, Q, V, f2, t, trial)) continue;
+    const bool stable = classify_balance(m, body, Q, V, f2, t, trial).stable;
     const double angle = t.angularDistance(start);
-    if (!found || angle < nearest) {
+    // A stable balance beats an unstable one; then the nearer.
+    if (!found || (stable && !found_stable) || (stable == found_stable && angle < nearest)) {
       found = true;
+      found_stable = stable;
       nearest = angle;
       q = t;
       bw = trial;
     }
   }
-  if (!found) {
-    q = start;
+  if (!found || (held && !found_stable)) {
+    q = from_start;
     bw = at_start;
   }
   return found;
+}
+
+/// The balances of each body at the equilibrium `state` of `m` (waves off,
+/// the steady tow), its links' places in ws (forward_dynamics at state) and
+/// the in-line bodies' forces on the cable below `below` (StaticsResult's
+/// equilibria).
+std::vector<BodyEquilibria> find_equilibria(const Model& m, const PhysicalState& state, const Workspace& ws,
+                                            const Vec3& V, const std::vector<Vec3>& below) {
+  std::vector<BodyEquilibria> out(m.bodies.size());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    const Vec3 Q = ws.body[b].Q;
+    const Vec3 f2 = body.inline_body ? below[b] : Vec3::Zero();
+    const Quat solved = state.bodies[b].q;
+    if (m.seabed &&
+        m.seabed->gap(Q) < body_drop(*m.seabed, body, solved.toRotationMatrix(), Q, m.seabed->normal(Q.x())))
+      continue;  // on the bottom: the contact is not part of steady_body's balance
+    BodyEquilibria& eq = out[b];
+    eq.analysed = true;
+    std::vector<std::vector<Vec3>> neutral;  // each balance's neutral rotation axes
+    auto add = [&](const Quat& q) {
+      for (std::size_t i = 0; i < eq.balances.size(); ++i) {
+        Eigen::AngleAxisd d(q * eq.balances[i].q.conjugate());
+        Vec3 r = d.angle() * d.axis();
+        if (d.angle() > M_PI) r = (d.angle() - 2 * M_PI) * d.axis();
+        for (const Vec3& a : neutral[i]) r -= a.dot(r) * a;  // rotations along a neutral axis: the same balance
+        if (r.norm() <= kDistinctBalance) return;
+      }
+      neutral.emplace_back();
+      eq.balances.push_back(classify_balance(m, body, Q, V, f2, q, ws.body[b], &neutral.back()));
+    };
+    add(solved);  // the balance of the equilibrium solved: index 0 until sorted
+    BodyWork bw = ws.body[b];
+    for (Quat t : trim_starts(V))
+      if (newton_body(m, body, Q, V, f2, t, bw)) add(t);
+    std::vector<std::size_t> order(eq.balances.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+      return eq.balances[i].rpy_deg.y() > eq.balances[j].rpy_deg.y();
+    });
+    std::vector<BodyEquilibrium> sorted;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      sorted.push_back(eq.balances[order[i]]);
+      if (order[i] == 0) eq.chosen = static_cast<int>(i);
+    }
+    eq.balances = std::move(sorted);
+  }
+  return out;
 }
 
 /// One sweep from the bottom up at the positions of p.base (in p.ws): every
@@ -1116,6 +1220,7 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
   out.body_force = p.ws.acc.lower_link_force;
   out.joint_force = p.ws.acc.joint_force;
   out.sample = make_sample(elastic, p.base, p.ws, 0.0);
+  if (out.converged) out.equilibria = find_equilibria(elastic, p.base, p.ws, V, out.body_force);
   // Angles balanced but forces overflowed (e.g. mass_per_length 1e200): no equilibrium to report.
   // (components near 1e200 are finite, their norm, the tension, is not).
   bool finite = std::isfinite(out.tow_force.norm());
@@ -1128,6 +1233,12 @@ StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile in
         "and speeds)";
   }
   return out;
+}
+
+BodyEquilibrium classify_body_balance(const Model& model, std::size_t body, const Vec3& Q, const Vec3& V,
+                                      const Vec3& f2, const Quat& q) {
+  Workspace ws(model);
+  return classify_balance(model, model.bodies[body], Q, V, f2, q, ws.body[body]);
 }
 
 StaticsResult newton_krylov_statics(const Model& model, const Vec3& V, const PhysicalState& start) {

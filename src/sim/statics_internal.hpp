@@ -14,4 +14,10 @@ namespace towsim {
 /// tow_force and joint_force at `state`; the sample is left empty.
 StaticsResult newton_krylov_statics(const Model& model, const Vec3& V, const PhysicalState& start);
 
+/// The classification BodyEquilibria gives body `body` of `model` (its
+/// first control surfaces' state) at attitude q, its link at Q, towed at V,
+/// the cable below pulled by f2 at its lower link (in-line bodies).
+BodyEquilibrium classify_body_balance(const Model& model, std::size_t body, const Vec3& Q, const Vec3& V,
+                                      const Vec3& f2, const Quat& q);
+
 }  // namespace towsim
