@@ -16,16 +16,21 @@
 
 namespace towsim::testing {
 
-/// An image's grey levels, row by row from the top (0 black .. 255 white).
-struct Grey {
+/// An image's pixels, row by row from the top: red, green, blue (0 .. 255).
+struct Image {
   int width = 0, height = 0;
-  std::vector<std::uint8_t> v;
-  int at(int x, int y) const { return v[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + x]; }
+  std::vector<std::uint8_t> rgb;
+  int channel(int x, int y, int c) const {
+    return rgb[3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) +
+               static_cast<std::size_t>(c)];
+  }
+  /// Grey level, 0 black .. 255 white.
+  int at(int x, int y) const { return (channel(x, y, 0) + channel(x, y, 1) + channel(x, y, 2)) / 3; }
   bool dark(int x, int y, int below = 128) const { return at(x, y) < below; }
 };
 
 /// Load `path` into `img`; false with `error` set when it cannot.
-inline bool load_png(const std::string& path, Grey& img, std::string& error) {
+inline bool load_png(const std::string& path, Image& img, std::string& error) {
 #ifndef TOWSIM_TEST_HAVE_ZLIB
   (void)path, (void)img;
   error = "built without zlib";
@@ -73,7 +78,7 @@ inline bool load_png(const std::string& path, Grey& img, std::string& error) {
   }
   // Undo the row filters (PNG specification, section 9).
   std::vector<unsigned char> prev(stride, 0), line(stride);
-  img.v.assign(static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height), 0);
+  img.rgb.assign(3 * static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height), 0);
   for (int y = 0; y < img.height; ++y) {
     const unsigned char* r = &raw[static_cast<std::size_t>(y) * (stride + 1)];
     const int filter = r[0];
@@ -92,8 +97,9 @@ inline bool load_png(const std::string& path, Grey& img, std::string& error) {
     }
     for (int x = 0; x < img.width; ++x) {
       const std::size_t o = static_cast<std::size_t>(x) * static_cast<std::size_t>(bpp);
-      img.v[static_cast<std::size_t>(y) * static_cast<std::size_t>(img.width) + x] = static_cast<std::uint8_t>(
-          (line[o] + line[o + 1] + line[o + 2]) / 3);
+      for (std::size_t c = 0; c < 3; ++c)
+        img.rgb[3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(img.width) + static_cast<std::size_t>(x)) +
+                c] = line[o + c];
     }
     prev = line;
   }
