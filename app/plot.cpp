@@ -133,18 +133,20 @@ struct Run {
   long rows = 0;      // timeseries rows
   double min_dt = 0;  // smallest output interval
   std::vector<double> snapshot_times;
-  bool single = false;        // one output time: a statics configuration
-  bool has_layback = false;   // timeseries.csv has the layback column
-  bool has_winch = false;     // timeseries.csv has payout_speed (a winch)
-  bool has_rating = false;    // and winch_load_ratio (a winch rating)
-  bool has_spectra = false;   // spectra.csv (a sea-state run) with data rows
-  bool spectra_body = false;  // ... with the body's columns filled
-  double spectra_wmax = 0;    // highest omega where the wave spectrum is >= 1e-4 of its peak [rad/s]
-  bool cut_series = false;    // timeseries.csv ends in a row cut off (no newline): plots/ gets its whole rows
-  double marker_every = 10;   // s between trajectory markers
-  int marker_rows = 1;        // the same in rows
+  bool single = false;                  // one output time: a statics configuration
+  bool has_layback = false;             // timeseries.csv has the layback column
+  bool has_winch = false;               // timeseries.csv has payout_speed (a winch)
+  bool has_rating = false;              // and winch_load_ratio (a winch rating)
+  double payout_lo = 0, payout_hi = 0;  // range of payout_speed [m/s]
+  bool has_spectra = false;             // spectra.csv (a sea-state run) with data rows
+  bool spectra_body = false;            // ... with the body's columns filled
+  double spectra_wmax = 0;              // highest omega where the wave spectrum is >= 1e-4 of its peak [rad/s]
+  bool cut_series = false;              // timeseries.csv ends in a row cut off (no newline): plots/ gets its whole rows
+  double marker_every = 10;             // s between trajectory markers
+  int marker_rows = 1;                  // the same in rows
   // Data spans for the equal-scale decisions.
   double x_span = 0, y_span = 0, z_span = 0;
+  double x_lo = 0, y_lo = 0, z_lo = 0;  // their lower ends
 };
 
 /// A "nice" interval (1, 2, 5 x 10^k) close to `v`.
@@ -170,6 +172,14 @@ std::string ramp(int k, int n) {
   return b;
 }
 
+/// Width of one character of a tick label in pixels, for a font of `font`
+/// points (pngcairo at 96 dpi: 4/3 px per point; DejaVu Sans digits advance
+/// 0.6 em: 10.4 px at 13 points, as measured on the figures).
+double char_px(int font) { return 0.6 * font * 4.0 / 3.0; }
+
+/// The figures' font size in points for a canvas `width` pixels wide.
+int font_points(int width) { return std::max(9, static_cast<int>(std::lround(width / 80.0))); }
+
 /// Script text common to every figure.
 std::string preamble(const Run& run, const std::string& name, const std::string& what) {
   std::ostringstream s;
@@ -193,7 +203,7 @@ std::string preamble(const Run& run, const std::string& name, const std::string&
 /// Script text that renders the current plot (`plot_cmd`) as PNG and SVG.
 std::string render(const std::string& name, const std::string& plot_cmd, const PlotOptions& o) {
   std::ostringstream s;
-  const int font = std::max(9, static_cast<int>(std::lround(o.width / 80.0)));
+  const int font = font_points(o.width);
   s << "set terminal pngcairo size " << o.width << "," << o.height << " noenhanced font 'Sans," << font
     << "' linewidth 1.5\n"
     << "set output '" << name << ".png'\n"
@@ -210,19 +220,82 @@ std::string title(const Run& run, const std::string& what) {
   return "set title " + quote(run.model + ": " + what) + "\n";
 }
 
+/// The characters of the longest tick label ("%g") of step `step` over [lo, lo + span].
+std::size_t tick_label_chars(double lo, double span, double step) {
+  std::size_t chars = 1;
+  const double k0 = std::ceil(lo / step - 1e-9), k1 = std::floor((lo + span) / step + 1e-9);
+  for (double k = k0; k <= k1 && k - k0 < 1000; ++k) {
+    char b[40];
+    const double v = k * step;
+    std::snprintf(b, sizeof b, "%g", std::abs(v) < 1e-12 * step ? 0.0 : v);
+    chars = std::max(chars, std::strlen(b));
+  }
+  return chars;
+}
+
+}  // namespace
+
+AxisTicks axis_ticks(double lo, double span, double pixels, int font, bool horizontal) {
+  if (!(span > 0) || !(pixels > 0)) return {};
+  // From about 10 intervals over the span up: the first 1-2-5 step with two
+  // labels or more whose labels, side by side (horizontal) or stacked
+  // (vertical), have room between them: horizontal, a gap of two characters or
+  // a third of the longest label; vertical, one line. Horizontal labels that
+  // do not fit twice are turned upright (then one line apart).
+  const double p = std::pow(10.0, std::floor(std::log10(span / 10)));
+  const double line = font * 4.0 / 3.0;
+  for (int turn = 0; turn < 2; ++turn)
+    for (int k = 0; k < 30; ++k) {
+      const double step = std::array<double, 3>{1, 2, 5}[static_cast<std::size_t>(k % 3)] * p * std::pow(10.0, k / 3);
+      if (step < span / 10 * (1 - 1e-9)) continue;
+      const double labels = std::floor((lo + span) / step + 1e-9) - std::ceil(lo / step - 1e-9) + 1;
+      if (labels < 2) break;
+      const double gap = pixels * step / span;  // pixels from one tick to the next
+      const auto chars = static_cast<double>(tick_label_chars(lo, span, step));
+      const double need = horizontal && turn == 0 ? (chars + std::max(2.0, chars / 3)) * char_px(font) : 2.0 * line;
+      if (gap >= need) return {step, turn == 1};
+    }
+  return {span, false};
+}
+
+namespace {
+
 /// Equal axis scale when the data's aspect allows a readable figure (then a
-/// wide figure gets its legend below and a lower canvas, `o.height`);
-/// returns the title suffix.
-std::string equal_scale(std::ostringstream& s, double hspan, double vspan, PlotOptions& o) {
+/// wide figure gets its legend below and a lower canvas, `o.height`), with the
+/// tick steps chosen so that the tick labels do not overlap on the plot box
+/// this scale gives (its size estimated from the canvas, the margins and the
+/// legend of `key_chars` characters); returns the title suffix.
+std::string equal_scale(std::ostringstream& s, double hlo, double hspan, double vlo, double vspan, PlotOptions& o,
+                        int key_chars) {
   const double a = (vspan > 0 ? vspan : 1e-3) / std::max(hspan, 1e-9);
   if (hspan > 0 && vspan > 0 && (a < 1.0 / 12 || a > 4)) return " (axes NOT to the same scale)";
   s << "set size ratio -1\nset autoscale fix\nset offsets graph 0.03, graph 0.03, graph 0.06, graph 0.06\n";
+  bool wide = false;
   if (a < 0.6) {  // wide: legend below, canvas about as high as the plot needs
     s << "set key below horizontal noreverse Right width 0\n";
     const double plot_w = o.width - 130.0;
     const int h = static_cast<int>(std::lround(plot_w * std::max(a, 0.05) * 1.15 + 190));
     o.height = std::clamp(h, static_cast<int>(0.45 * o.width), o.height);
+    wide = true;
   }
+  if (!(hspan > 0) || !(vspan > 0)) return " (equal scales)";
+  // The plot box: the drawn ranges (the data and the offsets above) at one
+  // scale, in the canvas less the margins: title, x tick labels and x label
+  // (about 7 lines) or with the legend below 3 more; the y label and tick
+  // labels on the left; the legend on the right unless below.
+  const int font = font_points(o.width);
+  const double line = font * 4.0 / 3.0, ch = char_px(font);
+  const double hr = 1.06 * hspan, vr = 1.12 * vspan, hlo_d = hlo - 0.03 * hspan, vlo_d = vlo - 0.06 * vspan;
+  const double box_h = o.height - (wide ? 10.0 : 7.0) * line;
+  const double v_step0 = axis_ticks(vlo_d, vr, box_h, font, false).step;
+  const double left = (static_cast<double>(tick_label_chars(vlo_d, vr, v_step0)) + 3.5) * ch;
+  const double box_w = o.width - left - (wide ? 2.0 * ch : (key_chars + 7.0) * ch);
+  const double w = std::min(box_w, box_h * hr / vr), h = w * vr / hr;
+  const AxisTicks xt = axis_ticks(hlo_d, hr, w, font, true);
+  s << "# Tick steps for a plot box of about " << std::lround(w) << " x " << std::lround(h)
+    << " pixels: the tick labels do not overlap.\n"
+    << "set xtics " << num(xt.step) << (xt.rotate ? " rotate by 90 right" : "") << "\nset ytics "
+    << num(axis_ticks(vlo_d, vr, h, font, false).step) << "\n";
   return " (equal scales)";
 }
 
@@ -254,7 +327,8 @@ std::string fig_trajectories(const Run& run, const PlotOptions& opt) {
   std::ostringstream s;
   s << preamble(run, name, "trajectories in the vertical x-z plane");
   PlotOptions o = opt;
-  const std::string scale = equal_scale(s, run.x_span, run.z_span, o);
+  const std::string scale = equal_scale(s, run.x_lo, run.x_span, run.z_lo, run.z_span, o,
+                                        run.has_body && run.link_at_origin ? 35 : 20);
   s << title(run, "trajectories in the x-z plane" + scale);
   s << "set xlabel 'x (m)'\nset ylabel 'z (m), up; surface z = 0'\n";
   if (run.second_sphere) s << sphere2_functions(run);
@@ -312,7 +386,7 @@ std::string fig_paths(const Run& run, const PlotOptions& opt) {
   std::ostringstream s;
   s << preamble(run, name, "horizontal paths of the cable ends");
   PlotOptions o = opt;
-  const std::string scale = equal_scale(s, run.x_span, run.y_span, o);
+  const std::string scale = equal_scale(s, run.x_lo, run.x_span, run.y_lo, run.y_span, o, 20);
   s << title(run, "horizontal paths of the cable ends" + scale);
   s << "set xlabel 'x (m)'\nset ylabel 'y (m)'\n";
   if (run.second_sphere) s << sphere2_functions(run);
@@ -349,23 +423,37 @@ std::string fig_depth(const Run& run, const PlotOptions& o) {
   return s.str();
 }
 
+/// Script text that renders a multiplot body `plot_cmds` as PNG and SVG (replot
+/// does not repeat a multiplot: the commands are written once per terminal).
+std::string render_multi(const std::string& name, const std::string& plot_cmds, const PlotOptions& o);
+
 std::string fig_winch(const Run& run, const PlotOptions& o) {
   const std::string name = "winch";
   std::ostringstream s;
-  s << preamble(run, name, "deployed length and pay-out speed");
-  s << title(run, "winch: deployed length and pay-out speed" +
-                      std::string(run.has_rating ? " (tow tension / rating on the right, x 100)" : ""));
-  s << "set xlabel 'time (s)'\nset ylabel 'deployed length (m)'\nset y2label 'pay-out speed (m/s)" +
-           std::string(run.has_rating ? "; tow tension / rating (%)" : "") + "'\nset y2tics\nset ytics nomirror\n"
-    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n";
+  s << preamble(run, name, "deployed length, pay-out speed and winch load");
+  // The pay-out speed on its own right-hand axis, over its own range (0 in it)
+  // with a tenth of it free above and below.
+  const double lo = std::min(run.payout_lo, 0.0), hi = std::max(run.payout_hi, 0.0);
+  const double pad = hi - lo > 1e-9 ? 0.1 * (hi - lo) : 0.1;
   std::ostringstream p;
-  p << "plot ts using 'time':'deployed_length' with lines lw 2 lc rgb '" << kPalette[0]
+  p << "set multiplot layout " << (run.has_rating ? 2 : 1) << ",1 title " << quote(run.model + ": winch") << "\n"
+    << "set key top horizontal outside center samplen 2\n"
+    << "set lmargin 10\nset rmargin 10  # the same plot width in both panels\n"
+    << "set xlabel 'time (s)'\nset xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n"
+    << "set title 'deployed length (left axis) and pay-out speed (right axis)'\n"
+    << "set ylabel 'deployed length (m)'\nset y2label 'pay-out speed (m/s)'\n"
+    << "set y2range [" << num(lo - pad) << ":" << num(hi + pad) << "]\nset y2tics\nset ytics nomirror\n"
+    << "plot ts using 'time':'deployed_length' with lines lw 2 lc rgb '" << kPalette[0]
     << "' title 'deployed length', \\\n  ts using 'time':'payout_speed' axes x1y2 with lines lw 1.5 lc rgb '"
-    << kPalette[1] << "' title 'pay-out speed (< 0: hauling in)'";
+    << kPalette[1] << "' title 'pay-out speed (< 0: hauling in)'\n";
   if (run.has_rating)
-    p << ", \\\n  ts using 'time':(100*column('winch_load_ratio')) axes x1y2 with lines lw 1 dt 2 lc rgb '"
-      << kPalette[2] << "' title 'tow tension / winch rating (%)'";
-  s << render(name, p.str(), o);
+    p << "unset y2tics\nunset y2label\nset ytics mirror\n"
+      << "unset key\nset title 'winch load: tow tension / winch rating'\nset ylabel 'tow tension / rating (%)'\n"
+      << "set yrange [0:*]\n"
+      << "plot ts using 'time':(100*column('winch_load_ratio')) with lines lw 1.5 lc rgb '" << kPalette[2]
+      << "' title 'tow tension / winch rating (%)'\n";
+  p << "unset multiplot";
+  s << render_multi(name, p.str(), o);
   return s.str();
 }
 
@@ -405,7 +493,8 @@ std::string fig_shapes(const Run& run, const PlotOptions& opt, bool plan) {
   s << preamble(run, name, plan ? "cable shapes, plan view" : "cable shapes, side view");
   // Shapes span less than the trajectories; scale them on the nodes' spans.
   PlotOptions o = opt;
-  const std::string scale = equal_scale(s, run.x_span, plan ? run.y_span : run.z_span, o);
+  const std::string scale = equal_scale(s, run.x_lo, run.x_span, plan ? run.y_lo : run.z_lo,
+                                        plan ? run.y_span : run.z_span, o, 10);
   s << title(run, std::string(plan ? "cable shapes, plan view (x-y)" : "cable shapes, side view (x-z)") + scale);
   s << "set xlabel 'x (m)'\nset ylabel " << (plan ? "'y (m)'" : "'z (m), up; surface z = 0'") << "\n"
     << "set key title 'time'\n"
@@ -494,7 +583,7 @@ std::string fig_tension_along(const Run& run, const PlotOptions& o) {
 /// does not repeat a multiplot: the commands are written once per terminal).
 std::string render_multi(const std::string& name, const std::string& plot_cmds, const PlotOptions& o) {
   std::ostringstream s;
-  const int font = std::max(9, static_cast<int>(std::lround(o.width / 80.0)));
+  const int font = font_points(o.width);
   s << "set terminal pngcairo size " << o.width << "," << o.height << " noenhanced font 'Sans," << font
     << "' linewidth 1.5\n"
     << "set output '" << name << ".png'\n"
@@ -830,6 +919,10 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   run.has_winch = ts.has("payout_speed");
   run.has_rating = ts.has("winch_load_ratio");
   run.has_layback = ts.has("layback");
+  for (std::size_t r = 0; r < ts.rows.size(); ++r) {
+    const double v = run.has_winch ? ts.at(r, "payout_speed") : 0.0;
+    if (std::isfinite(v)) run.payout_lo = std::min(run.payout_lo, v), run.payout_hi = std::max(run.payout_hi, v);
+  }
   std::vector<std::string> need{"time",        "tow_x",       "tow_y", "tow_z", "tow_force_x",
                                 "tow_force_y", "tow_force_z", "end_x", "end_y", "end_z"};
   if (run.has_body)
@@ -895,6 +988,9 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   run.x_span = xmax > xmin ? xmax - xmin : 0;
   run.y_span = ymax > ymin ? ymax - ymin : 0;
   run.z_span = zmax > zmin ? zmax - zmin : 0;
+  run.x_lo = run.x_span > 0 ? xmin : 0;
+  run.y_lo = run.y_span > 0 ? ymin : 0;
+  run.z_lo = run.z_span > 0 ? zmin : 0;
   run.marker_every = nice((run.t1 - run.t0) / 12);
   const double dt_out = run.min_dt > 0 ? run.min_dt : 1;
   run.marker_rows = std::max(1, static_cast<int>(std::lround(run.marker_every / dt_out)));

@@ -55,6 +55,21 @@ struct PlotOptions {
 int plot_run(const std::string& dir, std::ostream& log);
 int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& options);
 
+/// Tick marks of a figure's axis: the step between labelled ticks and whether
+/// the labels are turned upright (rotated by 90 degrees) to fit.
+struct AxisTicks {
+  double step = 0;
+  bool rotate = false;
+};
+
+/// The ticks of an axis spanning [lo, lo + span] over `pixels` pixels with
+/// labels in a font of `font` points: the smallest 1-2-5 step of at least a
+/// tenth of the span that gives two labels or more with room between them
+/// (`horizontal`: side by side, a gap of two characters or a third of the
+/// longest label, else upright; vertical: one line apart). Step 0 when the
+/// span or the pixels are not > 0.
+AxisTicks axis_ticks(double lo, double span, double pixels, int font, bool horizontal);
+
 /// The figure names (without extension) plot_run renders for a run with or
 /// without a body, planar or 3D; `single`: one output time (the output of
 /// `towsim statics --out`), where only the cable's shape and tension are drawn;

@@ -131,37 +131,59 @@ const std::vector<std::pair<std::string, std::string>>& figure_captions() {
   return c;
 }
 
-/// The summary's key results as table rows (label, value, time or "").
-std::vector<std::array<std::string, 3>> summary_rows(const json& sm) {
-  std::vector<std::array<std::string, 3>> rows;
+}  // namespace
+
+std::string summary_unit(const std::string& key) {
+  auto ends = [&key](const std::string& e) {
+    return key.size() >= e.size() && key.compare(key.size() - e.size(), e.size(), e) == 0;
+  };
+  if (key == "end_time" || key == "wall_seconds") return "s";
+  if (key == "steps" || key == "rejected_steps" || key == "rhs_evaluations") return "count";
+  if (key == "samples") return "output times";
+  if (key == "max_utilisation") return "fraction of the breaking load";
+  if (ends("_deg")) return "deg";
+  if (ends("_force") || ends("_tension")) return "N";
+  if (ends("_depth") || ends("_length") || ends("layback")) return "m";
+  return "";
+}
+
+namespace {
+
+/// The summary's key results as table rows (label, value, unit, time or "").
+std::vector<std::array<std::string, 4>> summary_rows(const json& sm) {
+  std::vector<std::array<std::string, 4>> rows;
   auto value = [](const json& j) { return j.is_number() ? fmt(j.get<double>()) : std::string("&ndash;"); };
   const auto fin = sm.value("final", json::object());
   auto final_row = [&](const char* key, const std::string& label) {
-    if (fin.is_object() && fin.contains(key)) rows.push_back({label, value(fin[key]), ""});
+    if (fin.is_object() && fin.contains(key)) rows.push_back({label, value(fin[key]), summary_unit(key), ""});
   };
   if (sm.contains("status"))
-    rows.push_back({"status", html(sm["status"].is_string() ? sm["status"].get<std::string>() : ""), ""});
-  if (sm.contains("end_time")) rows.push_back({"simulated time [s]", value(sm["end_time"]), ""});
-  final_row("layback", "final layback [m]");
-  final_row("body_depth", "final body depth [m]");
-  final_row("end_depth", "final cable end depth [m]");
-  final_row("tow_tension", "final tow tension [N]");
-  final_row("link_tension", "final link tension [N]");
-  final_row("deployed_length", "deployed cable length [m]");
+    rows.push_back({"status", html(sm["status"].is_string() ? sm["status"].get<std::string>() : ""), "", ""});
+  if (sm.contains("end_time")) rows.push_back({"simulated time", value(sm["end_time"]), "s", ""});
+  final_row("layback", "final layback");
+  final_row("body_depth", "final body depth");
+  final_row("end_depth", "final cable end depth");
+  final_row("tow_tension", "final tow tension");
+  final_row("link_tension", "final link tension");
+  final_row("deployed_length", "final deployed cable length");
   const auto ex = sm.value("extremes", json::object());
   if (ex.is_object())
     for (const auto& [k, v] : ex.items()) {
+      const std::string unit = summary_unit(k);
       if (v.is_object() && v.contains("value")) {
-        rows.push_back({html(k), value(v["value"]), value(v.value("time", json()))});
+        rows.push_back({html(k), value(v["value"]), unit, value(v.value("time", json()))});
       } else if (v.is_object() && v.contains("min") && v.contains("max")) {
         rows.push_back(
-            {html(k) + " min", value(v["min"].value("value", json())), value(v["min"].value("time", json()))});
+            {html(k) + " min", value(v["min"].value("value", json())), unit, value(v["min"].value("time", json()))});
         rows.push_back(
-            {html(k) + " max", value(v["max"].value("value", json())), value(v["max"].value("time", json()))});
+            {html(k) + " max", value(v["max"].value("value", json())), unit, value(v["max"].value("time", json()))});
       }
     }
+  if (sm.contains("max_utilisation") && sm["max_utilisation"].is_number())
+    rows.push_back({"max_utilisation", value(sm["max_utilisation"]), summary_unit("max_utilisation"),
+                    value(sm.value("max_utilisation_time", json()))});
   for (const char* k : {"steps", "rhs_evaluations", "wall_seconds", "samples"})
-    if (sm.contains(k)) rows.push_back({k, value(sm[k]), ""});
+    if (sm.contains(k)) rows.push_back({k, value(sm[k]), summary_unit(k), ""});
   return rows;
 }
 
@@ -254,15 +276,71 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
   data["info"] = jinfo;
   data["body"] = nullptr;
   if (body) {
-    json spheres = json::array();
-    try {  // the model's load spheres, from the scenario echo
-      const auto& sp = sm.at("scenario").at("body").at("spheres");
-      for (const auto& s : sp) spheres.push_back({{"center", s.at("center")}, {"radius", s.at("radius")}});
+    // The body's shapes at their true size, body axes, metres, from the
+    // scenario echo: the load spheres, the hull cylinders and the fins
+    // (`surfaces`, drawn as squares of their area).
+    json spheres = json::array(), cylinders = json::array(), surfaces = json::array();
+    try {
+      const auto& b = sm.at("scenario").at("body");
+      if (b.contains("spheres"))
+        for (const auto& s : b.at("spheres"))
+          spheres.push_back({{"center", s.at("center")}, {"radius", s.at("radius")}});
+      if (b.contains("cylinders"))
+        for (const auto& c : b.at("cylinders"))
+          cylinders.push_back({{"center", c.at("center")},
+                               {"axis", c.at("axis")},
+                               {"length", c.at("length")},
+                               {"diameter", c.at("diameter")}});
+      if (b.contains("surfaces"))
+        for (const auto& f : b.at("surfaces"))
+          surfaces.push_back({{"center", f.at("center")},
+                              {"chord", f.at("chord")},
+                              {"normal", f.at("normal")},
+                              {"area", f.at("area")}});
     } catch (const std::exception&) {
-      spheres = json::array();  // no echo (statics of an older version): one marker sphere
+      spheres = cylinders = surfaces = json::array();  // no usable echo: one marker sphere (the viewer says so)
     }
-    data["body"] = {{"pos", jpos}, {"rpy", jrpy}, {"spheres", spheres}};
+    data["body"] = {
+        {"pos", jpos}, {"rpy", jrpy}, {"spheres", spheres}, {"cylinders", cylinders}, {"surfaces", surfaces}};
   }
+  // The camera's framing: on the cable (and body) of the frame shown, at a
+  // distance for the largest extent the cable takes in any frame (the
+  // diagonal of the box around its joints and the body origin), so the view
+  // follows the cable at one zoom; and the whole run (every frame's box).
+  double cable_extent = 0;
+  std::array<double, 3> all_lo{1e300, 1e300, 1e300}, all_hi{-1e300, -1e300, -1e300};
+  std::vector<std::array<double, 3>> centres;
+  for (std::size_t i = 0; i < jn.size(); ++i) {
+    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    auto add = [&](double x, double y, double z) {
+      const std::array<double, 3> p{x, y, z};
+      for (std::size_t d = 0; d < 3; ++d)
+        if (std::isfinite(p[d])) lo[d] = std::min(lo[d], p[d]), hi[d] = std::max(hi[d], p[d]);
+    };
+    const auto& p = jn[i];
+    for (std::size_t k = 0; k + 2 < p.size(); k += 3)
+      if (p[k].is_number() && p[k + 1].is_number() && p[k + 2].is_number())
+        add(p[k].get<double>(), p[k + 1].get<double>(), p[k + 2].get<double>());
+    if (body && jpos[i][0].is_number() && jpos[i][1].is_number() && jpos[i][2].is_number())
+      add(jpos[i][0].get<double>(), jpos[i][1].get<double>(), jpos[i][2].get<double>());
+    if (lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]) {
+      centres.push_back(centres.empty() ? std::array<double, 3>{0, 0, 0} : centres.back());
+      continue;
+    }
+    cable_extent = std::max(cable_extent, std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]));
+    centres.push_back({0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])});
+    for (std::size_t d = 0; d < 3; ++d) all_lo[d] = std::min(all_lo[d], lo[d]), all_hi[d] = std::max(all_hi[d], hi[d]);
+  }
+  if (all_lo[0] > all_hi[0]) all_lo = all_hi = {0, 0, 0};
+  json jc = json::array();
+  for (const auto& c : centres) jc.push_back({jnum(c[0]), jnum(c[1]), jnum(c[2])});
+  data["view"] = {
+      {"cable_centres", jc},
+      {"cable_extent", jnum(std::max(cable_extent, 1e-3))},
+      {"all_centre",
+       {jnum(0.5 * (all_lo[0] + all_hi[0])), jnum(0.5 * (all_lo[1] + all_hi[1])), jnum(0.5 * (all_lo[2] + all_hi[2]))}},
+      {"all_extent",
+       jnum(std::max(std::hypot(all_hi[0] - all_lo[0], all_hi[1] - all_lo[1], all_hi[2] - all_lo[2]), 1e-3))}};
   return true;
 }
 
@@ -358,6 +436,7 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
   h << "<h2>3-D view</h2>\n";
   if (!opt.viewer_js.empty()) {
     h << "<div id=\"view3d\"></div>\n<div id=\"controls\"><button id=\"play\" type=\"button\">Play</button>"
+      << "<button id=\"fit\" type=\"button\">Whole run</button>"
       << "<input id=\"frame\" type=\"range\" min=\"0\" max=\"0\" value=\"0\" aria-label=\"time\">"
       << "<span id=\"frame-label\"></span></div>\n<p class=\"small\" id=\"scale-note\"></p>\n";
     if (!has_nodes)
@@ -370,9 +449,11 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
   }
 
   // 2. The summary.
-  h << "<h2>Summary</h2>\n<table>\n<tr><th>quantity</th><th>value</th><th>at t [s]</th></tr>\n";
+  h << "<h2>Summary</h2>\n<table id=\"summary\">\n<tr><th>quantity</th><th>value</th><th>unit</th><th>at t "
+       "(s)</th></tr>\n";
   for (const auto& r : summary_rows(sm))
-    h << "<tr><td>" << r[0] << "</td><td class=\"n\">" << r[1] << "</td><td class=\"n\">" << r[2] << "</td></tr>\n";
+    h << "<tr><td>" << r[0] << "</td><td class=\"n\">" << r[1] << "</td><td>" << html(r[2]) << "</td><td class=\"n\">"
+      << r[3] << "</td></tr>\n";
   h << "</table>\n";
   if (sm.empty()) h << "<p class=\"small\">No summary.json in this directory.</p>\n";
 

@@ -27,6 +27,10 @@ struct ReportOptions {
 std::string_view embedded_viewer_js();
 std::string_view embedded_viewer_note();
 
+/// The unit of a summary.json key as the report's summary table prints it
+/// ("m", "N", "deg", "s", "count", ...; "" for a key without one, e.g. status).
+std::string summary_unit(const std::string& key);
+
 /// Options with the embedded viewer.
 ReportOptions default_report_options();
 

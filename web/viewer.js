@@ -55,14 +55,13 @@ function main() {
   const host = document.getElementById('view3d');
   const F = data.times.length, N = data.nodes[0].length / 3;
 
-  // Bounds over every frame (nodes, body).
-  const box = new THREE.Box3();
-  for (const fr of data.nodes)
-    for (let k = 0; k < N; k++) box.expandByPoint(v3(fr[3 * k], fr[3 * k + 1], fr[3 * k + 2]));
-  if (data.body) for (const p of data.body.pos) box.expandByPoint(v3(p[0], p[1], p[2]));
-  box.expandByPoint(new THREE.Vector3(box.min.x, 0, box.min.z));  // the surface is in view
-  const size = box.getSize(new THREE.Vector3()), centre = box.getCenter(new THREE.Vector3());
-  const extent = Math.max(size.x, size.y, size.z, 1e-3);
+  // The framing (report.cpp): each frame's cable-and-body centre, the largest
+  // extent the cable takes (the view follows the cable at that zoom), and the
+  // whole run's centre and extent (the "Whole run" view).
+  const view = data.view;
+  const centreAt = (i) => { const c = view.cable_centres[i]; return v3(c[0], c[1], c[2]); };
+  const cableExtent = Math.max(view.cable_extent, 1e-3), allExtent = Math.max(view.all_extent, cableExtent);
+  const allCentre = v3(view.all_centre[0], view.all_centre[1], view.all_centre[2]);
 
   const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   renderer.setPixelRatio(window.devicePixelRatio || 1);
@@ -75,28 +74,36 @@ function main() {
   sun.position.set(1, 2, 1.5);
   scene.add(sun);
 
-  const camera = new THREE.PerspectiveCamera(40, host.clientWidth / host.clientHeight, extent * 1e-3, extent * 100);
-  // Far enough for the whole box (and the surface above it) to fit the view,
-  // looking from 25 degrees above the horizontal, across the tow direction.
-  const radius = 0.5 * Math.hypot(size.x, size.y, size.z);
-  const dist = (1.25 * radius) / Math.sin((0.5 * 40 * Math.PI) / 180);
-  const el = (25 * Math.PI) / 180;
-  camera.position.copy(centre).add(new THREE.Vector3(0.45 * dist * Math.cos(el), dist * Math.sin(el),
-    0.9 * dist * Math.cos(el)));
+  // Near enough to look at a body of a metre from a few metres, far enough
+  // for the whole run.
+  const camera = new THREE.PerspectiveCamera(40, host.clientWidth / host.clientHeight,
+    Math.min(0.05, cableExtent * 1e-4), allExtent * 100);
   const controls = new OrbitControls(camera, renderer.domElement);
-  controls.target.copy(centre);
-  controls.update();
+  // Just far enough for a sphere of diameter `extent` to fit the view, looking
+  // from 25 degrees above the horizontal, across the tow direction.
+  function frameOn(centre, extent) {
+    const dist = (0.5 * extent) / Math.sin((0.5 * 40 * Math.PI) / 180);
+    const el = (25 * Math.PI) / 180;
+    camera.position.copy(centre).add(new THREE.Vector3(0.45 * dist * Math.cos(el), dist * Math.sin(el),
+      0.9 * dist * Math.cos(el)));
+    controls.target.copy(centre);
+    controls.update();
+  }
 
-  // Sea surface (z = 0) and a grid on it.
-  const span = 1.3 * Math.max(size.x, size.z, extent * 0.5);
+  // Sea surface (z = 0) and a grid on it, over the whole run.
+  const allBox = new THREE.Box3();
+  for (const fr of data.nodes)
+    for (let k = 0; k < N; k++) allBox.expandByPoint(v3(fr[3 * k], fr[3 * k + 1], fr[3 * k + 2]));
+  const allSize = allBox.getSize(new THREE.Vector3());
+  const span = 1.3 * Math.max(allSize.x, allSize.z, cableExtent);
   const sea = new THREE.Mesh(new THREE.PlaneGeometry(span, span),
     new THREE.MeshBasicMaterial({ color: 0x4f8fc0, transparent: true, opacity: 0.15, side: THREE.DoubleSide,
       depthWrite: false }));
   sea.rotation.x = -Math.PI / 2;
-  sea.position.set(centre.x, 0, centre.z);
+  sea.position.set(allCentre.x, 0, allCentre.z);
   scene.add(sea);
   const grid = new THREE.GridHelper(span, 10, 0x7aa6c8, 0xa9c6dc);
-  grid.position.set(centre.x, 0, centre.z);
+  grid.position.set(allCentre.x, 0, allCentre.z);
   scene.add(grid);
 
   // The tow point's path over the whole run.
@@ -112,28 +119,51 @@ function main() {
   scene.add(new THREE.Line(cableGeom, new THREE.LineBasicMaterial({ vertexColors: true })));
   scene.add(new THREE.Points(cableGeom, new THREE.PointsMaterial({ vertexColors: true, size: 4,
     sizeAttenuation: false })));
-  const mark = extent * 0.012;
-  const tow = new THREE.Mesh(new THREE.SphereGeometry(mark, 16, 12), new THREE.MeshLambertMaterial({ color: 0xd62728 }));
+  const tow = new THREE.Mesh(new THREE.SphereGeometry(cableExtent * 0.008, 16, 12),
+    new THREE.MeshLambertMaterial({ color: 0xd62728 }));
   scene.add(tow);
 
-  // The body: its spheres (the model's load spheres), drawn at least 2% of
-  // the scene so that a small fish on a long cable stays visible.
-  let body = null, bodyScale = 1;
+  // The body at its true size (metres, body axes): its load spheres, hull
+  // cylinders and fins (squares of their area); a dot of constant size on
+  // the screen marks where it is when it is too small to see.
+  let body = null, bodyMarker = null, bodyLength = 0, bodyShapes = false;
   if (data.body) {
     body = new THREE.Group();
-    const spheres = data.body.spheres.length ? data.body.spheres : [{ center: [0, 0, 0], radius: 0.05 * extent }];
-    let reach = 0;
-    for (const s of spheres) reach = Math.max(reach, Math.hypot(...s.center) + s.radius);
-    bodyScale = Math.max(1, (0.02 * extent) / Math.max(reach, 1e-9));
     const mat = new THREE.MeshLambertMaterial({ color: 0xff7f0e });
-    for (const s of spheres) {
+    const finMat = new THREE.MeshLambertMaterial({ color: 0xb85c00, side: THREE.DoubleSide });
+    const B = (p) => v3(p[0], p[1], p[2]);
+    for (const s of data.body.spheres) {
       const m = new THREE.Mesh(new THREE.SphereGeometry(s.radius, 24, 16), mat);
-      m.position.copy(v3(s.center[0], s.center[1], s.center[2]));
+      m.position.copy(B(s.center));
       body.add(m);
     }
-    body.add(new THREE.AxesHelper(reach * 1.5));  // body axes: x red, y green, z blue (three.js frame)
-    body.scale.setScalar(bodyScale);
+    for (const c of data.body.cylinders) {
+      // CylinderGeometry runs along y: turn y onto the cylinder's axis.
+      const m = new THREE.Mesh(new THREE.CylinderGeometry(0.5 * c.diameter, 0.5 * c.diameter, c.length, 24), mat);
+      m.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), B(c.axis).normalize());
+      m.position.copy(B(c.center));
+      body.add(m);
+    }
+    for (const f of data.body.surfaces) {
+      // A square of the fin's area in its plane (chord and normal x chord).
+      const side = Math.sqrt(f.area), x = B(f.chord).normalize(), n = B(f.normal).normalize();
+      const y = new THREE.Vector3().crossVectors(n, x).normalize();
+      const m = new THREE.Mesh(new THREE.PlaneGeometry(side, side), finMat);
+      m.quaternion.setFromRotationMatrix(new THREE.Matrix4().makeBasis(x, y, n));
+      m.position.copy(B(f.center));
+      body.add(m);
+    }
+    bodyShapes = body.children.length > 0;
+    if (!bodyShapes) body.add(new THREE.Mesh(new THREE.SphereGeometry(0.5, 24, 16), mat));  // no shapes: a 1 m ball
+    const size = new THREE.Box3().setFromObject(body).getSize(new THREE.Vector3());
+    // towsim axes of the body (three.js x, y, z = towsim x, z, -y).
+    root.setAttribute('data-body-size', [size.x, size.z, size.y].map((v) => v.toPrecision(6)).join(','));
+    bodyLength = Math.max(size.x, size.y, size.z);
+    body.add(new THREE.AxesHelper(0.75 * bodyLength));  // body axes: x red, y green, z blue (three.js frame)
     scene.add(body);
+    const dot = new THREE.BufferGeometry().setFromPoints([new THREE.Vector3()]);
+    bodyMarker = new THREE.Points(dot, new THREE.PointsMaterial({ color: 0xff7f0e, size: 7, sizeAttenuation: false }));
+    scene.add(bodyMarker);
   }
   const tmax = Math.max(data.tension_max || 0, 1e-12);
   const c = new THREE.Color();
@@ -142,9 +172,12 @@ function main() {
   const slider = document.getElementById('frame'), label = document.getElementById('frame-label');
   const play = document.getElementById('play');
   slider.max = String(F - 1);
+  const fit = document.getElementById('fit');
   document.getElementById('scale-note').textContent =
-    (body && bodyScale > 1 ? `Body drawn ${bodyScale.toFixed(0)} times its size. ` : '') +
-    `Cable coloured by tension, 0 to ${tmax.toPrecision(4)} N (dark blue to yellow). Drag to rotate, scroll to zoom.`;
+    (body ? (bodyShapes ? `Body drawn at its true size (${bodyLength.toPrecision(3)} m), marked by an orange dot. `
+      : 'Body: the scenario gives no shape; drawn as a 1 m ball, marked by an orange dot. ') : '') +
+    `Cable coloured by tension, 0 to ${tmax.toPrecision(4)} N (dark blue to yellow). ` +
+    'The view follows the cable; "Whole run" shows the whole track. Drag to rotate, scroll to zoom.';
 
   function show(i) {
     const fr = data.nodes[i], T = data.tension[i];
@@ -162,11 +195,22 @@ function main() {
       const b = data.body.pos[i], a = data.body.rpy[i];
       body.position.copy(v3(b[0], b[1], b[2]));
       body.quaternion.copy(attitude(a[0], a[1], a[2]));
+      bodyMarker.position.copy(body.position);
+    }
+    if (following) {  // keep the camera where the user turned it, relative to the cable
+      const d = centreAt(i).sub(controls.target);
+      camera.position.add(d);
+      controls.target.add(d);
     }
     label.textContent = `t = ${data.times[i]} s` + (data.info ? '  ' + data.info[i] : '');
   }
 
-  let frame = 0, playing = false, last = 0;
+  let frame = 0, playing = false, last = 0, following = true;
+  fit.addEventListener('click', () => {
+    following = !following;
+    fit.textContent = following ? 'Whole run' : 'Follow the cable';
+    if (following) frameOn(centreAt(frame), cableExtent); else frameOn(allCentre, allExtent);
+  });
   slider.addEventListener('input', () => { frame = Number(slider.value); show(frame); });
   play.addEventListener('click', () => {
     playing = !playing;
@@ -201,8 +245,18 @@ function main() {
     frame = best;
     slider.value = String(frame);
   }
+  frameOn(centreAt(frame), cableExtent);
   show(frame);
   renderer.render(scene, camera);
+
+  // How much of the view the cable's frame takes: the larger of the widths
+  // and heights of its joints' screen box, as fractions of the view's.
+  let x0 = 1, x1 = -1, y0 = 1, y1 = -1;
+  for (let k = 0; k < N; k++) {
+    const q = new THREE.Vector3(pos[3 * k], pos[3 * k + 1], pos[3 * k + 2]).project(camera);
+    x0 = Math.min(x0, q.x); x1 = Math.max(x1, q.x); y0 = Math.min(y0, q.y); y1 = Math.max(y1, q.y);
+  }
+  root.setAttribute('data-cable-view-fraction', (0.5 * Math.max(x1 - x0, y1 - y0)).toFixed(3));
 
   // The first frame is drawn: count the pixels that are not background.
   const gl = renderer.getContext();

@@ -7,10 +7,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 
 #include "../support/cli.hpp"
+#include "../support/png.hpp"
 #include "plot.hpp"
 
 namespace fs = std::filesystem;
@@ -271,4 +273,201 @@ TEST_F(PlotRun, StaleFiguresOfAnEarlierPlotAreRemoved) {
   std::ostringstream log;
   ASSERT_EQ(plot_run(dir_.string(), log), 0) << log.str();
   EXPECT_FALSE(fs::exists(dir_ / "plots" / "body_angles.png"));
+}
+
+// ------------------------------------------------- readable axes (issue 30)
+
+using towsim::io::axis_ticks;
+
+// The tick step follows the span AND the pixels the axis gets: a 2910 m wide
+// x axis drawn 226 pixels wide (a tall equal-scale plan view, 13 point font:
+// 5-character labels of 52 px need 73 px from tick to tick) takes 1000 m,
+// not gnuplot's 500 m (39 px: "-1500-1000-500" ran together); 901 pixels wide,
+// 500 m; labels that do not fit twice side by side stand upright.
+TEST(AxisTicks, StepFromTheSpanAndThePixels) {
+  EXPECT_EQ(axis_ticks(-1556.2, 2910.3, 226, 13, true).step, 1000);
+  EXPECT_FALSE(axis_ticks(-1556.2, 2910.3, 226, 13, true).rotate);
+  EXPECT_EQ(axis_ticks(-1556.2, 2910.3, 901, 13, true).step, 500);
+  // Vertical: one line (17.3 px at 13 points) between stacked labels.
+  EXPECT_EQ(axis_ticks(-7000, 7450, 579, 13, false).step, 1000);
+  EXPECT_EQ(axis_ticks(-7000, 7450, 60, 13, false).step, 5000);
+  // 120 px: 1000 m gives 41 px (< 73 px side by side), 2000 m one label only:
+  // upright labels (two lines apart, 35 px) at 1000 m.
+  const auto upright = axis_ticks(-1556.2, 2910.3, 120, 13, true);
+  EXPECT_EQ(upright.step, 1000);
+  EXPECT_TRUE(upright.rotate);
+  EXPECT_EQ(axis_ticks(0, 0, 500, 13, true).step, 0);
+}
+
+namespace {
+
+/// Rows of dark (grey < 60: the black border and text, not the coloured
+/// curves) pixels spanning at least `share` of the width: the plot boxes' edges.
+std::vector<int> border_rows(const towsim::testing::Image& img, double share) {
+  std::vector<int> rows;
+  for (int y = 0; y < img.height; ++y) {
+    int n = 0;
+    for (int x = 0; x < img.width; ++x) n += img.dark(x, y, 60) ? 1 : 0;
+    if (n >= share * img.width) rows.push_back(y);
+  }
+  return rows;
+}
+
+/// Runs of columns with a dark pixel in rows [y0, y1), runs closer than
+/// `join` pixels merged (the characters of one label): [first, last] columns.
+std::vector<std::pair<int, int>> dark_runs(const towsim::testing::Image& img, int y0, int y1, int join) {
+  std::vector<std::pair<int, int>> runs;
+  for (int x = 0; x < img.width; ++x) {
+    bool d = false;
+    for (int y = y0; y < y1 && !d; ++y) d = img.dark(x, y, 128);
+    if (!d) continue;
+    if (!runs.empty() && x - runs.back().second <= join)
+      runs.back().second = x;
+    else
+      runs.emplace_back(x, x);
+  }
+  return runs;
+}
+
+}  // namespace
+
+class PlotPicture : public PlotRun {
+ protected:
+  /// A long survey line's plan view taller than wide: 2750 m east, then
+  /// 6650 m south (the shape of two-part-tow run for 3000 s).
+  void write_tall_track() {
+    std::ofstream ts(dir_ / "timeseries.csv");
+    ts << "time,tow_x,tow_y,tow_z,tow_force_x,tow_force_y,tow_force_z,end_x,end_y,end_z,tow_tension,end_depth\n";
+    std::ofstream nd(dir_ / "nodes.csv");
+    nd << "time,node,x,y,z,vx,vy,vz,tension\n";
+    for (int k = 0; k <= 100; ++k) {
+      const double t = 30.0 * k;
+      const double x = k < 30 ? -1500 + 2750.0 * k / 30 : 1250, y = k < 30 ? 0 : -6650.0 * (k - 30) / 70;
+      const double ex = k < 30 ? x - 100 : 1150, ey = k < 30 ? 0 : y + 100;
+      ts << t << ',' << x << ',' << y << ",0,5000,0,3000," << ex << ',' << ey << ",-200,5831," << 200 << '\n';
+      for (int j = 0; j <= 2; ++j)
+        nd << t << ',' << j << ',' << x + j * (ex - x) / 2 << ',' << y + j * (ey - y) / 2 << ',' << -100.0 * j
+           << ",0,0,0," << 5000 - 100 * j << '\n';
+    }
+    std::ofstream(dir_ / "summary.json") << "{\"model\": \"tall\", \"status\": \"ok\"}\n";
+  }
+
+  /// A winch run: paying out at 1 m/s from 600 m to 900 m, holding, hauling
+  /// back at 1 m/s; the tow tension 4 % to 11 % of the winch rating.
+  void write_winch_run() {
+    std::ofstream ts(dir_ / "timeseries.csv");
+    ts << "time,tow_x,tow_y,tow_z,tow_force_x,tow_force_y,tow_force_z,end_x,end_y,end_z,tow_tension,end_depth,"
+          "deployed_length,payout_speed,winch_load_ratio\n";
+    std::ofstream nd(dir_ / "nodes.csv");
+    nd << "time,node,x,y,z,vx,vy,vz,tension\n";
+    for (int k = 0; k <= 130; ++k) {
+      const double t = 10.0 * k;
+      const double v = t >= 60 && t < 360 ? 1.0 : t >= 700 && t < 1000 ? -1.0 : 0.0;
+      const double len = t < 60 ? 600 : t < 360 ? 600 + (t - 60) : t < 700 ? 900 : t < 1000 ? 900 - (t - 700) : 600;
+      ts << t << ',' << 2 * t << ",0,0,3000,0,1000," << 2 * t - 500 << ",0,-250,3162,250," << len << ',' << v << ','
+         << 0.04 + 0.07 * t / 1300 << '\n';
+      for (int j = 0; j <= 2; ++j)
+        nd << t << ',' << j << ',' << 2 * t - 250.0 * j << ",0," << -125.0 * j << ",0,0,0,3000\n";
+    }
+    std::ofstream(dir_ / "summary.json") << "{\"model\": \"synthetic\", \"status\": \"ok\"}\n";
+  }
+};
+
+// The x tick labels of a tall plan view stand apart on the rendered PNG: below
+// the plot box, one cluster of dark pixels per tick of the axis's range,
+// separated by at least 10 pixels (the characters of one label are 3-4 px
+// apart). Before, gnuplot's 500 m step put 6 labels in 226 px: 3 clusters.
+TEST_F(PlotPicture, PlanViewTickLabelsDoNotOverlap) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
+  write_tall_track();
+  std::ostringstream log;
+  ASSERT_EQ(plot_run(dir_.string(), log), 0) << log.str();
+  const std::string gp = towsim::testing::slurp(dir_ / "plots" / "paths_xy.gp");
+  EXPECT_NE(gp.find("\nset xtics 1000\n"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("\nset ytics 1000\n"), std::string::npos) << gp;
+  towsim::testing::Image img;
+  std::string error;
+  if (!towsim::testing::load_png((dir_ / "plots" / "paths_xy.png").string(), img, error)) GTEST_SKIP() << error;
+  // The x range gnuplot drew, and so the ticks it labelled.
+  const auto [rc, out] = towsim::testing::shell("cd '" + (dir_ / "plots").string() +
+                                                "' && gnuplot paths_xy.gp -e 'print GPVAL_X_MIN, GPVAL_X_MAX' 2>&1");
+  ASSERT_EQ(rc, 0) << out;
+  std::istringstream range(out);
+  double x0 = 0, x1 = 0;
+  range >> x0 >> x1;
+  const int ticks = static_cast<int>(std::floor(x1 / 1000) - std::ceil(x0 / 1000) + 1);
+  EXPECT_EQ(ticks, 3);                          // -1000, 0, 1000 in about [-1590, 1390]
+  const auto borders = border_rows(img, 0.15);  // the box is ~230 px of 1000
+  ASSERT_FALSE(borders.empty());
+  const int bottom = borders.back();
+  const auto labels = dark_runs(img, bottom + 4, bottom + 4 + 24, 5);  // one line of 13 point text
+  ASSERT_EQ(static_cast<int>(labels.size()), ticks);
+  for (std::size_t i = 1; i < labels.size(); ++i) EXPECT_GE(labels[i].first - labels[i - 1].second, 10) << i;
+}
+
+// The winch figure: the pay-out speed on its own right-hand axis over its own
+// range (-1..1 m/s drawn on -1.2..1.2, not on the deployed length's -2..12),
+// the load in a panel of its own, and a short title inside the canvas.
+TEST_F(PlotPicture, WinchPayOutSpeedOnItsOwnAxisAndTheTitleInside) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
+  write_winch_run();
+  std::ostringstream log;
+  ASSERT_EQ(plot_run(dir_.string(), log), 0) << log.str();
+  const std::string gp = towsim::testing::slurp(dir_ / "plots" / "winch.gp");
+  EXPECT_NE(gp.find("set multiplot layout 2,1 title 'synthetic: winch'\n"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("set y2range [-1.2:1.2]\n"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("set y2label 'pay-out speed (m/s)'\n"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("set ylabel 'tow tension / rating (%)'\n"), std::string::npos) << gp;
+  towsim::testing::Image img;
+  std::string error;
+  if (!towsim::testing::load_png((dir_ / "plots" / "winch.png").string(), img, error)) GTEST_SKIP() << error;
+  const auto borders = border_rows(img, 0.6);  // the two panels' top and bottom edges
+  ASSERT_GE(borders.size(), 4u);
+  // The title and the legend above the first panel: every dark pixel at
+  // least 3 px inside the canvas (a clipped title touches its edge).
+  const int top = borders.front();
+  int dark = 0;
+  for (int y = 0; y < top; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (img.dark(x, y)) {
+        ++dark;
+        EXPECT_TRUE(x >= 3 && x < img.width - 3) << x << "," << y;
+      }
+  EXPECT_GT(dark, 100);  // the title is there
+  // The pay-out speed (red, #d62728) spans 2 of the axis's 2.4: 83 % of the
+  // panel's height (at least 75 %: the line's width and the border rows
+  // blur its ends). On the old shared -2..12 axis: 14 %.
+  int panel_bottom = top;
+  for (int y : borders)
+    if (y < img.height / 2) panel_bottom = y;
+  int red_lo = img.height, red_hi = -1;
+  for (int y = top; y <= panel_bottom; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (img.channel(x, y, 0) > 170 && img.channel(x, y, 1) < 90 && img.channel(x, y, 2) < 90)
+        red_lo = std::min(red_lo, y), red_hi = std::max(red_hi, y);
+  ASSERT_GE(red_hi, red_lo);
+  EXPECT_GE(static_cast<double>(red_hi - red_lo) / (panel_bottom - top), 0.75);
+}
+
+// Every axis of every figure says its unit.
+TEST_F(PlotPicture, EveryAxisLabelHasAUnit) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
+  const std::regex label(R"(set (x|y|y2|cb)label '([^']*)')");
+  const std::regex unit(R"(\((m|s|N|deg|m/s|%|rad/s|m\^2 s/rad|N\^2 s/rad|m/m)\))");
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 0)
+      write_run(true, true);
+    else
+      write_winch_run();
+    std::ostringstream log;
+    ASSERT_EQ(plot_run(dir_.string(), log), 0) << log.str();
+    int labels = 0;
+    for (const auto& e : fs::directory_iterator(dir_ / "plots")) {
+      if (e.path().extension() != ".gp") continue;
+      const std::string gp = towsim::testing::slurp(e.path());
+      for (auto it = std::sregex_iterator(gp.begin(), gp.end(), label); it != std::sregex_iterator(); ++it, ++labels)
+        EXPECT_TRUE(std::regex_search((*it)[2].str(), unit)) << e.path().filename() << ": " << (*it)[0];
+    }
+    EXPECT_GE(labels, pass == 0 ? 20 : 14);
+  }
 }

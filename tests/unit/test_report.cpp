@@ -2,12 +2,18 @@
 // without the 3-D view, and loaded offline in headless Chromium.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "../support/cli.hpp"
 #include "report.hpp"
@@ -57,7 +63,7 @@ TEST(Report, ThePageHoldsTheViewerTheDataTheFiguresAndTheSummary) {
   const std::string page = slurp(dir / "report.html");
   EXPECT_NE(page.find("<script id=\"towsim-data\" type=\"application/json\">"), std::string::npos);
   EXPECT_NE(page.find("id=\"view3d\""), std::string::npos);
-  EXPECT_NE(page.find("final layback [m]"), std::string::npos);
+  EXPECT_NE(page.find("<tr><td>final layback</td><td class=\"n\">"), std::string::npos);
   EXPECT_NE(page.find("max_tow_tension"), std::string::npos);
   // Self-contained: nothing loaded from elsewhere (figures are data URIs).
   EXPECT_EQ(page.find("src=\"http"), std::string::npos);
@@ -84,7 +90,7 @@ TEST(Report, WithoutTheViewerThePageSaysWhyAndKeepsTheRest) {
   EXPECT_NE(page.find("id=\"no3d\""), std::string::npos);
   EXPECT_NE(page.find("npm was not found when towsim was built (test)"), std::string::npos);
   EXPECT_EQ(page.find("id=\"view3d\""), std::string::npos);
-  EXPECT_NE(page.find("final layback [m]"), std::string::npos);
+  EXPECT_NE(page.find("<tr><td>final layback</td><td class=\"n\">"), std::string::npos);
   EXPECT_NE(log.str().find("without the 3-D view"), std::string::npos);
   fs::remove_all(dir);
 }
@@ -105,7 +111,7 @@ TEST(Report, OfARunWithoutNodesDrawsTheChordAndSaysSo) {
   EXPECT_NE(page.find("id=\"no-nodes\""), std::string::npos);
   EXPECT_NE(page.find("not the cable's shape"), std::string::npos);
   EXPECT_NE(page.find("towsim-data"), std::string::npos);
-  EXPECT_NE(page.find("final layback [m]"), std::string::npos);
+  EXPECT_NE(page.find("<tr><td>final layback</td><td class=\"n\">"), std::string::npos);
   fs::remove_all(dir);
 }
 
@@ -132,7 +138,9 @@ TEST(Report, OfAStaticsConfiguration) {
 // frame (the page marks <html data-ready="1"> and counts the canvas pixels
 // that differ from the background) and no script error occurred.
 namespace {
-void expect_renders_in_chromium(const std::string& name, const std::string& run_settings) {
+void expect_renders_in_chromium(const std::string& name, const std::string& run_settings,
+                                std::string* page_dom = nullptr,
+                                const std::string& example = "paper-3d-turn --set simulation.duration=20") {
   if (towsim::io::embedded_viewer_js().empty())
     GTEST_SKIP() << "this towsim was built without the 3-D view: " << towsim::io::embedded_viewer_note();
   const std::string browser = chromium();
@@ -140,8 +148,7 @@ void expect_renders_in_chromium(const std::string& name, const std::string& run_
   const fs::path dir = fs::path(TOWSIM_TEST_OUTPUT_DIR) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const auto [rs, ro] = towsim_cli("run --example paper-3d-turn --set simulation.duration=20 " + run_settings +
-                                   " --out '" + dir.string() + "'");
+  const auto [rs, ro] = towsim_cli("run --example " + example + " " + run_settings + " --out '" + dir.string() + "'");
   ASSERT_EQ(rs, 0) << ro;
   const auto [status, out] = towsim_cli("report '" + dir.string() + "'");
   ASSERT_EQ(status, 0) << out;
@@ -164,6 +171,7 @@ void expect_renders_in_chromium(const std::string& name, const std::string& run_
   ASSERT_FALSE(drawn.empty());
   EXPECT_GT(std::stol(drawn), 1000);
   EXPECT_NE(dom.find("(3-D view ready)"), std::string::npos);  // the title
+  if (page_dom != nullptr) *page_dom = dom;
   // A screenshot for a person to look at, kept in the build tree.
   const fs::path png = dir / "report_screenshot.png";
   const auto [sr, so] = shell(browser + " " + flags + "--screenshot='" + png.string() + "' " + url);
@@ -180,4 +188,127 @@ TEST(ReportInBrowser, TheThreeDViewRendersOfflineInHeadlessChromium) {
 // Without nodes.csv the view draws the tow-point-to-end chord, and renders.
 TEST(ReportInBrowser, TheChordViewOfARunWithoutNodesRenders) {
   expect_renders_in_chromium("report_browser_chord", "--set simulation.write_nodes=false");
+}
+
+// ------------------------------------------- units, framing, body (issue 30)
+
+TEST(Report, EverySummaryKeyHasItsUnit) {
+  using towsim::io::summary_unit;
+  EXPECT_EQ(summary_unit("max_tow_tension"), "N");
+  EXPECT_EQ(summary_unit("min_axial_force"), "N");
+  EXPECT_EQ(summary_unit("max_depressor_lower_link_force"), "N");
+  EXPECT_EQ(summary_unit("max_end_depth"), "m");
+  EXPECT_EQ(summary_unit("max_layback"), "m");
+  EXPECT_EQ(summary_unit("max_contact_length"), "m");
+  EXPECT_EQ(summary_unit("body_pitch_deg"), "deg");
+  EXPECT_EQ(summary_unit("wall_seconds"), "s");
+  EXPECT_EQ(summary_unit("end_time"), "s");
+  EXPECT_EQ(summary_unit("steps"), "count");
+  EXPECT_EQ(summary_unit("rhs_evaluations"), "count");
+  EXPECT_EQ(summary_unit("samples"), "output times");
+  EXPECT_EQ(summary_unit("max_utilisation"), "fraction of the breaking load");
+  EXPECT_EQ(summary_unit("status"), "");
+}
+
+namespace {
+/// The report's summary table rows: (quantity, unit) per row.
+std::vector<std::pair<std::string, std::string>> table_units(const std::string& page) {
+  std::vector<std::pair<std::string, std::string>> rows;
+  const std::regex row(R"(<tr><td>([^<]*)</td><td class="n">[^<]*</td><td>([^<]*)</td><td class="n">)");
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), row); it != std::sregex_iterator(); ++it)
+    rows.emplace_back((*it)[1].str(), (*it)[2].str());
+  return rows;
+}
+
+/// The page's embedded data (the 3-D view's JSON).
+nlohmann::json page_data(const std::string& page) {
+  const std::string open = "<script id=\"towsim-data\" type=\"application/json\">";
+  const auto a = page.find(open);
+  if (a == std::string::npos) return {};
+  const auto b = page.find("</script>", a);
+  return nlohmann::json::parse(page.substr(a + open.size(), b - a - open.size()));
+}
+}  // namespace
+
+// A winch run with a 3 m fish on a 2.7 km track (fish-depth-change, 1300 s at
+// 4 kn): the summary table gives every quantity's unit; the view's data frame
+// the cable, not the track, and hold the body's true dimensions.
+TEST(Report, ALongTrackFramesTheCableAndTheBodyAtItsSize) {
+  const fs::path dir = fresh_dir("report");
+  const auto [rs, ro] = towsim_cli("run --example fish-depth-change --quiet --out '" + dir.string() + "'");
+  ASSERT_EQ(rs, 0) << ro;
+  const auto [status, out] = towsim_cli("report --no-plots '" + dir.string() + "'");
+  ASSERT_EQ(status, 0) << out;
+  const std::string page = slurp(dir / "report.html");
+  EXPECT_NE(page.find("<th>quantity</th><th>value</th><th>unit</th><th>at t (s)</th>"), std::string::npos);
+  const auto rows = table_units(page);
+  ASSERT_GE(rows.size(), 20u);
+  for (const auto& [quantity, unit] : rows)
+    if (quantity != "status") {
+      EXPECT_FALSE(unit.empty()) << quantity;
+    }
+  EXPECT_NE(std::find(rows.begin(), rows.end(), std::make_pair(std::string("max_tow_tension"), std::string("N"))),
+            rows.end());
+  EXPECT_NE(std::find(rows.begin(), rows.end(), std::make_pair(std::string("final layback"), std::string("m"))),
+            rows.end());
+
+  const auto data = page_data(page);
+  ASSERT_TRUE(data.is_object());
+  // The fish: a 3 m x 0.35 m hull along x, two fins of 0.15 m^2 (the scenario).
+  const auto& body = data.at("body");
+  ASSERT_EQ(body.at("cylinders").size(), 1u);
+  EXPECT_EQ(body["cylinders"][0].at("length").get<double>(), 3.0);
+  EXPECT_EQ(body["cylinders"][0].at("diameter").get<double>(), 0.35);
+  EXPECT_EQ(body["cylinders"][0].at("axis"), nlohmann::json::parse("[1, 0, 0]"));
+  ASSERT_EQ(body.at("surfaces").size(), 2u);
+  EXPECT_EQ(body["surfaces"][0].at("area").get<double>(), 0.15);
+  EXPECT_TRUE(body.at("spheres").empty());
+  // The framing: the cable's largest box in any frame, at most the drum's
+  // 900 m of cable plus the 3 m fish, at least the tow-point-to-fish chord
+  // of the first frame (layback 556.3 m, depth 226.0 m: 600.4 m); the whole
+  // run at least the 4 kn x 1300 s = 2675 m track.
+  const auto& view = data.at("view");
+  const double cable = view.at("cable_extent").get<double>(), all = view.at("all_extent").get<double>();
+  EXPECT_LE(cable, 903.0);
+  EXPECT_GE(cable, 600.0);
+  EXPECT_GE(all, 2675.0);
+  // The first frame's view centre: the middle of the box around its joints and
+  // the body origin.
+  const auto& p = data.at("nodes").at(0);
+  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (std::size_t k = 0; k + 2 < p.size(); k += 3)
+    for (std::size_t d = 0; d < 3; ++d)
+      lo[d] = std::min(lo[d], p[k + d].get<double>()), hi[d] = std::max(hi[d], p[k + d].get<double>());
+  for (std::size_t d = 0; d < 3; ++d) {
+    const double b = body.at("pos").at(0).at(d).get<double>();
+    lo[d] = std::min(lo[d], b), hi[d] = std::max(hi[d], b);
+  }
+  // 1e-3 m: the page's numbers have 7 significant digits (0.1 mm on 1 km).
+  for (std::size_t d = 0; d < 3; ++d)
+    EXPECT_NEAR(view.at("cable_centres").at(0).at(d).get<double>(), 0.5 * (lo[d] + hi[d]), 1e-3) << d;
+  EXPECT_EQ(view.at("cable_centres").size(), data.at("times").size());
+  fs::remove_all(dir);
+}
+
+// A 3 m fish on a 2.7 km track (fish-depth-change): the view opens on the
+// cable, which spans a good part of it (the first frame's 600 m of cable, seen
+// obliquely in a view sized for the 903 m the cable takes at most: 0.245 of
+// the view measured, at least 0.2 asserted; framed on the whole track it took
+// about 0.04), and the body is drawn at its true size: its shapes' box,
+// in body axes, is the 3 m hull and the fins' squares of sqrt(0.15) = 0.3873 m.
+TEST(ReportInBrowser, ALongTrackOpensOnTheCableWithTheBodyAtItsSize) {
+  std::string dom;
+  expect_renders_in_chromium("report_browser_long_track", "", &dom, "fish-depth-change");
+  if (dom.empty()) return;  // skipped
+  const std::string size = html_attribute(dom, "data-body-size");
+  ASSERT_FALSE(size.empty());
+  double sx = 0, sy = 0, sz = 0;
+  ASSERT_EQ(std::sscanf(size.c_str(), "%lf,%lf,%lf", &sx, &sy, &sz), 3) << size;
+  // 1e-4 m: the page prints 6 significant digits.
+  EXPECT_NEAR(sx, 3.0, 1e-4);
+  EXPECT_NEAR(sy, std::sqrt(0.15), 1e-4);
+  EXPECT_NEAR(sz, std::sqrt(0.15), 1e-4);
+  const std::string fraction = html_attribute(dom, "data-cable-view-fraction");
+  ASSERT_FALSE(fraction.empty());
+  EXPECT_GE(std::stod(fraction), 0.2);
 }
