@@ -66,7 +66,9 @@ nlohmann::ordered_json statics_summary(const LoadedScenario& sc, const StaticsRe
   stats.status = r.converged ? "ok" : r.interrupted ? "interrupted" : "failed";
   stats.message = r.converged ? "" : r.message;
   stats.steps = r.iterations;
-  return make_summary(to_json(sc.tree), sc.model->name, stats, rec, true);
+  auto summary = make_summary(to_json(sc.tree), sc.model->name, stats, rec, true);
+  summary.erase("phases");  // a steady configuration: no manoeuvre phases
+  return summary;
 }
 
 namespace {
