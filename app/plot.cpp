@@ -257,6 +257,7 @@ std::string phase_marks(const Run& run, bool splot = false) {
   std::ostringstream s;
   s << "# Phase boundaries (summary.json phases): a dashed line at each, labelled with the phases\n"
     << "# starting there (\"NAME end\": ending there).\n";
+  if (!splot) s << "set style textbox opaque noborder margins 0.5, 0.5\n";  // labels legible over the curves
   int k = 0;
   for (const auto& [t, label] : run.marks) {
     ++k;
@@ -269,7 +270,7 @@ std::string phase_marks(const Run& run, bool splot = false) {
         << ", graph 1 nohead dt 2 lw 1 lc rgb '#7f7f7f' back\n";
     s << "set label " << k << " " << quote(label) << " at "
       << (splot ? "first " + T + ", graph 0.98, graph 1" : T + ", graph 0.98")
-      << " rotate by 90 right offset char 0.9, 0 font ',9' tc rgb " << (splot ? "'#ffffff'" : "'#505050'")
+      << " rotate by 90 right offset char 0.9, 0 font ',9' tc rgb " << (splot ? "'#ffffff'" : "'#505050' boxed")
       << " front\n";
   }
   return s.str();

@@ -181,7 +181,7 @@ std::string phases_table(const json& sm) {
     << "<th>min depth [m]</th><th>at t [s]</th><th>max depth [m]</th><th>at t [s]</th>";
   if (link) h << "<th>max link tension [N]</th><th>at t [s]</th>";
   h << "<th>tow tension settle time [s]</th><th>depth settle time [s]</th>"
-    << "<th>settled tow tension [N]</th><th>settled depth [m]</th><th>settled at t [s]</th></tr>\n";
+    << "<th>settled tow tension [N]</th><th>settled depth [m]</th><th>settle window end [s]</th></tr>\n";
   for (const auto& p : *ph) {
     if (!p.is_object()) continue;
     const json T = field(p, "tow_tension"), d = field(p, "depth"), L = field(p, "link_tension");
@@ -193,7 +193,7 @@ std::string phases_table(const json& sm) {
     };
     const json name = field(p, "name"), src = field(p, "source");
     h << "<tr><td>" << html(name.is_string() ? name.get<std::string>() : "") << "</td><td>"
-      << html(src.is_string() ? src.get<std::string>() : "") << "</td>";
+      << (src.is_string() ? html(src.get<std::string>()) : std::string("&ndash;")) << "</td>";
     cell(field(p, "start"));
     cell(field(p, "end"));
     ext(T, "min");
@@ -209,10 +209,12 @@ std::string phases_table(const json& sm) {
     h << "</tr>\n";
   }
   h << "</table></div>\n<p class=\"small\">Depth: of the body's origin, or of the cable's end without a body. "
-    << "Extremes over the output times from the phase's start to its end. A settle time is counted from the "
-       "phase's start to the first output time after which the value stays within its band (summary.json "
-       "<code>band</code>) of its value at <em>settled at</em>, the next time an input changes (or the run's "
-       "end); &ndash;: it does not settle there (docs/scenario.md, Outputs).</p>\n";
+    << "Extremes over the output times from the phase's start up to its end (an output time on a boundary "
+       "belongs to the phase starting there). The settle window runs from the phase's start to the next time "
+       "an input changes (or the run's end); the settled values are the last ones before its end. A settle "
+       "time is counted from the phase's start to the first output time after which the value stays within its "
+       "band (summary.json <code>band</code>) of the settled value; &ndash;: it does not settle in the window "
+       "(docs/scenario.md, Outputs).</p>\n";
   return h.str();
 }
 

@@ -30,8 +30,9 @@ void tow_activities(const Tow& tow, std::vector<Phase>& out) {
     return;
   }
   // The course replaces the offsets' horizontal motion from the first manoeuvre on.
-  const bool course = tow.plan != nullptr ? tow.plan->course : false;
-  const double t_first = tow.plan != nullptr ? tow.plan->t_first : CourseState::kNever;
+  bool course = false;
+  double t_first = CourseState::kNever;  // [s]
+  if (tow.plan != nullptr) course = tow.plan->course, t_first = tow.plan->t_first;
   for (std::size_t i = 0; i < tow.pieces.size(); ++i) {
     Phase p;
     p.piece = static_cast<int>(i);
@@ -80,7 +81,8 @@ void winch_activities(const Winch& w, std::vector<Phase>& out) {
   std::vector<Span> spans;
   for (std::size_t i = 0; i < sc.size(); ++i) {
     const WinchPiece& p = sc[i];
-    const double t1 = i + 1 < sc.size() ? sc[i + 1].t0 : CourseState::kNever;
+    double t1 = CourseState::kNever;  // the piece's end [s]
+    if (i + 1 < sc.size()) t1 = sc[i + 1].t0;
     const double tz = p.acc != 0 ? p.t0 - p.rate / p.acc : CourseState::kNever;  // speed crosses zero
     const double cuts[3] = {p.t0, tz > p.t0 && tz < t1 ? tz : t1, t1};
     for (int k = 0; k < 2; ++k) {

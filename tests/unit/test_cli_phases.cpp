@@ -188,7 +188,7 @@ TEST(PhasesRun, PlotsMarkThePhasesAndTheReportTablesThem) {
                       "<th>min depth [m]</th><th>at t [s]</th><th>max depth [m]</th><th>at t [s]</th>"
                       "<th>max link tension [N]</th><th>at t [s]</th>"
                       "<th>tow tension settle time [s]</th><th>depth settle time [s]</th>"
-                      "<th>settled tow tension [N]</th><th>settled depth [m]</th><th>settled at t [s]</th></tr>"),
+                      "<th>settled tow tension [N]</th><th>settled depth [m]</th><th>settle window end [s]</th></tr>"),
             std::string::npos);
   EXPECT_NE(page.find("<tr><td>accelerate 1</td><td>tow.motion.0</td><td class=\"n\">0</td><td class=\"n\">15</td>"),
             std::string::npos);
