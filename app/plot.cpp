@@ -147,6 +147,9 @@ struct Run {
   // Data spans for the equal-scale decisions.
   double x_span = 0, y_span = 0, z_span = 0;
   double x_lo = 0, y_lo = 0, z_lo = 0;  // their lower ends
+  // Phase boundaries from summary.json `phases`: time [s] and label (the
+  // phases starting there; "NAME end" for those ending there).
+  std::vector<std::pair<double, std::string>> marks;
 };
 
 /// A "nice" interval (1, 2, 5 x 10^k) close to `v`.
@@ -320,6 +323,32 @@ std::string sphere2_functions(const Run& run) {
 
 std::string markers_note(const Run& run) { return "markers every " + num(run.marker_every) + " s"; }
 
+/// The phase boundaries on a time axis: a dashed vertical line at each, labelled
+/// along it at the top. `splot`: for a map view (3-D coordinates).
+std::string phase_marks(const Run& run, bool splot = false) {
+  if (run.marks.empty()) return "";
+  std::ostringstream s;
+  s << "# Phase boundaries (summary.json phases): a dashed line at each, labelled with the phases\n"
+    << "# starting there (\"NAME end\": ending there).\n";
+  if (!splot) s << "set style textbox opaque noborder margins 0.5, 0.5\n";  // labels legible over the curves
+  int k = 0;
+  for (const auto& [t, label] : run.marks) {
+    ++k;
+    const std::string T = num(t);
+    if (splot)
+      s << "set arrow " << k << " from first " << T << ", graph 0, graph 1 to first " << T
+        << ", graph 1, graph 1 nohead dt 2 lw 1 lc rgb '#ffffff' front\n";
+    else
+      s << "set arrow " << k << " from " << T << ", graph 0 to " << T
+        << ", graph 1 nohead dt 2 lw 1 lc rgb '#7f7f7f' back\n";
+    s << "set label " << k << " " << quote(label) << " at "
+      << (splot ? "first " + T + ", graph 0.98, graph 1" : T + ", graph 0.98")
+      << " rotate by 90 right offset char 0.9, 0 font ',9' tc rgb " << (splot ? "'#ffffff'" : "'#505050' boxed")
+      << " front\n";
+  }
+  return s.str();
+}
+
 // One function per figure: returns the script text.
 
 std::string fig_trajectories(const Run& run, const PlotOptions& opt) {
@@ -362,7 +391,8 @@ std::string fig_components(const Run& run, const PlotOptions& o, const std::stri
   s << preamble(run, name, what);
   s << title(run, what);
   s << "set xlabel 'time (s)'\nset ylabel 'force (N)'\n"
-    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n";
+    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n"
+    << phase_marks(run);
   std::ostringstream p;
   p << "plot ts using 'time':'" << prefix << "x' with lines lw 1.5 lc rgb '" << kPalette[0] << "' title '" << symbol
     << "x', \\\n";
@@ -412,7 +442,7 @@ std::string fig_depth(const Run& run, const PlotOptions& o) {
   s << title(run, "depth of the cable's lower end");
   s << "set xlabel 'time (s)'\nset ylabel 'depth -z (m), downwards'\nset yrange [*:*] reverse\n"
     << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n"
-    << "";
+    << phase_marks(run);
   std::ostringstream p;
   p << "plot ts using 'time':(-column('end_z')) with lines lw 2 lc rgb '" << kPalette[1]
     << "' title 'cable lower end P_n'";
@@ -440,7 +470,7 @@ std::string fig_winch(const Run& run, const PlotOptions& o) {
     << "set key top horizontal outside center samplen 2\n"
     << "set lmargin 10\nset rmargin 10  # the same plot width in both panels\n"
     << "set xlabel 'time (s)'\nset xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n"
-    << "set title 'deployed length (left axis) and pay-out speed (right axis)'\n"
+    << phase_marks(run) << "set title 'deployed length (left axis) and pay-out speed (right axis)'\n"
     << "set ylabel 'deployed length (m)'\nset y2label 'pay-out speed (m/s)'\n"
     << "set y2range [" << num(lo - pad) << ":" << num(hi + pad) << "]\nset y2tics\nset ytics nomirror\n"
     << "plot ts using 'time':'deployed_length' with lines lw 2 lc rgb '" << kPalette[0]
@@ -464,7 +494,7 @@ std::string fig_angles(const Run& run, const PlotOptions& o) {
   s << title(run, "body attitude (angles drawn continuous, see body_angles.gp)");
   s << "set xlabel 'time (s)'\nset ylabel 'angle (deg)'\n"
     << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n"
-    << "# The CSV gives roll, yaw in (-180, 180] and pitch in [-90, 90]. So that the curves\n"
+    << phase_marks(run) << "# The CSV gives roll, yaw in (-180, 180] and pitch in [-90, 90]. So that the curves\n"
     << "# do not jump, each row's triple is replaced by the equivalent one closest to\n"
     << "# the previous row's: (roll + 360 i, pitch + 360 j, yaw + 360 k) or the same\n"
     << "# rotation as (roll + 180, 180 - pitch, yaw + 180) (pitch past +-90 deg).\n"
@@ -553,7 +583,8 @@ std::string fig_tension_map(const Run& run, const PlotOptions& o) {
     << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21918c', 0.75 '#5ec962', 1 '#fde725')\n"
     << "set xlabel 'time (s)'\nset ylabel 'distance along the cable from the tow point (m)'\n"
     << "set cblabel 'tension (N)'\nset autoscale fix\nset yrange [*:*] reverse\n"
-    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n";
+    << "set xrange [" << num(run.t0) << ":" << num(run.t1) << "]\n"
+    << phase_marks(run, true);
   s << render(name, "splot 'tension_map.dat' using 1:2:3 with pm3d notitle", o);
   return s.str();
 }
@@ -995,6 +1026,25 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   const double dt_out = run.min_dt > 0 ? run.min_dt : 1;
   run.marker_rows = std::max(1, static_cast<int>(std::lround(run.marker_every / dt_out)));
   run.marker_every = run.marker_rows * dt_out;
+  // Phase boundaries (summary.json `phases`): where a phase other than steady
+  // starts or ends within the plotted times (not the run's last time).
+  if (const auto ph = summary.find("phases"); ph != summary.end() && ph->is_array()) {
+    std::map<double, std::pair<std::vector<std::string>, std::vector<std::string>>> at;  // starts, ends
+    for (const auto& p : *ph) {
+      if (!p.is_object() || !p.contains("start") || !p["start"].is_number() || !p.contains("end") ||
+          !p["end"].is_number() || p.value("kind", std::string()) == "steady")
+        continue;
+      const std::string name = p.value("name", std::string("phase"));
+      const double a = p["start"].get<double>(), b = p["end"].get<double>();
+      if (a >= run.t0 && a < times.back()) at[a].first.push_back(name);
+      if (b > run.t0 && b < times.back()) at[b].second.push_back(name + " end");
+    }
+    for (auto& [t, se] : at) {
+      std::vector<std::string> all = se.first;
+      all.insert(all.end(), se.second.begin(), se.second.end());
+      run.marks.emplace_back(t, join(all, ", ", ", "));
+    }
+  }
   // About opt.snapshots shapes, at a round time step from the first output.
   const int ns = std::max(1, opt.snapshots);
   const double span = times.back() - times.front();

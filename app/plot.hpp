@@ -25,6 +25,9 @@
 //                    of wave elevation, tow point heave, body heave and tow
 //                    tension; below, the ship -> fish transfer function (body
 //                    heave per tow point heave) and body heave per metre of wave
+// The figures against time (tow_force, end_depth, body_angles, link_force,
+// winch, tension_map) mark each boundary of a phase other than steady from
+// summary.json `phases` with a dashed vertical line and a label.
 // nodes.csv is read once: the rows the figures need are extracted into
 // DIR/plots/cable_shapes.dat and DIR/plots/tension_map.dat. summary.json is
 // optional (the model name is then the directory's name). DIR/plots/ is

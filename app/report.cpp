@@ -187,6 +187,59 @@ std::vector<std::array<std::string, 4>> summary_rows(const json& sm) {
   return rows;
 }
 
+/// The "Phases" section (summary.json `phases`): one row per phase, its
+/// extremes and settle times; "" without phases (a statics configuration).
+std::string phases_table(const json& sm) {
+  const auto ph = sm.find("phases");
+  if (ph == sm.end() || !ph->is_array() || ph->empty()) return "";
+  auto value = [](const json& j) { return j.is_number() ? fmt(j.get<double>()) : std::string("&ndash;"); };
+  auto field = [](const json& o, const char* k) { return o.is_object() && o.contains(k) ? o[k] : json(); };
+  bool link = false;
+  for (const auto& p : *ph) link = link || (p.is_object() && p.contains("link_tension"));
+  std::ostringstream h;
+  h << "<h2>Phases</h2>\n<div class=\"wide\"><table id=\"phases\">\n<tr><th>phase</th><th>source</th>"
+    << "<th>start [s]</th><th>end [s]</th>"
+    << "<th>min tow tension [N]</th><th>at t [s]</th><th>max tow tension [N]</th><th>at t [s]</th>"
+    << "<th>min depth [m]</th><th>at t [s]</th><th>max depth [m]</th><th>at t [s]</th>";
+  if (link) h << "<th>max link tension [N]</th><th>at t [s]</th>";
+  h << "<th>tow tension settle time [s]</th><th>depth settle time [s]</th>"
+    << "<th>settled tow tension [N]</th><th>settled depth [m]</th><th>settle window end [s]</th></tr>\n";
+  for (const auto& p : *ph) {
+    if (!p.is_object()) continue;
+    const json T = field(p, "tow_tension"), d = field(p, "depth"), L = field(p, "link_tension");
+    auto cell = [&](const json& v) { h << "<td class=\"n\">" << value(v) << "</td>"; };
+    auto ext = [&](const json& q, const char* which) {
+      const json e = field(q, which);
+      cell(field(e, "value"));
+      cell(field(e, "time"));
+    };
+    const json name = field(p, "name"), src = field(p, "source");
+    h << "<tr><td>" << html(name.is_string() ? name.get<std::string>() : "") << "</td><td>"
+      << (src.is_string() ? html(src.get<std::string>()) : std::string("&ndash;")) << "</td>";
+    cell(field(p, "start"));
+    cell(field(p, "end"));
+    ext(T, "min");
+    ext(T, "max");
+    ext(d, "min");
+    ext(d, "max");
+    if (link) ext(L, "max");
+    cell(field(T, "settle_time"));
+    cell(field(d, "settle_time"));
+    cell(field(T, "settled_value"));
+    cell(field(d, "settled_value"));
+    cell(field(p, "settle_end"));
+    h << "</tr>\n";
+  }
+  h << "</table></div>\n<p class=\"small\">Depth: of the body's origin, or of the cable's end without a body. "
+    << "Extremes over the output times from the phase's start up to its end (an output time on a boundary "
+       "belongs to the phase starting there). The settle window runs from the phase's start to the next time "
+       "an input changes (or the run's end); the settled values are the last ones before its end. A settle "
+       "time is counted from the phase's start to the first output time after which the value stays within its "
+       "band (summary.json <code>band</code>) of the settled value; &ndash;: it does not settle in the window "
+       "(docs/scenario.md, Outputs).</p>\n";
+  return h.str();
+}
+
 /// Frames of two points, the tow point and the cable's end, read from
 /// timeseries.csv rows `rows[pick[i]]` (tension: the tow tension at both).
 bool chord_frames(const CsvTable& ts, const std::vector<std::size_t>& pick, const std::vector<double>& times,
@@ -355,6 +408,7 @@ h1{font-size:1.5em;margin:18px 0 4px}h2{font-size:1.2em;margin:28px 0 8px;border
 .small{color:#666;font-size:.9em}
 table{border-collapse:collapse}td,th{border-bottom:1px solid #e4e4e4;padding:4px 12px;text-align:left}
 td.n{text-align:right;font-variant-numeric:tabular-nums}
+.wide{overflow-x:auto}#phases th{font-weight:600;font-size:.9em}
 figure{margin:16px 0}figure img{max-width:100%;border:1px solid #eee}figcaption{color:#444;margin-top:4px}
 pre{background:#f6f6f6;padding:10px;overflow:auto;max-height:400px;font-size:.85em}
 )";
@@ -456,6 +510,7 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
       << r[3] << "</td></tr>\n";
   h << "</table>\n";
   if (sm.empty()) h << "<p class=\"small\">No summary.json in this directory.</p>\n";
+  h << phases_table(sm);
 
   // 3. The figures, as PNG data URIs.
   h << "<h2>Figures</h2>\n";

@@ -153,6 +153,7 @@ nlohmann::ordered_json statics_summary(const LoadedScenario& sc, const StaticsRe
   stats.warnings = equilibria_warnings(*sc.model, r);
   auto summary = make_summary(to_json(sc.tree), sc.model->name, stats, rec, true);
   if (!sc.model->bodies.empty()) summary["bodies"] = bodies_json(*sc.model, r);
+  summary.erase("phases");  // a steady configuration: no manoeuvre phases
   return summary;
 }
 

@@ -586,10 +586,18 @@ std::string compression_warning(const Model& model, const Extremes& ex) {
          "): a real cable would go slack there";
 }
 
-RunRecord::RunRecord(const Model& model) : model_(model), sea_(statistics_start(model)) {}
+RunRecord::RunRecord(const Model& model)
+    : model_(model),
+      sea_(statistics_start(model)),
+      transients_(run_phases(model), model.sim.duration, end_body(model) != nullptr) {}
 
 void RunRecord::write(const Sample& s) {
   extremes_.add(model_, s);
+  // The phases' figures from the values as written (timeseries.csv's tow_tension,
+  // body_depth or end_depth, link_tension).
+  const BodySample* eb = end_sample(model_, s);
+  transients_.add(tidy_time(s.t), tidy(s.tow_force.norm()), tidy(-reference_point(model_, s).z()),
+                  eb != nullptr ? tidy(eb->link_force.norm()) : std::nan(""));
   if (has_sea(model_)) sea_.add(model_, s);
   ++samples_;
   raw_timeseries_values(model_, s, raw_row_);
@@ -814,6 +822,8 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   if (lengths_in_state(model)) j["elastic"] = elastic_json(stats.slack);
   for (const std::string& w : strength_warnings(ex)) j["warnings"].push_back(w);
   if (const std::string w = compression_warning(model, ex); !w.empty()) j["warnings"].push_back(w);
+  // The manoeuvre phases: extremes within each, settling of the response.
+  j["phases"] = record.transients().json(stats.end_time);
   j["final"] = record.final_row();  // the last timeseries.csv row by column name
   j["scenario"] = scenario;
   return j;

@@ -21,6 +21,7 @@
 
 #include "towsim/output/row_file.hpp"
 #include "towsim/output/sea_statistics.hpp"
+#include "towsim/output/transients.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim::io {
@@ -170,10 +171,13 @@ class RunRecord : public OutputSink {
   const Model& model() const { return model_; }
   /// Sea-state statistics of the samples so far (a model with waves or a vessel).
   const SeaStatistics& sea_statistics() const { return sea_; }
+  /// The run's phases (run_phases) and their figures over the samples so far.
+  const TransientRecord& transients() const { return transients_; }
 
  private:
   const Model& model_;
   SeaStatistics sea_;
+  TransientRecord transients_;
   Extremes extremes_;
   long samples_ = 0;
   std::vector<double> raw_row_;           // the last row before tidy (time rounded)
@@ -224,8 +228,9 @@ class RunWriter : public RunRecord {
   std::vector<double> values_;
 };
 
-/// summary.json content: model name, RunStats, extremes, `final` (the last
-/// row by column name), the scenario echo.
+/// summary.json content: model name, RunStats, extremes, `phases` (the
+/// manoeuvre phases and their transient figures), `final` (the last row by
+/// column name), the scenario echo.
 nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,
                                     const RunStats& stats, const RunRecord& record, bool write_nodes);
 
