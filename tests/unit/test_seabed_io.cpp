@@ -69,7 +69,7 @@ TEST_F(SeabedIo, ContactAtJointsOrAlongElements) {
   ASSERT_TRUE(joints.ok()) << joints.diags.str();
   EXPECT_FALSE(joints.model->seabed->along_elements);
   const auto bad = load("environment:\n  seabed: {depth: 500, contact: element}\n" + kCable + kSim);
-  EXPECT_EQ(bad.diags.str(), at("2:37: environment.seabed.contact: expected one of joints, elements (got "
+  EXPECT_EQ(bad.diags.str(), at("2:33: environment.seabed.contact: expected one of joints, elements (got "
                                 "'element'; did you mean 'elements'?)"));
 }
 
