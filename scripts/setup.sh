@@ -7,7 +7,8 @@ packages=(build-essential cmake ccache libeigen3-dev libyaml-cpp-dev libcli11-de
           libgtest-dev libgmock-dev libbenchmark-dev libboost-dev gnuplot-nox
           chromium                       # chromium: the headless-browser test of towsim report
           python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-distributed
-          python3-pytest)                # python3-*: the Python module and its tests
+          python3-pytest                 # python3-*: the Python module and its tests
+          zlib1g-dev)                    # zlib: the tests that read rendered PNG figures
 # ccache: scripts/compiler-cache.sh (builds of unchanged sources are cache hits).
 # Node.js and npm bundle the 3-D view of towsim report (npm ci at build time);
 # Debian's only when no npm is on PATH (a newer Node.js may be installed already).
