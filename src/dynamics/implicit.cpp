@@ -8,6 +8,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "parts/body_node.hpp"
+#include "parts/coupled_element.hpp"
+#include "parts/elastic_element.hpp"
+#include "parts/rigid_element.hpp"
+#include "sweep.hpp"
 #include "towsim/dynamics/bending.hpp"
 #include "towsim/dynamics/elastic.hpp"
 #include "towsim/hydro/loads.hpp"
@@ -18,34 +23,6 @@ namespace towsim {
 namespace {
 
 inline std::size_t idx(int i) { return static_cast<std::size_t>(i); }
-
-/// A body's elimination at zero velocity, inertia part: modified inertia Me
-/// (the body's Mw plus its local terms); an in-line body first takes in the
-/// cable below, K2 at its lower link Q2.
-void body_factor(const Body& body, const BodyWork& bw, Mat6 Me, const Mat3* K2, std::size_t b, ImplicitWorkspace& iw) {
-  if (body.inline_body) {
-    Eigen::Matrix<double, 6, 3> J2t;
-    J2t << Mat3::Identity(), skew(bw.rQ2);
-    Me += J2t * *K2 * J2t.transpose();
-  }
-  const Mat3 Rx = skew(bw.rQ);  // rQ = Q - O_t [m, R_g]
-  const Mat3 Mll = Me.topLeftCorner<3, 3>(), Mla = Me.topRightCorner<3, 3>();
-  const Mat3 Mal = Me.bottomLeftCorner<3, 3>(), Maa = Me.bottomRightCorner<3, 3>();
-  iw.bC[b] = Mal - Rx * Mll;
-  iw.bPhi[b] = (iw.bC[b] * Rx + Maa - Rx * Mla).inverse();  // inertia about Q
-  iw.bKQ[b] = Mll - iw.bC[b].transpose() * iw.bPhi[b] * iw.bC[b];
-}
-
-/// The same elimination, bias part: loads (Fb, Mb about O_t) and the cable
-/// below's bias b2 at Q2 (in-line body).
-void body_bias(const Body& body, const BodyWork& bw, const Vec3& Fb, const Vec3& Mb, const Vec3* b2, std::size_t b,
-               ImplicitWorkspace& iw) {
-  Vec3 hl = Vec3::Zero(), ha = Vec3::Zero();
-  if (body.inline_body) hl = *b2, ha = bw.rQ2.cross(*b2);  // J2^T b2
-  const Vec3& r = bw.rQ;
-  iw.brhs[b] = Mb - r.cross(Fb) - ha + r.cross(hl);
-  iw.bbQ[b] = iw.bC[b].transpose() * iw.bPhi[b] * iw.brhs[b] + hl - Fb;
-}
 
 /// psd_part for N = 3 or 6.
 template <int N>
@@ -421,202 +398,73 @@ ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
 
 namespace {
 
-/// E = [t2, -t1] = T J: alpha = E z for beta = alpha x e = T z (alpha normal to e).
-Eigen::Matrix<double, 3, 2> rotation_basis(const Eigen::Matrix<double, 3, 2>& T) {
-  Eigen::Matrix<double, 3, 2> E;
-  E.col(0) = T.col(1);
-  E.col(1) = -T.col(0);
-  return E;
-}
+using parts::BodyNode;
+using parts::ElasticElement;
+using parts::RigidElement;
 
-/// The bending springs the stage solve couples (kappa, any_coupled, coupled).
-void couple_bending_springs(const Model& model, const Workspace& ws, ImplicitWorkspace& iw) {
-  bending_stage_couplings(model, ws, iw.kappa);
-  iw.any_coupled = std::any_of(iw.kappa.begin(), iw.kappa.end(), [](double x) { return x > 0; });
-  const std::size_t n = iw.coupled.size();
-  for (std::size_t k = 0; k < n; ++k) iw.coupled[k] = static_cast<char>(iw.kappa[k] > 0 || iw.kappa[k + 1] > 0);
-}
-
-/// The coupled springs' off-diagonal terms of -hg K (hg dw + rot): a couple on
-/// each element from its neighbour's turn (dw, rot normal to its own e).
-void coupled_spring_loads(const PhysicalState& s, double hg, const StageRhs& r, ImplicitWorkspace& iw) {
-  auto turn = [&](std::size_t k) {
-    const Vec3 u = hg * r.dw[k] + r.rot[k];
-    return Vec3(u - u.dot(s.e[k]) * s.e[k]);
-  };
-  for (std::size_t j = 1; j + 1 < iw.kappa.size(); ++j) {
-    if (!(iw.kappa[j] > 0)) continue;
-    iw.Mom[j - 1] += hg * iw.kappa[j] * turn(j);
-    iw.Mom[j] += hg * iw.kappa[j] * turn(j - 1);
-  }
-}
-
-/// A rigid element whose rotation a bending spring couples to a neighbour's
-/// (docs/theory.md §6.3 "Bending in the stage solve"), factor step: from the
-/// part below's response at its bottom joint (K, Qb, Rb, Sb at k+1, spring
-/// kappa_b) and its own modified inertias (Mt' [kg], Ir' [kg m^2]), the
-/// response at its top joint, with kappa_t the spring above it.
-struct CoupledBelow {
-  const Mat3& K;
-  const Mat3& Q;
-  const Mat3& R;
-  const Mat3& S;
-};
-[[gnu::noinline]] void coupled_element_factor(const Eigen::Matrix<double, 3, 2>& T, double L, const Mat3& Mt, double Ir,
-                                              const CoupledBelow& below, double kappa_b, double kappa_t, double hg,
-                                              std::size_t k, ImplicitWorkspace& iw) {
-  const Eigen::Matrix<double, 3, 2> E = rotation_basis(T);
-  const double cb = hg * hg * kappa_b, ct = hg * hg * kappa_t;  // the springs in the stage [N m s^2/rad]
-  // The rotation equation D z = r0' - G~ a + ct E^T alpha_above (2x2).
-  const Eigen::Matrix<double, 2, 3> Gt = 0.5 * L * T.transpose() * Mt + L * T.transpose() * below.K +
-                                         cb * E.transpose() * below.R;
-  const Eigen::Matrix2d D = Ir * Eigen::Matrix2d::Identity() + 0.25 * L * L * T.transpose() * Mt * T +
-                            L * L * T.transpose() * below.K * T + L * T.transpose() * below.Q * E +
-                            cb * L * E.transpose() * below.R * T - cb * E.transpose() * below.S * E;
-  const Eigen::Matrix2d Phi = D.inverse();
-  // The force through the top joint: f = (Mt' + K) a + H' z - F + b.
-  const Eigen::Matrix<double, 3, 2> Hp = 0.5 * L * Mt * T + L * below.K * T + below.Q * E;
-  iw.Phi[k] = Phi;
-  iw.H[k] = Hp * Phi;
-  iw.PG[k] = Phi * Gt;
-  iw.PE[k] = Phi * E.transpose();
-  const Mat3 Kn = Mt + below.K - iw.H[k] * Gt;
-  iw.K[k] = 0.5 * (Kn + Kn.transpose());
-  iw.Qb[k] = ct * iw.H[k] * E.transpose();
-  iw.Rb[k] = E * iw.PG[k];
-  iw.Sb[k] = ct * E * iw.PE[k];
-}
-
-/// The same element's bias step: r0' = E^T Mom + L/2 T^T F - L T^T b_below +
-/// cb E^T q_below; z at zero inputs Phi r0'; b = H' Phi r0' - F + b_below (- Fa);
-/// q = E Phi r0'. body_below: a body's ball joint below (no spring there).
-[[gnu::noinline]] void coupled_element_bias(std::size_t k, double L, bool body_below, const Vec3& b_below, bool joints,
-                                            ImplicitWorkspace& iw) {
-  const Eigen::Matrix<double, 3, 2>& T = iw.T[k];
-  const Eigen::Matrix<double, 3, 2> E = rotation_basis(T);
-  const double cb = body_below ? 0.0 : iw.hg * iw.hg * iw.kappa[k + 1];
-  const Vec3 qk = cb > 0 ? iw.qb[k + 1] : Vec3::Zero().eval();
-  const Eigen::Vector2d r0 = E.transpose() * iw.Mom[k] + T.transpose() * (0.5 * L * iw.F[k] - L * b_below) +
-                             cb * (E.transpose() * qk);
-  iw.zr[k] = iw.Phi[k] * r0;
-  iw.b[k] = iw.H[k] * r0 - iw.F[k] + b_below;
-  if (joints) iw.b[k] -= iw.Fa[k];
-  iw.qb[k] = E * iw.zr[k];
-}
-
-/// The same element's forward step from its top joint's a: z = Phi (r0' -
-/// G~ a + ct E^T alpha_above), alpha = E z; returns the move of the bottom
-/// joint, L T z.
-[[gnu::noinline]] Vec3 coupled_element_acceleration(std::size_t k, double L, const Vec3& a, ImplicitWorkspace& iw) {
-  const double ct = iw.hg * iw.hg * iw.kappa[k];
-  Eigen::Vector2d z = iw.zr[k] - iw.PG[k] * a;
-  if (ct > 0) z += ct * (iw.PE[k] * iw.alpha[k - 1]);
-  const Eigen::Matrix<double, 3, 2>& T = iw.T[k];
-  iw.alpha[k] = z[0] * T.col(1) - z[1] * T.col(0);  // E z
-  return L * (T * z);
-}
-
-}  // namespace
-
-namespace {
-
-/// implicit_factor's backward sweep; kCoupled: some bending spring couples
-/// two rigid elements (else the coupled branch is compiled out of the loop).
+/// implicit_factor's pass up the chain (sweep::up): the forward dynamics'
+/// elimination at zero velocity with each part's modified inertia. kCoupled:
+/// some bending spring couples two rigid elements (else that step is
+/// compiled out of the rigid elements').
 template <bool kCoupled>
-void factor_sweep(const Model& model, const PhysicalState& s, const Workspace& ws, double hg, ImplicitWorkspace& iw) {
-  const auto& els = model.cable.elements;
-  const std::size_t n = els.size();
+struct FactorPass {
+  const Model& model;
+  const PhysicalState& s;
+  const Workspace& ws;
+  double hg;
+  ImplicitWorkspace& iw;
   const LocalJacobian& jac = iw.jac;
-  // Backward pass of fast.cpp (c = 0, w = 0), inertias only.
   // Joint terms exist only with attachments or a seabed (else zero: skipped).
   const bool joints = !model.cable.attachments.empty() || model.seabed.has_value();
-  auto joint_terms = [&](std::size_t k) {
-    return joints ? Mat3(hg * jac.joint_damping[k] + hg * hg * jac.joint_stiffness[k]) : Mat3::Zero().eval();
-  };
-  iw.K[n] = ws.Ma[n] + joint_terms(n);
-  const char* coupled = iw.coupled.data();  // per element (all 0 without bending springs)
   const Mat3 zero = Mat3::Zero();
-  // The arrays' data through local pointers (as stage_loads).
+  // The arrays' data through local pointers (the stores into them leave the
+  // vectors alone, which the compiler cannot tell).
   const Mat3 *Mts = ws.Mt.data(), *Cs = jac.element_damping.data();
   const double* Krs = jac.element_stiffness.data();
-  const int* body_at = ws.body_at.data();
+  const char* coupled = iw.coupled.data();  // per element (all 0 without bending springs)
   Mat3 *Ks = iw.K.data(), *THs = iw.TH.data();
   Eigen::Matrix<double, 3, 2>*Ts = iw.T.data(), *Hs = iw.H.data();
   Eigen::Matrix2d* Phis = iw.Phi.data();
-  for (std::size_t k = n; k-- > 0;) {
-    const int bi = body_at[k + 1];
-    const Mat3* Kk = Ks + k + 1;
-    if (bi >= 0) {
-      const std::size_t b = idx(bi);
-      Mat6 Me = ws.body[b].Mw + hg * jac.body_damping[b];
-      Me.bottomRightCorner<3, 3>() += hg * hg * jac.body_stiffness[b];
-      Me += hg * jac.body_contact_damping[b] + hg * hg * jac.body_contact_stiffness[b];  // its own seabed contact
-      body_factor(model.bodies[b], ws.body[b], Me, Kk, b, iw);
-      iw.bKQ[b] += hg * jac.bodyq_damping[b] + hg * hg * jac.bodyq_stiffness[b];  // seabed at Q
-      Kk = &iw.bKQ[b];
-    }
-    const Element& el = k == 0 && ws.winch ? ws.top : els[k];  // current_element
+
+  Mat3 joint_terms(std::size_t k) const {
+    return joints ? Mat3(hg * jac.joint_damping[k] + hg * hg * jac.joint_stiffness[k]) : Mat3::Zero().eval();
+  }
+  /// The articulated inertia below element k: the body's at its bottom joint, or the joint's.
+  const Mat3& below(std::size_t k, bool body) const {
+    return body ? iw.bKQ[sweep::body_index(ws.body_at[k + 1])] : Ks[k + 1];
+  }
+  void end(std::size_t n) { iw.K[n] = ws.Ma[n] + joint_terms(n); }
+  void body(std::size_t b, std::size_t j) { BodyNode::factor(model.bodies[b], ws.body[b], jac, hg, Ks[j], b, iw); }
+  void elastic(std::size_t k, bool body) {
+    const Element& el = current_element(model, ws, k);
+    ElasticElement::factor(el, s.e[k], s.length_of(model, k), ws.Mt[k], Mts[k] + hg * Cs[k], jac.element_damping[k],
+                           jac.element_stiffness[k], hg, below(k, body), iw.EAinv[k], iw.EG[k], iw.K[k]);
+    iw.K[k] += ws.Ma[k] + joint_terms(k);
+  }
+  void paid_out_elastic(std::size_t k, bool body) { elastic(k, body); }
+  void rigid(std::size_t k, bool body) {
+    const Element& el = current_element(model, ws, k);
     const double L = el.length;
     const Mat3 Mt = Mts[k] + hg * Cs[k];
-    if (is_elastic(els[k])) {
-      // Elastic element (elastic.cpp's step on d_k = l e): A = Mdd + Kk + S,
-      // S = (hg c_a + hg^2 EA/L) e e^T + hg^2 K_rock / l^2 (I - e e^T) (the
-      // spring's axial and geometric stiffness in d). The drag acts at G,
-      // whose velocity is v + d'/2: its damping on (v, d') is C [1, 1/2;
-      // 1/2, 1/4], not the rod mass's [1, 1/2; 1/2, 1/3], so the d-d block is
-      // Mdd = M_t/3 + hg C/4, the same C as the right-hand side's load
-      // -hg C (dv + ddv/2) (else the solve is not (I - hg W)^-1 for one W).
-      // K = Mdd + S - N A^-1 N, N = Mt/2 - Mdd - S (= Mt + Kk - G A^-1 G,
-      // G = Mt/2 + Kk, without the difference of large terms when Kk >> Mt).
-      const Vec3& e = s.e[k];
-      const double l = s.length_of(model, k);
-      const Mat3 ee = e * e.transpose();
-      const Mat3 S = (hg * element_axial_damping_rate(el, l) + hg * hg * element_axial_stiffness(el, l)) * ee +
-                     hg * hg * jac.element_stiffness[k] / (l * l) * (Mat3::Identity() - ee);
-      const Mat3 Mdd = ws.Mt[k] / 3 + 0.25 * hg * jac.element_damping[k];
-      iw.EAinv[k] = (Mdd + *Kk + S).inverse();
-      iw.EG[k] = 0.5 * Mt + *Kk;
-      const Mat3 N = 0.5 * Mt - Mdd - S;
-      const Mat3 Kn = Mdd + S - N * iw.EAinv[k] * N;
-      iw.K[k] = 0.5 * (Kn + Kn.transpose());
-      iw.K[k] += ws.Ma[k] + joint_terms(k);
-      continue;
-    }
+    const Mat3& Kk = below(k, body);
     if (kCoupled && coupled[k]) {
+      // A bending spring couples its rotation to a neighbour's (a body's link
+      // is a ball joint: no spring, no coupling below it).
       Ts[k] = ws.T[k];
-      const bool body = bi >= 0;  // a body's link is a ball joint: no spring, no coupling
-      const CoupledBelow below{*Kk, body ? zero : iw.Qb[k + 1], body ? zero : iw.Rb[k + 1], body ? zero : iw.Sb[k + 1]};
-      coupled_element_factor(ws.T[k], L, Mt, element_rot_inertia(el) + hg * hg * Krs[k], below, iw.kappa[k + 1],
-                             iw.kappa[k], hg, k, iw);
-      if (joints) Ks[k] += ws.Ma[k], Ks[k] += joint_terms(k);
-      continue;
+      const parts::CoupledBelow cb{Kk, body ? zero : iw.Qb[k + 1], body ? zero : iw.Rb[k + 1],
+                                   body ? zero : iw.Sb[k + 1]};
+      parts::coupled_element_factor(ws.T[k], L, Mt, element_rot_inertia(el) + hg * hg * Krs[k], cb, iw.kappa[k + 1],
+                                    iw.kappa[k], hg, k, iw);
+    } else {
+      const auto& T = Ts[k] = ws.T[k];  // tangent_basis(s.e[k]): the evaluation at s computed it
+      RigidElement::factor(T, L, Mt, element_rot_inertia(el) + hg * hg * Krs[k], Kk, Phis[k], Hs[k], THs[k], Ks[k]);
     }
-    const auto& T = Ts[k] = ws.T[k];  // tangent_basis(s.e[k]): the evaluation at s computed it
-    const Vec3 t1 = T.col(0), t2 = T.col(1);
-    // G T = L (Mt/2 + K) T and D = T^T (L^2/4 Mt + L^2 K) T + Ir + hg^2 K_rock
-    // (Mt and K symmetric: D symmetric, inverted in closed form).
-    const Mat3 A = 0.5 * Mt + *Kk, B = 0.25 * Mt + *Kk;
-    const Vec3 g1 = L * (A * t1), g2 = L * (A * t2), v2 = B * t2;
-    const double L2 = L * L, dd = element_rot_inertia(el) + hg * hg * Krs[k];
-    const double d11 = L2 * t1.dot(B * t1) + dd, d22 = L2 * t2.dot(v2) + dd, d12 = L2 * t1.dot(v2);
-    const double idet = 1.0 / (d11 * d22 - d12 * d12);
-    const double p11 = d22 * idet, p22 = d11 * idet, p12 = -d12 * idet;
-    Phis[k](0, 0) = p11;
-    Phis[k](0, 1) = Phis[k](1, 0) = p12;
-    Phis[k](1, 1) = p22;
-    const Vec3 h1 = p11 * g1 + p12 * g2, h2 = p12 * g1 + p22 * g2;  // H = G T Phi
-    Hs[k].col(0) = h1;
-    Hs[k].col(1) = h2;
-    THs[k].noalias() = t1 * h1.transpose() + t2 * h2.transpose();
-    // K = Mt + K_below - H (G T)^T, symmetric: the upper triangle, mirrored.
     // Ma (+0 without joint terms) and the joint terms only with attachments or a seabed.
-    Mat3& Kn = Ks[k];
-    for (int r = 0; r < 3; ++r)
-      for (int q = r; q < 3; ++q)
-        Kn(r, q) = Kn(q, r) = 0.5 * (Mt(r, q) + Mt(q, r) + (*Kk)(r, q) + (*Kk)(q, r)) - (h1[r] * g1[q] + h2[r] * g2[q]);
-    if (joints) Kn += ws.Ma[k], Kn += joint_terms(k);
+    if (joints) Ks[k] += ws.Ma[k], Ks[k] += joint_terms(k);
   }
-}
+  void paid_out(std::size_t k, bool body) { rigid(k, body); }
+  void joint(std::size_t) {}
+};
 
 }  // namespace
 
@@ -624,213 +472,199 @@ void implicit_factor(const Model& model, const PhysicalState& s, const Workspace
                      ImplicitWorkspace& iw) {
   // Bending springs between rigid elements: those elements' rotations are
   // eliminated together with their neighbours' (coupled_element_factor).
-  if (ws.bending) couple_bending_springs(model, ws, iw);
-  if (iw.any_coupled)
-    factor_sweep<true>(model, s, ws, hg, iw);
-  else
-    factor_sweep<false>(model, s, ws, hg, iw);
+  if (ws.bending) parts::couple_bending_springs(model, ws, iw);
+  if (iw.any_coupled) {
+    FactorPass<true> pass{model, s, ws, hg, iw};
+    sweep::up(model, ws, pass);
+  } else {
+    FactorPass<false> pass{model, s, ws, hg, iw};
+    sweep::up(model, ws, pass);
+  }
   iw.hg = hg;
 }
 
 namespace {
 
-// The three sweeps of a stage solve, as separate functions: each small enough
+// The three passes of a stage solve, as separate functions: each small enough
 // for the compiler to inline its 3x3 algebra (one large function was not).
 
-/// The right-hand side as loads on the parts, down the chain.
-void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws, double hg, const StageRhs& r,
-                 ImplicitWorkspace& iw) {
-  const auto& els = model.cable.elements;
-  const std::size_t n = els.size();
+/// The right-hand side as loads on the parts, down the chain (sweep::down):
+/// -hg C dv at each damper (dv: the velocity increments r_v carried down the
+/// chain), -hg K (hg dw + rot) on rotations, -hg K (hg dv + dx) on joint
+/// springs (dx: the joints' displacements).
+struct LoadPass {
+  const Model& model;
+  const PhysicalState& s;
+  const Workspace& ws;
+  double hg;
+  const StageRhs& r;
+  ImplicitWorkspace& iw;
   const LocalJacobian& jac = iw.jac;
   const bool free_top = model.tow.mode != Tow::Mode::Motion;
-  // Tension-controlled winch, tow point held: the pay-out is a prismatic
-  // joint at the top (its increments move the top material along e_1).
-  const bool drum = model.winch.mode == Winch::Mode::Tension && !free_top && n > 0 && !elastic_winch(model);
-  // Right-hand side as loads: -hg C dv at each damper (dv: the velocity
-  // increments r_v carried down the chain), -hg K (hg dw + rot) on rotations,
-  // -hg K (hg dv + dx) on joint springs (dx: the joints' displacements).
-  Vec3 dv = free_top ? r.dv0 : Vec3::Zero();
-  Vec3 dx = free_top ? r.dx0 : Vec3::Zero();
-  if (drum) dv += r.winch_dlr * s.e[0], dx += r.winch_dl * s.e[0];
-  iw.drum = drum;
-  iw.drum_rhs = drum ? -hg * model.winch.damping * r.winch_dlr : 0.0;
   // The joints' increments are read only by the joint terms.
   const bool joints = !model.cable.attachments.empty() || model.seabed.has_value();
-  iw.dvP[0] = dv;
-  iw.dxP[0] = dx;
-  // The arrays' data through local pointers: the compiler cannot tell that
-  // the stores into them leave the vectors alone, and would reload each
-  // one's start per element.
+  // The arrays' data through local pointers (as FactorPass).
   const Vec3 *es = s.e.data(), *rdw = r.dw.data(), *rrot = r.rot.data();
   const Mat3* Cs = jac.element_damping.data();
-  const double* Ks = jac.element_stiffness.data();
-  const int* body_at = ws.body_at.data();
+  const double* Kr = jac.element_stiffness.data();
   Vec3 *Fs = iw.F.data(), *Moms = iw.Mom.data();
-  for (std::size_t k = 0; k < n; ++k) {
-    const Vec3& e = es[k];
-    const double L = k == 0 && ws.winch ? ws.top.length : els[k].length;  // current_element
-    const Vec3 dw = rdw[k] - rdw[k].dot(e) * e;
-    const Vec3 rot = rrot[k] - rrot[k].dot(e) * e;
-    const Vec3 de = dw.cross(e);
-    if (is_elastic(els[k])) {
-      // Increments of d' and d: the stretch's along e, the rotation's normal to it.
-      const double l = s.length_of(model, k);
-      const double dl = k < r.dl.size() ? r.dl[k] : 0.0, dlr = k < r.dlr.size() ? r.dlr[k] : 0.0;
-      const Vec3 ddv = dlr * e + l * de, ddx = dl * e + l * rot.cross(e);
-      const Element& el = current_element(model, ws, k);  // the winch's: unstretched L_1
-      const double ka = element_axial_stiffness(el, l), ca = element_axial_damping_rate(el, l);
-      const double kr = jac.element_stiffness[k] / (l * l);
-      iw.F[k] = -hg * (jac.element_damping[k] * (dv + 0.5 * ddv));
-      iw.Mom[k].setZero();
-      const double pL = k == 0 ? r.top_dL : 0.0, pLr = k == 0 ? r.top_dLr : 0.0;  // the winch's paid-out part
-      iw.Fd[k] = -hg * (ca * (e.dot(ddv) - pLr) + ka * (hg * e.dot(ddv) + e.dot(ddx) - pL)) * e -
-                 hg * kr * (hg * l * de + l * rot.cross(e));
-      dv += ddv;
-      dx += ddx;
-    } else {
-      Fs[k] = -hg * (Cs[k] * (dv + 0.5 * L * de));
-      Moms[k] = -hg * Ks[k] * (hg * dw + rot);
-      dv += L * de;
-      dx += L * rot.cross(e);
-    }
-    const int bi = body_at[k + 1];
-    if (bi >= 0) {
-      const std::size_t b = idx(bi);
-      const BodyWork& bw = ws.body[b];
-      const Vec3& dwb = r.dwb[b];
-      const Vec3 dvO = dv - dwb.cross(bw.rQ);  // v_O = v_Q + omega x (O - Q)
-      const Vec3 dxO = dx - r.rotb[b].cross(bw.rQ);
-      Vec6 dnu, dxi;
-      dnu << dvO, dwb;
-      dxi << dxO, r.rotb[b];
-      Vec6 g = -hg * (jac.body_damping[b] * dnu);
-      // Its own seabed contact: -hg C_c dnu - hg K_c (hg dnu + dxi).
-      g -= hg * (jac.body_contact_damping[b] * dnu) + hg * (jac.body_contact_stiffness[b] * (hg * dnu + dxi));
-      iw.Fb[b] = g.head<3>();
-      iw.Mb[b] = g.tail<3>() - hg * (jac.body_stiffness[b] * (hg * dwb + r.rotb[b]));
-      // Seabed at Q (a force there, on the articulated body at Q: see the bias sweep).
-      iw.FQ[b] = -hg * (jac.bodyq_damping[b] * dv) - hg * (jac.bodyq_stiffness[b] * (hg * dv + dx));
-      if (model.bodies[b].inline_body) {
-        dv = dvO + dwb.cross(bw.rQ2);
-        dx = dxO + r.rotb[b].cross(bw.rQ2);
-      }
-    }
-    if (joints) iw.dvP[k + 1] = dv, iw.dxP[k + 1] = dx;
-  }
-  // Bending springs coupling two rigid elements: their off-diagonal terms.
-  if (iw.any_coupled) coupled_spring_loads(s, hg, r, iw);
-  // Joint terms exist only with attachments or a seabed (else Fa stays +0,
-  // as constructed, and the bias sweep skips it).
-  if (joints)
-    for (std::size_t k = 0; k <= n; ++k)
-      iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]) -
-                 hg * (jac.joint_stiffness[k] * (hg * iw.dvP[k] + iw.dxP[k]));
-}
+  Vec3 dv = Vec3::Zero(), dx = Vec3::Zero();  // increments of the current joint [m/s], [m]
 
-/// Bias sweep up the chain.
+  void top() {
+    const std::size_t n = model.cable.elements.size();
+    // Tension-controlled winch, tow point held: the pay-out is a prismatic
+    // joint at the top (its increments move the top material along e_1).
+    const bool drum = model.winch.mode == Winch::Mode::Tension && !free_top && n > 0 && !elastic_winch(model);
+    dv = free_top ? r.dv0 : Vec3::Zero();
+    dx = free_top ? r.dx0 : Vec3::Zero();
+    if (drum) dv += r.winch_dlr * s.e[0], dx += r.winch_dl * s.e[0];
+    iw.drum = drum;
+    iw.drum_rhs = drum ? -hg * model.winch.damping * r.winch_dlr : 0.0;
+    iw.dvP[0] = dv;
+    iw.dxP[0] = dx;
+  }
+  void rigid(std::size_t k) {
+    const double L = k == 0 && ws.winch ? ws.top.length : model.cable.elements[k].length;  // current_element
+    RigidElement::load(es[k], L, rdw[k], rrot[k], Cs[k], Kr[k], hg, dv, dx, Fs[k], Moms[k]);
+  }
+  void paid_out(std::size_t k) { rigid(k); }
+  void elastic(std::size_t k) {
+    const double dl = k < r.dl.size() ? r.dl[k] : 0.0, dlr = k < r.dlr.size() ? r.dlr[k] : 0.0;
+    const double pL = k == 0 ? r.top_dL : 0.0, pLr = k == 0 ? r.top_dLr : 0.0;  // the winch's paid-out part
+    ElasticElement::load(current_element(model, ws, k), es[k], s.length_of(model, k), rdw[k], rrot[k], dl, dlr, pL, pLr,
+                         jac.element_damping[k], jac.element_stiffness[k], hg, dv, dx, iw.F[k], iw.Mom[k], iw.Fd[k]);
+  }
+  void paid_out_elastic(std::size_t k) { elastic(k); }
+  void body(std::size_t b, std::size_t j) {
+    BodyNode::load(model.bodies[b], ws.body[b], jac, hg, r.dwb[b], r.rotb[b], b, dv, dx, iw);
+    joint(j);
+  }
+  void joint(std::size_t j) {
+    if (joints) iw.dvP[j] = dv, iw.dxP[j] = dx;
+  }
+  /// After the pass: the coupled bending springs' off-diagonal terms, and the
+  /// joint terms (only with attachments or a seabed; else Fa stays +0, as
+  /// constructed, and the bias pass skips it).
+  void finish() {
+    if (iw.any_coupled) parts::coupled_spring_loads(s, hg, r, iw);
+    if (joints)
+      for (std::size_t k = 0; k < iw.Fa.size(); ++k)
+        iw.Fa[k] = -hg * (jac.joint_damping[k] * iw.dvP[k]) -
+                   hg * (jac.joint_stiffness[k] * (hg * iw.dvP[k] + iw.dxP[k]));
+  }
+};
+
+/// Bias pass up the chain (sweep::up; the inertias are factorised). Without
+/// joint terms Fa is +0 and x - 0 = x: not subtracted.
 template <bool kCoupled>
-void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws, ImplicitWorkspace& iw) {
-  const auto& els = model.cable.elements;
-  const std::size_t n = els.size();
-  // Bias sweep up the chain (the inertias are factorised). Without joint
-  // terms Fa is +0 and x - 0 = x: not subtracted.
+struct BiasPass {
+  const Model& model;
+  const PhysicalState& s;
+  const Workspace& ws;
+  ImplicitWorkspace& iw;
   const bool joints = !model.cable.attachments.empty() || model.seabed.has_value();
-  iw.b[n] = -iw.Fa[n];
-  // The arrays' data through local pointers (as stage_loads).
+  // The arrays' data through local pointers (as FactorPass).
   const Vec3 *es = s.e.data(), *Fs = iw.F.data(), *Moms = iw.Mom.data();
   const Eigen::Matrix<double, 3, 2>*Ts = iw.T.data(), *Hs = iw.H.data();
   const Eigen::Matrix2d* Phis = iw.Phi.data();
   const Mat3* THs = iw.TH.data();
-  const int* body_at = ws.body_at.data();
   Vec3 *bs = iw.b.data(), *qs = iw.q.data();
   Eigen::Vector2d* Tr0s = iw.Tr0.data();
   const char* coupled = iw.coupled.data();
-  for (std::size_t k = n; k-- > 0;) {
-    const int bi = body_at[k + 1];
-    const Vec3* bk = bs + k + 1;
-    if (bi >= 0) {
-      const std::size_t b = idx(bi);
-      body_bias(model.bodies[b], ws.body[b], iw.Fb[b], iw.Mb[b], bk, b, iw);
-      iw.bbQ[b] -= iw.FQ[b];
-      bk = &iw.bbQ[b];
-    }
-    if (is_elastic(els[k])) {
-      iw.Er[k] = 0.5 * iw.F[k] + iw.Fd[k] - *bk;
-      iw.b[k] = iw.EG[k] * (iw.EAinv[k] * iw.Er[k]) + *bk - iw.F[k];
-      if (joints) iw.b[k] -= iw.Fa[k];
-      continue;
-    }
-    if (kCoupled && coupled[k]) {  // coupled by a bending spring (out of line: the common loop stays lean)
-      const double L = k == 0 && ws.winch ? ws.top.length : els[k].length;  // current_element
-      coupled_element_bias(k, L, bi >= 0, *bk, joints, iw);
-      continue;
-    }
-    // b = H T^T r0 + b_below - F - Fa, r0 = r0' - L b_below: the part
-    // through b_below as one 3x3 product (H T^T = TH^T), off the rest.
-    const double L = k == 0 && ws.winch ? ws.top.length : els[k].length;  // current_element
-    const Vec3 r0p = 0.5 * L * Fs[k] - es[k].cross(Moms[k]);              // r0 without the bias below
-    const Vec3 t1 = Ts[k].col(0), t2 = Ts[k].col(1);
-    const Vec3& h1 = Hs[k].col(0);
-    const Vec3& h2 = Hs[k].col(1);
-    const Vec3 loads = t1.dot(r0p) * h1 + t2.dot(r0p) * h2 - Fs[k];
-    bs[k] = (joints ? Vec3(loads - iw.Fa[k]) : loads) + (*bk - L * (THs[k].transpose() * *bk));
-    const Vec3 r0 = r0p - L * *bk;
-    Tr0s[k] = Eigen::Vector2d(t1.dot(r0), t2.dot(r0));
-    qs[k] = Ts[k] * (Phis[k] * Tr0s[k]);
-  }
-}
 
-/// Accelerations (the increments z) down the chain.
-template <bool kCoupled>
-void stage_accelerations(const Model& model, const PhysicalState& s, const Workspace& ws, ImplicitWorkspace& iw) {
-  const auto& els = model.cable.elements;
-  const std::size_t n = els.size();
-  const bool free_top = model.tow.mode != Tow::Mode::Motion;
-  // Forward pass: the tow point is held (Motion) or free with no force.
-  Vec3 a = free_top ? Vec3(iw.K[0].ldlt().solve(-iw.b[0])) : Vec3::Zero();
-  iw.a0 = a;
-  // The drum: (M_d + hg c) z_l = -hg c r_l' + dT, dT = -e_1.(K_0 z_l e_1 + b_0)
-  // (the tension's response to the top's acceleration z_l e_1, as in fast.cpp).
-  iw.z_winch = 0;
-  if (iw.drum) {
-    const Winch& w = model.winch;
-    const Vec3& e1 = s.e[0];
-    iw.z_winch = (iw.drum_rhs - e1.dot(iw.b[0])) / (w.drum_inertia + iw.hg * w.damping + e1.dot(iw.K[0] * e1));
-    a = iw.z_winch * e1;
+  /// The bias below element k: the body's at its bottom joint, or the joint's.
+  const Vec3& below(std::size_t k, bool body) const {
+    return body ? iw.bbQ[sweep::body_index(ws.body_at[k + 1])] : bs[k + 1];
   }
-  // The arrays' data through local pointers (as stage_loads).
+  const Vec3* Fa(std::size_t k) const { return joints ? &iw.Fa[k] : nullptr; }
+  void end(std::size_t n) { iw.b[n] = -iw.Fa[n]; }
+  void body(std::size_t b, std::size_t j) { BodyNode::stage_bias(model.bodies[b], ws.body[b], bs[j], b, iw); }
+  void elastic(std::size_t k, bool body) {
+    ElasticElement::stage_bias(iw.EAinv[k], iw.EG[k], iw.F[k], iw.Fd[k], below(k, body), Fa(k), iw.Er[k], iw.b[k]);
+  }
+  void paid_out_elastic(std::size_t k, bool body) { elastic(k, body); }
+  void rigid(std::size_t k, bool body) {
+    const double L = k == 0 && ws.winch ? ws.top.length : model.cable.elements[k].length;  // current_element
+    if (kCoupled && coupled[k])  // coupled by a bending spring (out of line: the common step stays lean)
+      parts::coupled_element_bias(k, L, body, below(k, body), joints, iw);
+    else
+      RigidElement::stage_bias(es[k], L, Fs[k], Moms[k], Ts[k], Hs[k], Phis[k], THs[k], below(k, body), Fa(k), bs[k],
+                               Tr0s[k], qs[k]);
+  }
+  void paid_out(std::size_t k, bool body) { rigid(k, body); }
+  void joint(std::size_t) {}
+};
+
+/// Increments z down the chain (sweep::down): the tow point held (Motion) or
+/// free with no force, the drum's pay-out, then each part's.
+template <bool kCoupled>
+struct IncrementPass {
+  const Model& model;
+  const PhysicalState& s;
+  const Workspace& ws;
+  ImplicitWorkspace& iw;
+  // The arrays' data through local pointers (as FactorPass).
   const Vec3 *es = s.e.data(), *qs = iw.q.data();
   const Mat3* THs = iw.TH.data();
-  const int* body_at = ws.body_at.data();
   Vec3* alphas = iw.alpha.data();
   double* zls = iw.zl.data();
   const char* coupled = iw.coupled.data();
-  for (std::size_t k = 0; k < n; ++k) {
-    if (is_elastic(els[k])) {
-      // z_d = A^-1 (r - G a): its part along e is l', normal to it l (alpha x e).
-      const Vec3 zd = iw.EAinv[k] * (iw.Er[k] - iw.EG[k] * a);
-      const Vec3& e = s.e[k];
-      iw.zl[k] = e.dot(zd);
-      iw.alpha[k] = e.cross(zd) / s.length_of(model, k);
-      a += zd;
-    } else if (kCoupled && coupled[k]) {  // coupled by a bending spring (out of line)
-      zls[k] = 0;
-      a += coupled_element_acceleration(k, k == 0 && ws.winch ? ws.top.length : els[k].length, a, iw);
-    } else {
-      zls[k] = 0;
-      const Vec3 beta = qs[k] - THs[k] * a;  // T Phi (T^T r0 - (G T)^T a)
-      alphas[k] = es[k].cross(beta);
-      a += (k == 0 && ws.winch ? ws.top.length : els[k].length) * beta;  // current_element's length
+  Vec3 a = Vec3::Zero();  // increment of the current joint's velocity [m/s]
+
+  void top() {
+    const bool free_top = model.tow.mode != Tow::Mode::Motion;
+    a = free_top ? Vec3(iw.K[0].ldlt().solve(-iw.b[0])) : Vec3::Zero();
+    iw.a0 = a;
+    // The drum: (M_d + hg c) z_l = -hg c r_l' + dT, dT = -e_1.(K_0 z_l e_1 + b_0)
+    // (the tension's response to the top's acceleration z_l e_1, as in fast.cpp).
+    iw.z_winch = 0;
+    if (iw.drum) {
+      const Winch& w = model.winch;
+      const Vec3& e1 = s.e[0];
+      iw.z_winch = (iw.drum_rhs - e1.dot(iw.b[0])) / (w.drum_inertia + iw.hg * w.damping + e1.dot(iw.K[0] * e1));
+      a = iw.z_winch * e1;
     }
-    const int bi = body_at[k + 1];
-    if (bi < 0) continue;
-    const std::size_t b = idx(bi);
-    const BodyWork& bw = ws.body[b];
-    const Vec3 al = iw.bPhi[b] * (iw.brhs[b] - iw.bC[b] * a);
-    iw.alpha_b[b] = al;
-    if (model.bodies[b].inline_body) a = a + bw.rQ.cross(al) + al.cross(bw.rQ2);
   }
+  void elastic(std::size_t k) {
+    ElasticElement::stage_accelerate(iw.EAinv[k], iw.EG[k], iw.Er[k], s.e[k], s.length_of(model, k), a, iw.alpha[k],
+                                     iw.zl[k]);
+  }
+  void paid_out_elastic(std::size_t k) { elastic(k); }
+  void rigid(std::size_t k) {
+    zls[k] = 0;
+    const double L = k == 0 && ws.winch ? ws.top.length : model.cable.elements[k].length;  // current_element
+    if (kCoupled && coupled[k])  // coupled by a bending spring (out of line)
+      a += parts::coupled_element_acceleration(k, L, a, iw);
+    else
+      RigidElement::stage_accelerate(qs[k], THs[k], es[k], L, a, alphas[k]);
+  }
+  void paid_out(std::size_t k) { rigid(k); }
+  void body(std::size_t b, std::size_t) { BodyNode::stage_accelerate(model.bodies[b], ws.body[b], b, a, iw); }
+  void joint(std::size_t) {}
+};
+
+/// The right-hand side's pass.
+[[gnu::noinline, gnu::flatten]] void stage_loads(const Model& model, const PhysicalState& s, const Workspace& ws,
+                                                 double hg, const StageRhs& r, ImplicitWorkspace& iw) {
+  LoadPass loads{model, s, ws, hg, r, iw};
+  sweep::down(model, ws, loads);
+  loads.finish();
+}
+
+/// The bias pass, kCoupled as FactorPass.
+template <bool kCoupled>
+[[gnu::noinline, gnu::flatten]] void stage_bias(const Model& model, const PhysicalState& s, const Workspace& ws,
+                                                ImplicitWorkspace& iw) {
+  BiasPass<kCoupled> bias{model, s, ws, iw};
+  sweep::up(model, ws, bias);
+}
+
+/// The increments' pass, kCoupled as FactorPass.
+template <bool kCoupled>
+[[gnu::noinline, gnu::flatten]] void stage_increments(const Model& model, const PhysicalState& s, const Workspace& ws,
+                                                      ImplicitWorkspace& iw) {
+  IncrementPass<kCoupled> increments{model, s, ws, iw};
+  sweep::down(model, ws, increments);
 }
 
 }  // namespace
@@ -841,10 +675,10 @@ void implicit_stage_solve(const Model& model, const PhysicalState& s, const Work
   stage_loads(model, s, ws, hg, r, iw);
   if (iw.any_coupled) {
     stage_bias<true>(model, s, ws, iw);
-    stage_accelerations<true>(model, s, ws, iw);
+    stage_increments<true>(model, s, ws, iw);
   } else {
     stage_bias<false>(model, s, ws, iw);
-    stage_accelerations<false>(model, s, ws, iw);
+    stage_increments<false>(model, s, ws, iw);
   }
 }
 
