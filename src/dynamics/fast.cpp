@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "articulated.hpp"
 #include "parts/body_node.hpp"
 #include "parts/paid_out_element.hpp"
 #include "parts/rigid_element.hpp"
@@ -53,9 +54,11 @@ struct ArticulatePass {
   const Mat3& K_below(std::size_t k, bool body) const { return body ? *Kb : arrays.K[k + 1]; }
   const Vec3& b_below(std::size_t k, bool body) const { return body ? *bb : arrays.b[k + 1]; }
   void end(std::size_t n) {
-    // Nothing hangs below the cable's end but its attachments.
+    // Below the cable's end hang its attachments and, at a junction of a
+    // tree of lines, the lines below it.
     ws.K[n] = ws.Ma[n];
     ws.b[n] = -ws.Fa[n];
+    if (ws.end_children) ws.K[n] += ws.end_K, ws.b[n] += ws.end_b;
   }
   void body(std::size_t b, std::size_t j) {
     BodyWork& bw = ws.body[b];
@@ -165,28 +168,31 @@ struct AcceleratePass {
   void joint(std::size_t j) { joint_force[j] = Ks[j] * a + bs[j]; }
 };
 
+}  // namespace
+
 // Each pass in its own function: small enough for the compiler to inline
 // its parts' 3x3 algebra (one function with both passes was not).
 
-/// The pass up, building (K_k, b_k).
-[[gnu::noinline, gnu::flatten]] void articulate(const Model& model, const PhysicalState& s, Workspace& ws,
-                                                bool inertias_known) {
+[[gnu::noinline, gnu::flatten]] void chain::articulate(const Model& model, const PhysicalState& s, Workspace& ws,
+                                                       bool inertias_known) {
   ArticulatePass up{model, s, ws, inertias_known};
   sweep::up(model, ws, up);
 }
 
-/// The pass down, giving the accelerations.
-[[gnu::noinline, gnu::flatten]] void accelerate(const Model& model, const PhysicalState& s, double t, Workspace& ws,
-                                                const Vec3* imposed_a0) {
+[[gnu::noinline, gnu::flatten]] void chain::accelerate(const Model& model, const PhysicalState& s, double t,
+                                                       Workspace& ws, const Vec3* imposed_a0) {
   AcceleratePass down{model, s, t, ws, imposed_a0};
   sweep::down(model, ws, down);
+  ws.acc.end_acc = down.a;  // the last joint's (an end body's link point)
 }
+
+namespace {
 
 /// Both passes of the forward dynamics at the loads and kinematics ws holds.
 void articulated_sweep(const Model& model, const PhysicalState& s, double t, Workspace& ws, bool inertias_known,
                        const Vec3* imposed_a0 = nullptr) {
-  articulate(model, s, ws, inertias_known);
-  accelerate(model, s, t, ws, imposed_a0);
+  chain::articulate(model, s, ws, inertias_known);
+  chain::accelerate(model, s, t, ws, imposed_a0);
 }
 
 /// The dynamics' entry check (Pinocchio's model.check(data)).

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "articulated.hpp"
 #include "parts/body_node.hpp"
 #include "parts/coupled_element.hpp"
 #include "parts/elastic_element.hpp"
@@ -349,6 +350,7 @@ void local_jacobian(const Model& model, const PhysicalState& s, const Workspace&
 
 ImplicitWorkspace::ImplicitWorkspace(const Model& model) {
   const std::size_t n = model.cable.elements.size(), nb = model.bodies.size();
+  body_children.assign(nb, {});  // a tree of lines sizes them (TreeImplicitWorkspace)
   jac.element_damping.assign(n, Mat3::Zero());
   jac.element_stiffness.assign(n, 0.0);
   jac.joint_damping.assign(n + 1, Mat3::Zero());
@@ -433,7 +435,10 @@ struct FactorPass {
   const Mat3& below(std::size_t k, bool body) const {
     return body ? iw.bKQ[sweep::body_index(ws.body_at[k + 1])] : Ks[k + 1];
   }
-  void end(std::size_t n) { iw.K[n] = ws.Ma[n] + joint_terms(n); }
+  void end(std::size_t n) {
+    iw.K[n] = ws.Ma[n] + joint_terms(n);
+    if (ws.end_children) iw.K[n] += iw.end.K;  // the lines below a junction
+  }
   void body(std::size_t b, std::size_t j) { BodyNode::factor(model.bodies[b], ws.body[b], jac, hg, Ks[j], b, iw); }
   void elastic(std::size_t k, bool body) {
     const Element& el = current_element(model, ws, k);
@@ -517,6 +522,7 @@ struct LoadPass {
     const bool drum = model.winch.mode == Winch::Mode::Tension && !free_top && n > 0 && !elastic_winch(model);
     dv = free_top ? r.dv0 : Vec3::Zero();
     dx = free_top ? r.dx0 : Vec3::Zero();
+    if (iw.top_given) dv = iw.top_dv, dx = iw.top_dx;  // a line hanging from a node
     if (drum) dv += r.winch_dlr * s.e[0], dx += r.winch_dl * s.e[0];
     iw.drum = drum;
     iw.drum_rhs = drum ? -hg * model.winch.damping * r.winch_dlr : 0.0;
@@ -577,7 +583,10 @@ struct BiasPass {
     return body ? iw.bbQ[sweep::body_index(ws.body_at[k + 1])] : bs[k + 1];
   }
   const Vec3* Fa(std::size_t k) const { return joints ? &iw.Fa[k] : nullptr; }
-  void end(std::size_t n) { iw.b[n] = -iw.Fa[n]; }
+  void end(std::size_t n) {
+    iw.b[n] = -iw.Fa[n];
+    if (ws.end_children) iw.b[n] += iw.end.b;  // the lines below a junction
+  }
   void body(std::size_t b, std::size_t j) { BodyNode::stage_bias(model.bodies[b], ws.body[b], bs[j], b, iw); }
   void elastic(std::size_t k, bool body) {
     ElasticElement::stage_bias(iw.EAinv[k], iw.EG[k], iw.F[k], iw.Fd[k], below(k, body), Fa(k), iw.Er[k], iw.b[k]);
@@ -614,6 +623,7 @@ struct IncrementPass {
   void top() {
     const bool free_top = model.tow.mode != Tow::Mode::Motion;
     a = free_top ? Vec3(iw.K[0].ldlt().solve(-iw.b[0])) : Vec3::Zero();
+    if (iw.top_given) a = iw.top_a;  // a line hanging from a node
     iw.a0 = a;
     // The drum: (M_d + hg c) z_l = -hg c r_l' + dT, dT = -e_1.(K_0 z_l e_1 + b_0)
     // (the tension's response to the top's acceleration z_l e_1, as in fast.cpp).
@@ -649,6 +659,7 @@ struct IncrementPass {
   LoadPass loads{model, s, ws, hg, r, iw};
   sweep::down(model, ws, loads);
   loads.finish();
+  iw.end.dv = loads.dv, iw.end.dx = loads.dx;  // the cable end's (a junction's)
 }
 
 /// The bias pass, kCoupled as FactorPass.
@@ -665,9 +676,29 @@ template <bool kCoupled>
                                                       ImplicitWorkspace& iw) {
   IncrementPass<kCoupled> increments{model, s, ws, iw};
   sweep::down(model, ws, increments);
+  iw.end.a = increments.a;  // the cable end's (a junction's)
 }
 
 }  // namespace
+
+void stage::loads(const Model& model, const PhysicalState& s, const Workspace& ws, double hg, const StageRhs& r,
+                  ImplicitWorkspace& iw) {
+  stage_loads(model, s, ws, hg, r, iw);
+}
+
+void stage::bias(const Model& model, const PhysicalState& s, const Workspace& ws, ImplicitWorkspace& iw) {
+  if (iw.any_coupled)
+    stage_bias<true>(model, s, ws, iw);
+  else
+    stage_bias<false>(model, s, ws, iw);
+}
+
+void stage::increments(const Model& model, const PhysicalState& s, const Workspace& ws, ImplicitWorkspace& iw) {
+  if (iw.any_coupled)
+    stage_increments<true>(model, s, ws, iw);
+  else
+    stage_increments<false>(model, s, ws, iw);
+}
 
 void implicit_stage_solve(const Model& model, const PhysicalState& s, const Workspace& ws, double hg, const StageRhs& r,
                           ImplicitWorkspace& iw) {

@@ -90,6 +90,7 @@ void body_kinematics(const Body& body, const BodyState& bs, const Vec3& Q, const
   bw.O = Q - bw.rQ;
   bw.vO = vQ - bs.w.cross(bw.rQ);
   bw.rQ2 = bw.R * body.lower_link_point;
+  for (BodyChild& c : bw.children) c.r = bw.R * c.point;  // lines hanging from its points
   // Controlled surfaces: the servo's deflection within the limits.
   std::size_t c = 0;
   for (const LiftingSurface& ls : body.surfaces)
@@ -98,13 +99,17 @@ void body_kinematics(const Body& body, const BodyState& bs, const Vec3& Q, const
 }  // namespace
 
 void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& ws) {
+  compute_kinematics(model, s, s.r0, s.v0, ws);
+}
+
+void compute_kinematics(const Model& model, const PhysicalState& s, const Vec3& r0, const Vec3& v0, Workspace& ws) {
   const auto& els = model.cable.elements;
   // Joints and centres down the chain: P_k = P_{k-1} + d_k, d_k = l_k e_k,
   // d_k' = l_k' e_k + l_k e_k' (l_k = L_k, l_k' = 0 for an inextensible
   // element); at a body, the chain goes on from its lower link Q2 (in-line)
   // or ends (end body).
-  ws.P[0] = s.r0;
-  ws.vP[0] = s.v0;
+  ws.P[0] = r0;
+  ws.vP[0] = v0;
   // Winch: the top element's material is fixed to its bottom joint and
   // leaves the sheave at v_0 + l' e_1; its properties scale with l_1.
   ws.winch = model.winch.active() && !els.empty();
@@ -113,10 +118,10 @@ void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& w
     // Elastic: material of unstretched length L_1, stretched uniformly to
     // l_1; the sheave pays out L_1' of it, l_1/L_1 L_1' of stretched length.
     ws.top = scaled_element(els[0], s.top_unstretched);
-    ws.v_top = s.v0 + element_length(model, s, 0) / s.top_unstretched * s.top_unstretched_rate * s.e[0];
+    ws.v_top = v0 + element_length(model, s, 0) / s.top_unstretched * s.top_unstretched_rate * s.e[0];
   } else if (ws.winch) {
     ws.top = scaled_element(els[0], element_length(model, s, 0));
-    ws.v_top = s.v0 + element_length_rate(s, 0) * s.e[0];
+    ws.v_top = v0 + element_length_rate(s, 0) * s.e[0];
   }
   // The arrays' data through local pointers, the joint above in locals: the
   // compiler cannot tell that the vectors' stores leave the vectors

@@ -2,14 +2,16 @@
 // body, attachments, an end body, rigid and elastic elements, a winch's
 // paid-out top element) against a slow, independent reference: the parts'
 // Newton-Euler equations with one Lagrange multiplier per ball joint,
-// assembled into one dense KKT system and solved by full-pivot LU. Both use
-// the same load models (compute_loads, the axial force laws); they differ in
-// everything else, so agreement to round-off proves the recursion's algebra
-// on the new topology.
+// assembled into one dense KKT system and solved by full-pivot LU
+// (tests/support/kkt_reference.hpp). Both use the same load models
+// (compute_loads, the axial force laws); they differ in everything else, so
+// agreement to round-off proves the recursion's algebra on the new topology.
+// Trees of lines: test_tree_reference.cpp.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
+#include "../support/kkt_reference.hpp"
 #include "../support/models.hpp"
 #include "../support/physics.hpp"
 #include "towsim/dynamics/dynamics.hpp"
@@ -21,275 +23,7 @@
 namespace towsim {
 namespace {
 
-/// The dense reference: unknowns are each part's accelerations (rigid
-/// element and body: a of its reference point and alpha; elastic element:
-/// a of its centre G and d'', its bottom end's acceleration relative to its
-/// top end; attachment: a), one force per joint, one spin multiplier per
-/// rigid element (alpha . e = 0) and, with a tension-controlled winch, the
-/// pay-out acceleration.
-class KktReference {
- public:
-  KktReference(const Model& m, const PhysicalState& s, const Workspace& ws, const Vec3& a0, double t)
-      : m_(m), s_(s), ws_(ws), a0_(a0) {
-    const std::size_t n = m.cable.elements.size();
-    // Parts: elements, bodies, attachments (in that order of unknowns).
-    for (std::size_t k = 0; k < n; ++k) el_.push_back(add_part(6));
-    for (std::size_t b = 0; b < m.bodies.size(); ++b) body_.push_back(add_part(6));
-    for (std::size_t i = 0; i < m.cable.attachments.size(); ++i) att_.push_back(add_part(3));
-    winch_setup(t);
-    build_joints();
-    solve();
-  }
-  Vec3 alpha(std::size_t k) const { return alpha_[k]; }
-  double length_acc(std::size_t k) const { return length_acc_[k]; }
-  Vec3 alpha_body(std::size_t b) const { return x_.segment<3>(body_[b] + 3); }
-  /// The winch's pay-out acceleration (l_1'' rigid, L_1'' elastic) [m/s^2].
-  double pay_acc() const { return pay_acc_; }
-  /// Force through a joint on the part below it (by the joint's index in order).
-  Vec3 force(std::size_t j) const { return lambda_.segment<3>(3 * j); }
-  std::size_t tow_joint = 0;                        // the tow point's joint
-  std::vector<std::size_t> joint_of_node;           // joint below each cable joint k (k = 0..n) giving f_k
-  std::vector<std::size_t> upper_link, lower_link;  // per body
-
- private:
-  /// A point on a part: its part's offset, position r from the reference
-  /// point, and the acceleration's part independent of the unknowns.
-  /// Rigid part: a = a_ref + alpha x r + w x (w x r); particle: a = a_ref;
-  /// elastic element: a = a_G + half d'' (half = -1/2 at the top, +1/2 at
-  /// the bottom).
-  struct Point {
-    int part = -1;  // offset of the part's unknowns, -1 = the imposed tow point
-    int dof = 6;
-    Vec3 r = Vec3::Zero();
-    Vec3 c = Vec3::Zero();
-    double half = 0;  // elastic element's end: -1/2 top, +1/2 bottom; 0 = rigid part
-  };
-  int add_part(int dof) {
-    const int o = static_cast<int>(dofs_);
-    dofs_ += static_cast<std::size_t>(dof);
-    return o;
-  }
-  const Element& element(std::size_t k) const { return current_element(m_, ws_, k); }
-  bool elastic(std::size_t k) const { return is_elastic(m_.cable.elements[k]); }
-  Point element_point(std::size_t k, double side) const {
-    if (elastic(k)) return {el_[k], 6, Vec3::Zero(), Vec3::Zero(), 0.5 * side};
-    const double L = s_.length_of(m_, k);  // current length [m]
-    const Vec3 r = side * 0.5 * L * s_.e[k];
-    return {el_[k], 6, r, s_.w[k].cross(s_.w[k].cross(r))};
-  }
-  Point body_point(std::size_t b, const Vec3& r) const {
-    const Vec3& w = ws_.body[b].w;
-    return {body_[b], 6, r, w.cross(w.cross(r))};
-  }
-  Point attachment_point(std::size_t i) const { return {att_[i], 3, Vec3::Zero(), Vec3::Zero()}; }
-  void link(const Point& above, const Point& below) { joints_.push_back({above, below}); }
-
-  /// Winch: the top element's material at the sheave. Rigid top (material
-  /// fixed to P_1 = P_0 + l e_1, at the sheave at distance l from P_1):
-  /// a = a_0 + l'' e_1 + 2 l' (w_1 x e_1). Elastic top (unstretched
-  /// coordinate sigma from P_1, the point at P_0 + q e_1 with
-  /// q = l (1 - sigma / L_1), sigma = L_1 at the sheave, q = 0):
-  /// a = a_0 + q'' e_1 + 2 q' (w_1 x e_1), q' = (l / L_1) L_1',
-  /// q'' = (l / L_1) L_1'' + 2 l' L_1' / L_1 - 2 l L_1'^2 / L_1^2.
-  /// sheave_c_ is the part without L'', sheave_u_ the coefficient of L''.
-  void winch_setup(double t) {
-    if (!ws_.winch) return;
-    const Vec3& e1 = s_.e[0];
-    const Vec3 wxe = s_.w[0].cross(e1);
-    const double l = s_.length_of(m_, 0), lr = s_.length_rate_of(0);
-    double qd = lr, qdd0 = 0;  // q' [m/s], q'' without the L'' term [m/s^2]
-    if (elastic(0)) {
-      const double Lu = s_.top_unstretched, Lr = s_.top_unstretched_rate;
-      qd = l / Lu * Lr;
-      qdd0 = 2 * lr * Lr / Lu - 2 * l * Lr * Lr / (Lu * Lu);
-      sheave_u_ = l / Lu * e1;
-      pay_rate_ = Lr;
-    } else {
-      sheave_u_ = e1;
-      pay_rate_ = lr;
-    }
-    sheave_c_ = qdd0 * e1 + 2 * qd * wxe;
-    if (m_.winch.mode == Winch::Mode::Imposed) {
-      pay_acc_ = winch_kinematics(m_.winch, t).acc;
-      sheave_c_ += pay_acc_ * sheave_u_;
-    } else {
-      drum_ = static_cast<int>(dofs_);
-      dofs_ += 1;
-    }
-  }
-
-  void build_joints() {
-    const std::size_t n = m_.cable.elements.size();
-    joint_of_node.assign(n + 1, 0);
-    upper_link.assign(m_.bodies.size(), 0);
-    lower_link.assign(m_.bodies.size(), 0);
-    std::vector<int> att_at(n + 1, -1);
-    for (std::size_t i = 0; i < m_.cable.attachments.size(); ++i)
-      att_at[static_cast<std::size_t>(m_.cable.attachments[i].joint)] = static_cast<int>(i);
-    // Joint k: what is above it (tow point or the bottom of element k), then
-    // an attachment, a body, or the top of element k+1.
-    for (std::size_t k = 0; k <= n; ++k) {
-      Point above = k == 0 ? Point{} : element_point(k - 1, +1);
-      if (k == 0) above.c = a0_;  // imposed acceleration of the tow point
-      joint_of_node[k] = joints_.size();
-      if (att_at[k] >= 0) {
-        const Point p = attachment_point(static_cast<std::size_t>(att_at[k]));
-        link(above, p);
-        above = p;
-      }
-      const int b = ws_.body_at[k];
-      if (b >= 0) {
-        const auto bi = static_cast<std::size_t>(b);
-        upper_link[bi] = joints_.size();
-        link(above, body_point(bi, ws_.body[bi].rQ));
-        if (!m_.bodies[bi].inline_body) continue;
-        above = body_point(bi, ws_.body[bi].rQ2);
-        lower_link[bi] = joints_.size();
-        joint_of_node[k] = joints_.size();
-      }
-      if (k == 0 && ws_.winch) {
-        // The top element hangs from its material at the sheave.
-        sheave_joint_ = joints_.size();
-        above.c += sheave_c_;
-      }
-      if (k < n) link(above, element_point(k, -1));
-    }
-  }
-
-  /// Rows of J for a point: a_X = J x + c, J = [I, -[r]x] (rigid),
-  /// [I, half I] (elastic) or I (particle).
-  void put_point(Eigen::MatrixXd& A, std::size_t row, std::size_t col_base, const Point& p, double sign) {
-    if (p.part < 0) return;
-    const auto c = col_base + static_cast<std::size_t>(p.part);
-    const auto r = static_cast<Eigen::Index>(row), c0 = static_cast<Eigen::Index>(c);
-    A.block<3, 3>(r, c0) += sign * Mat3::Identity();
-    if (p.half != 0)
-      A.block<3, 3>(r, c0 + 3) += sign * p.half * Mat3::Identity();
-    else if (p.dof == 6)
-      A.block<3, 3>(r, c0 + 3) -= sign * skew(p.r);
-  }
-
-  void solve() {
-    const std::size_t n = m_.cable.elements.size(), nj = joints_.size();
-    const std::size_t N = dofs_ + 3 * nj + n;
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(N));
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(N));
-    // Inertia and known loads of each part: M x = F - h + sum J^T lambda.
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto o = static_cast<Eigen::Index>(el_[k]);
-      const Vec3& e = s_.e[k];
-      const Mat3 Mt = element_mass(element(k), e);  // m I + ma (I - e e^T) [kg]
-      A.block<3, 3>(o, o) = Mt;
-      rhs.segment<3>(o) = ws_.F[k];
-      if (elastic(k)) {
-        // Uniform rod from its top end to its bottom end (material point at
-        // fraction s moves with a_top + s d''): kinetic energy
-        // (1/2) a_G^T Mt a_G + (1/24) d'^T Mt d', so the d-equation is
-        // (Mt/12) d'' = (M x e)/l - T e + (f_bottom - f_top)/2, the joint
-        // forces entering through J^T (half = +-1/2). T: axial force (tension
-        // + compression stop) pulling the two ends together [N].
-        const double l = s_.length_of(m_, k), lr = s_.length_rate_of(k);
-        const double T = k == 0 && ws_.winch ? paid_out_tension(element(0), l, lr, s_.top_unstretched_rate)
-                                             : element_axial_force(m_.cable.elements[k], l, lr);
-        A.block<3, 3>(o + 3, o + 3) = Mt / 12;
-        rhs.segment<3>(o + 3) = ws_.Mom[k].cross(e) / l - T * e;
-      } else {
-        A.block<3, 3>(o + 3, o + 3) = element_rot_inertia(element(k)) * (Mat3::Identity() - e * e.transpose());
-        rhs.segment<3>(o + 3) = ws_.Mom[k];
-      }
-    }
-    for (std::size_t b = 0; b < body_.size(); ++b) {
-      const auto o = static_cast<Eigen::Index>(body_[b]);
-      const BodyWork& bw = ws_.body[b];
-      A.block<6, 6>(o, o) = bw.Mw;
-      rhs.segment<3>(o) = bw.Fb - bw.hw.head<3>();
-      rhs.segment<3>(o + 3) = bw.Mb - bw.hw.tail<3>();
-    }
-    for (std::size_t i = 0; i < att_.size(); ++i) {
-      const auto o = static_cast<Eigen::Index>(att_[i]);
-      const auto j = static_cast<std::size_t>(m_.cable.attachments[i].joint);
-      A.block<3, 3>(o, o) = ws_.Ma[j];
-      rhs.segment<3>(o) = ws_.Fa[j];
-    }
-    // Joints: the part below receives +lambda, the one above -lambda; the
-    // acceleration rows say both points move together.
-    for (std::size_t j = 0; j < nj; ++j) {
-      const std::size_t row = dofs_ + 3 * j;
-      Eigen::MatrixXd Jrow = Eigen::MatrixXd::Zero(3, static_cast<Eigen::Index>(N));
-      put_point(Jrow, 0, 0, joints_[j].below, +1);
-      put_point(Jrow, 0, 0, joints_[j].above, -1);
-      A.middleRows(static_cast<Eigen::Index>(row), 3) += Jrow;
-      A.middleCols(static_cast<Eigen::Index>(row), 3) -= Jrow.transpose();
-      rhs.segment<3>(static_cast<Eigen::Index>(row)) = joints_[j].above.c - joints_[j].below.c;
-    }
-    // Tension-controlled drum: the sheave's material moves with L''
-    // (coefficient sheave_u_), and M_d L'' = T - T_set - c L' with the
-    // tension at the sheave T = -e_1 . f_0 (f_0: the force on the cable).
-    if (drum_ >= 0) {
-      const auto d = static_cast<Eigen::Index>(drum_);
-      const auto row = static_cast<Eigen::Index>(dofs_ + 3 * sheave_joint_);
-      A.block<3, 1>(row, d) -= sheave_u_;
-      A(d, d) = m_.winch.drum_inertia;
-      A.block<1, 3>(d, row) = s_.e[0].transpose();
-      rhs(d) = -m_.winch.tension - m_.winch.damping * pay_rate_;
-    }
-    // No spin about a rigid element's own axis.
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto row = static_cast<Eigen::Index>(dofs_ + 3 * nj + k), o = static_cast<Eigen::Index>(el_[k]);
-      if (elastic(k)) {
-        A(row, row) = 1;  // unused row
-        continue;
-      }
-      A.block<1, 3>(row, o + 3) = s_.e[k].transpose();
-      A.block<3, 1>(o + 3, row) = -s_.e[k];
-    }
-    const Eigen::VectorXd z = A.fullPivLu().solve(rhs);
-    x_ = z.head(static_cast<Eigen::Index>(dofs_));
-    lambda_ = z.segment(static_cast<Eigen::Index>(dofs_), static_cast<Eigen::Index>(3 * nj));
-    if (drum_ >= 0) pay_acc_ = x_(drum_);
-    // Angular and length accelerations: a rigid element's alpha is an
-    // unknown; an elastic element's follow from d = l e, d'' = l'' e +
-    // 2 l' (w x e) + l (alpha x e) - l |w|^2 e, with d'' the bottom end's
-    // acceleration minus that of its top joint (the tow point under a winch).
-    alpha_.assign(n, Vec3::Zero());
-    length_acc_.assign(n, 0.0);
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto o = static_cast<Eigen::Index>(el_[k]);
-      if (!elastic(k)) {
-        alpha_[k] = x_.segment<3>(o + 3);
-        continue;
-      }
-      const Vec3 aG = x_.segment<3>(o), dd = x_.segment<3>(o + 3);
-      const Vec3 a_bottom = aG + 0.5 * dd;
-      const Vec3 a_joint = k == 0 && ws_.winch ? a0_ : Vec3(aG - 0.5 * dd);
-      const Vec3 d2 = a_bottom - a_joint;  // d_k'' [m/s^2]
-      const Vec3& e = s_.e[k];
-      const Vec3& w = s_.w[k];
-      const double l = s_.length_of(m_, k), lr = s_.length_rate_of(k);
-      length_acc_[k] = e.dot(d2) + l * w.squaredNorm();
-      alpha_[k] = e.cross(d2 - length_acc_[k] * e - 2 * lr * w.cross(e) + l * w.squaredNorm() * e) / l;
-    }
-  }
-
-  struct Joint {
-    Point above, below;
-  };
-  const Model& m_;
-  const PhysicalState& s_;
-  const Workspace& ws_;
-  Vec3 a0_;
-  std::size_t dofs_ = 0;
-  std::vector<int> el_, body_, att_;
-  std::vector<Joint> joints_;
-  int drum_ = -1;                      // offset of the unknown L'' (tension winch), -1 = none
-  std::size_t sheave_joint_ = 0;       // the joint at the winch's sheave
-  Vec3 sheave_c_ = Vec3::Zero();       // sheave material's acceleration minus a_0, without L'' [m/s^2]
-  Vec3 sheave_u_ = Vec3::Zero();       // its coefficient of L'' [-]
-  double pay_rate_ = 0, pay_acc_ = 0;  // winch L' [m/s], L'' [m/s^2]
-  Eigen::VectorXd x_, lambda_;
-  std::vector<Vec3> alpha_;         // [rad/s^2]
-  std::vector<double> length_acc_;  // [m/s^2]
-};
+using testing::KktReference;
 
 /// The winch over the top element in a test case.
 enum class WinchCase { None, Imposed, Tension };
@@ -374,12 +108,13 @@ TEST_P(ChainReference, RecursionEqualsDenseMultiplierSolution) {
     for (const Vec3& f : acc.joint_force) fs = std::max(fs, f.norm());
     for (const Vec3& a : acc.alpha) as = std::max(as, a.norm());
     for (const double a : acc.length_acc) ls = std::max(ls, std::abs(a));
-    double ef = (acc.tow_force - ref.force(ref.joint_of_node[0])).norm(), ea = 0, el = 0;
+    double ef = (acc.tow_force - ref.force(ref.joint_of_node[0][0])).norm(), ea = 0, el = 0;
     for (std::size_t j = 1; j < acc.joint_force.size(); ++j)
-      ef = std::max(ef, (acc.joint_force[j] - ref.force(ref.joint_of_node[j])).norm());
+      ef = std::max(ef, (acc.joint_force[j] - ref.force(ref.joint_of_node[0][j])).norm());
     for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-      ef = std::max(ef, (acc.link_force[b] - ref.force(ref.upper_link[b])).norm());
-      if (m.bodies[b].inline_body) ef = std::max(ef, (acc.lower_link_force[b] - ref.force(ref.lower_link[b])).norm());
+      ef = std::max(ef, (acc.link_force[b] - ref.force(ref.upper_link[0][b])).norm());
+      if (m.bodies[b].inline_body)
+        ef = std::max(ef, (acc.lower_link_force[b] - ref.force(ref.lower_link[0][b])).norm());
       ea = std::max(ea, (acc.alpha_b[b] - ref.alpha_body(b)).norm());
     }
     for (std::size_t e = 0; e < acc.alpha.size(); ++e) {

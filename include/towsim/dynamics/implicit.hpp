@@ -133,6 +133,20 @@ struct ImplicitWorkspace {
   double z_winch = 0;         // tension-controlled winch (tow point held): increment of l_1' [m/s]
   bool drum = false;          // the stage solve has the drum's rows (set by the loads pass)
   double drum_rhs = 0;        // the drum's own right-hand side -hg c r_l' [N s]
+  // A tree of lines (docs/theory.md §5.7), as in Workspace: the lines below
+  // the cable's end and below the bodies' points, in the stage's units.
+  struct Child {
+    Mat3 K = Mat3::Zero();   // the line's top: f_0 = K a + b [kg]
+    Vec3 b = Vec3::Zero();   // [N s]
+    Vec3 dv = Vec3::Zero();  // the point's increments carried down (right-hand side) [m/s]
+    Vec3 dx = Vec3::Zero();  // [m]
+    Vec3 a = Vec3::Zero();   // the point's increment z [m/s]
+  };
+  Child end;                                      // the lines below the cable's end (summed K, b) and its increments
+  std::vector<std::vector<Child>> body_children;  // per body, per BodyWork::children entry
+  // A line hanging from a node: its top's increments are the node's.
+  bool top_given = false;
+  Vec3 top_dv = Vec3::Zero(), top_dx = Vec3::Zero(), top_a = Vec3::Zero();  // [m/s], [m], [m/s]
 };
 
 /// Velocity-side inputs of one stage solve (increments r_v of the velocities

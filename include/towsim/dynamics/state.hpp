@@ -61,6 +61,17 @@ struct Accelerations {
                                        // (zero for the end body)
   std::vector<Vec3> joint_force;       // f_k, force through joint k on the part below it, k = 0..n;
                                        // at an in-line body's joint: through its lower link Q2 [N, R_g]
+  Vec3 end_acc = Vec3::Zero();         // acceleration of the cable's end P_n (an end body's link point Q) [m/s^2, R_g]
+};
+
+/// A line hanging from a point of a body (a tree of lines, docs/theory.md
+/// §5.7): where it hangs, and the line's articulated response there.
+struct BodyChild {
+  Vec3 point = Vec3::Zero();  // the point, body axes [m]
+  Vec3 r = Vec3::Zero();      // point - O_t [m, R_g]
+  Mat3 K = Mat3::Zero();      // the line's top force f_0 = K a + b (force on the line) [kg]
+  Vec3 b = Vec3::Zero();      // [N]
+  Vec3 a = Vec3::Zero();      // the point's acceleration (forward dynamics' pass down) [m/s^2, R_g]
 };
 
 /// Intermediate results of one rigid body (index b of Model::bodies).
@@ -83,14 +94,15 @@ struct BodyWork {
   Vec3 Fs_q = Vec3::Zero();  // in-line body: seabed force on the cable's half-element at Q (in Fb) [N, R_g]
   double ls_q = 0;           // that half-element's length in contact [m]
   // Articulated quantities (docs/theory.md "Bodies in the chain"):
-  Mat6 Me = Mat6::Zero();     // Mw plus the cable below seen at Q2 [SI, R_g]
-  Vec6 he = Vec6::Zero();     // hw plus the cable below's bias [N; N m]
-  Mat3 Phi = Mat3::Zero();    // (inertia about Q after elimination)^-1 [1/(kg m^2)]
-  Mat3 C = Mat3::Zero();      // coupling of a_Q into the moment about Q [kg m]
-  Vec3 rhs = Vec3::Zero();    // known moment about Q [N m]
-  Vec3 wcent = Vec3::Zero();  // centripetal part of a_O - a_Q [m/s^2]
-  Mat3 KQ = Mat3::Zero();     // F_L = KQ a_Q + bQ [kg]
-  Vec3 bQ = Vec3::Zero();     // [N]
+  Mat6 Me = Mat6::Zero();             // Mw plus the cable below seen at Q2 [SI, R_g]
+  Vec6 he = Vec6::Zero();             // hw plus the cable below's bias [N; N m]
+  Mat3 Phi = Mat3::Zero();            // (inertia about Q after elimination)^-1 [1/(kg m^2)]
+  Mat3 C = Mat3::Zero();              // coupling of a_Q into the moment about Q [kg m]
+  Vec3 rhs = Vec3::Zero();            // known moment about Q [N m]
+  Vec3 wcent = Vec3::Zero();          // centripetal part of a_O - a_Q [m/s^2]
+  Mat3 KQ = Mat3::Zero();             // F_L = KQ a_Q + bQ [kg]
+  Vec3 bQ = Vec3::Zero();             // [N]
+  std::vector<BodyChild> children{};  // lines hanging from its points (a tree of lines; empty in a chain)
 };
 
 /// Preallocated intermediate results: kinematics, loads and the recursion's
@@ -143,8 +155,14 @@ struct Workspace {
   std::vector<ElasticWork> elastic;             // elastic elements' articulated quantities and tension
   std::vector<BodyWork> body;                   // per Model::bodies entry
   std::vector<int> body_at;                     // index of the body hanging at joint k, or -1 (k = 0..n)
-  Accelerations acc;                            // result of the last evaluation
-  CourseCursor course;                          // the tow law's last result (the course plan is the tow's)
+  // Lines hanging from the cable's end (a junction of a tree of lines,
+  // docs/theory.md §5.7): their summed top forces f = K a + b, added to
+  // what hangs at joint n. Zero in a chain.
+  bool end_children = false;  // some line hangs from the cable's end [-]
+  Mat3 end_K = Mat3::Zero();  // [kg]
+  Vec3 end_b = Vec3::Zero();  // [N]
+  Accelerations acc;          // result of the last evaluation
+  CourseCursor course;        // the tow law's last result (the course plan is the tow's)
 
   /// Allocate for a model.
   explicit Workspace(const Model& model);
@@ -165,6 +183,10 @@ bool lengths_in_state(const Model& model);
 
 /// Positions and velocities of joints, centres and body from a physical state.
 void compute_kinematics(const Model& model, const PhysicalState& s, Workspace& ws);
+
+/// The same with the top joint P_0 at r0 moving at v0 [m], [m/s], R_g (a
+/// line hanging from another line's node; s.r0, s.v0 unused).
+void compute_kinematics(const Model& model, const PhysicalState& s, const Vec3& r0, const Vec3& v0, Workspace& ws);
 
 /// Unit-vector quaternion body attitude -> roll, pitch, yaw (ZYX, the paper's
 /// lacet/tangage/roulis order) [rad].

@@ -30,6 +30,14 @@ struct BodyNode {
       bw.Me += J2t * K2 * J2t.transpose();
       bw.he += J2t * (K2 * c2 + b2);
     }
+    // Lines hanging from its points (a tree of lines) enter as the cable below Q2.
+    for (const BodyChild& ch : bw.children) {
+      Eigen::Matrix<double, 6, 3> Jt;
+      Jt << Mat3::Identity(), skew(ch.r);
+      const Vec3 c = bw.w.cross(bw.w.cross(ch.r));
+      bw.Me += Jt * ch.K * Jt.transpose();
+      bw.he += Jt * (ch.K * c + ch.b);
+    }
     const Vec3 r = bw.rQ;  // Q - O_t [m, R_g]
     const Mat3 Rx = skew(r);
     const Mat3 Mll = bw.Me.topLeftCorner<3, 3>(), Mla = bw.Me.topRightCorner<3, 3>();
@@ -48,14 +56,17 @@ struct BodyNode {
   /// Forward dynamics, down: from the acceleration a of its link point Q, its
   /// angular acceleration, link force and, for an in-line body, the
   /// acceleration of its lower link Q2 (returned in a) and the force there.
-  static void accelerate(const Body& body, const BodyWork& bw, const Mat3& K2, const Vec3& b2, std::size_t b, Vec3& a,
+  static void accelerate(const Body& body, BodyWork& bw, const Mat3& K2, const Vec3& b2, std::size_t b, Vec3& a,
                          Accelerations& acc) {
     acc.alpha_b[b] = bw.Phi * (bw.rhs - bw.C * (a + bw.wcent));
     acc.link_force[b] = bw.KQ * a + bw.bQ;
     acc.lower_link_force[b].setZero();
-    if (!body.inline_body) return;
+    if (!body.inline_body && bw.children.empty()) return;
     const Vec3& al = acc.alpha_b[b];
     const Vec3 aO = a + bw.rQ.cross(al) + bw.wcent;
+    // The points the lines below it hang from (a tree of lines).
+    for (BodyChild& ch : bw.children) ch.a = aO + al.cross(ch.r) + bw.w.cross(bw.w.cross(ch.r));
+    if (!body.inline_body) return;
     a = aO + al.cross(bw.rQ2) + bw.w.cross(bw.w.cross(bw.rQ2));
     acc.lower_link_force[b] = K2 * a + b2;
   }
@@ -73,6 +84,12 @@ struct BodyNode {
       Eigen::Matrix<double, 6, 3> J2t;
       J2t << Mat3::Identity(), skew(bw.rQ2);
       Me += J2t * K2 * J2t.transpose();
+    }
+    // Lines hanging from its points (a tree of lines) enter as the cable below Q2.
+    for (std::size_t c = 0; c < bw.children.size(); ++c) {
+      Eigen::Matrix<double, 6, 3> Jt;
+      Jt << Mat3::Identity(), skew(bw.children[c].r);
+      Me += Jt * iw.body_children[b][c].K * Jt.transpose();
     }
     const Mat3 Rx = skew(bw.rQ);  // rQ = Q - O_t [m, R_g]
     const Mat3 Mll = Me.topLeftCorner<3, 3>(), Mla = Me.topRightCorner<3, 3>();
@@ -101,6 +118,11 @@ struct BodyNode {
     iw.Mb[b] = g.tail<3>() - hg * (jac.body_stiffness[b] * (hg * dwb + rotb));
     // Seabed at Q (a force there, on the articulated body at Q: see the bias step).
     iw.FQ[b] = -hg * (jac.bodyq_damping[b] * dv) - hg * (jac.bodyq_stiffness[b] * (hg * dv + dx));
+    // The points the lines below it hang from.
+    for (std::size_t c = 0; c < bw.children.size(); ++c) {
+      iw.body_children[b][c].dv = dvO + dwb.cross(bw.children[c].r);
+      iw.body_children[b][c].dx = dxO + rotb.cross(bw.children[c].r);
+    }
     if (body.inline_body) {
       dv = dvO + dwb.cross(bw.rQ2);
       dx = dxO + rotb.cross(bw.rQ2);
@@ -111,7 +133,11 @@ struct BodyNode {
   /// b2 at Q2 (in-line body) and the seabed's force at Q.
   static void stage_bias(const Body& body, const BodyWork& bw, const Vec3& b2, std::size_t b, ImplicitWorkspace& iw) {
     Vec3 hl = Vec3::Zero(), ha = Vec3::Zero();
-    if (body.inline_body) hl = b2, ha = bw.rQ2.cross(b2);  // J2^T b2
+    if (body.inline_body) hl = b2, ha = bw.rQ2.cross(b2);   // J2^T b2
+    for (std::size_t c = 0; c < bw.children.size(); ++c) {  // the lines below its points, likewise
+      const Vec3& bc = iw.body_children[b][c].b;
+      hl += bc, ha += bw.children[c].r.cross(bc);
+    }
     const Vec3& r = bw.rQ;
     iw.brhs[b] = iw.Mb[b] - r.cross(iw.Fb[b]) - ha + r.cross(hl);
     iw.bbQ[b] = iw.bC[b].transpose() * iw.bPhi[b] * iw.brhs[b] + hl - iw.Fb[b];
@@ -123,6 +149,8 @@ struct BodyNode {
   static void stage_accelerate(const Body& body, const BodyWork& bw, std::size_t b, Vec3& a, ImplicitWorkspace& iw) {
     const Vec3 al = iw.bPhi[b] * (iw.brhs[b] - iw.bC[b] * a);
     iw.alpha_b[b] = al;
+    for (std::size_t c = 0; c < bw.children.size(); ++c)  // the points the lines below it hang from
+      iw.body_children[b][c].a = a + bw.rQ.cross(al) + al.cross(bw.children[c].r);
     if (body.inline_body) a = a + bw.rQ.cross(al) + al.cross(bw.rQ2);
   }
 };
