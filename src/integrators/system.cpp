@@ -74,8 +74,9 @@ class DefaultSystem final : public System {
   explicit DefaultSystem(const Model& m)
       : model_(m),
         layout_(StateLayout::default_of(m)),
+        shape_(PhysicalState::hanging(m)),
         ws_(m),
-        s_(PhysicalState::hanging(m)),
+        s_(shape_),
         jws_(m),
         js_(s_),
         iw_(m),
@@ -124,46 +125,52 @@ class DefaultSystem final : public System {
   }
 
   PhysicalState physical(const StateVector& y) const override {
-    PhysicalState s = s_;
+    PhysicalState s = shape_;
     unpack(y, s);
     return s;
   }
 
-  const PhysicalState& physical_view(const StateVector& y) const override {
-    view_ = s_;  // as physical(y), into storage of the same sizes
-    unpack(y, view_);
-    return view_;
+  void physical_into(const StateVector& y, PhysicalState& out) const override {
+    out = shape_;  // as physical(y), into storage of the same sizes
+    unpack(y, out);
   }
 
-  void derivative(const StateVector& y, StateVector& dy, double t) override { evaluate_at(y, dy, t, false); }
-
-  void derivative_time_shift(const StateVector& y, StateVector& dy, double t) override { evaluate_at(y, dy, t, true); }
-
-  /// derivative(); time_shift: the rigid elements' inertias from jws_ when it
-  /// provably holds them for this state (jac_from_s_ and js_'s directions
-  /// and body attitudes bitwise those of s_: the inertias read nothing else
-  /// without a winch or elastic elements). Bit-identical either way.
-  void evaluate_at(const StateVector& y, StateVector& dy, double t, bool time_shift) {
+  void derivative(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override {
     ++rhs_evaluations;
+    main_rates(y, dy, t, window, false);
+  }
+
+  void derivative_time_shift(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override {
+    ++rhs_evaluations;
+    main_rates(y, dy, t, window, true);
+  }
+
+  /// dy = f(y, t) on the main workspace, uncounted; time_shift: the rigid
+  /// elements' inertias from jws_ when it provably holds them for this state
+  /// (jac_from_s_ and js_'s directions and body attitudes bitwise those of
+  /// s_: the inertias read nothing else without a winch or elastic
+  /// elements). Bit-identical either way.
+  void main_rates(const StateVector& y, StateVector& dy, double t, const StepWindow& window, bool time_shift) {
     ws_from_s_ = false;  // until the evaluation completes
-    rates(y, dy, t, s_, ws_, time_shift, fork());
+    rates(y, dy, t, window, s_, ws_, time_shift, fork());
     ws_from_s_ = true;
   }
 
-  void start_side_forces(const StateVector& y_side, double t_side, EvaluationForces& side) override {
+  void start_side_forces(const StateVector& y_side, double t_side, const StepWindow& window,
+                         EvaluationForces& side) override {
     if (!use_worker()) {
-      System::start_side_forces(y_side, t_side, side);
+      System::start_side_forces(y_side, t_side, window, side);
       return;
     }
     SideEvaluation& sv = side_evaluation();
-    sv.y = &y_side, sv.t = t_side, sv.out = &side;
+    sv.y = &y_side, sv.t = t_side, sv.window = window, sv.out = &side;
     sv.worker.start(&side_job, this);
     sv.running = true;
   }
 
-  void finish_side_forces(const StateVector& y, StateVector& dy, double t) override {
+  void finish_side_forces(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override {
     if (!side_ || !side_->running) {  // started serially
-      System::finish_side_forces(y, dy, t);
+      System::finish_side_forces(y, dy, t, window);
       return;
     }
     rhs_evaluations += 2;
@@ -171,7 +178,7 @@ class DefaultSystem final : public System {
     std::exception_ptr error;
     try {
       ws_from_s_ = false;  // until the evaluation completes
-      rates(y, dy, t, s_, ws_);
+      rates(y, dy, t, window, s_, ws_);
       ws_from_s_ = true;
     } catch (...) {
       error = std::current_exception();
@@ -254,9 +261,7 @@ class DefaultSystem final : public System {
 
   const Workspace& evaluate(const StateVector& y, double t) override {
     StateVector dy;
-    set_window(t, 1e300);  // right limit at a breakpoint: the state is already past it
-    derivative(y, dy, t);
-    --rhs_evaluations;
+    main_rates(y, dy, t, StepWindow::after(t), false);
     return ws_;
   }
 
@@ -286,7 +291,7 @@ class DefaultSystem final : public System {
   std::size_t element_rate_row(std::size_t k) const override { return layout_.rate(k); }
   std::size_t body_rate_row(std::size_t b) const override { return layout_.body(b) + 4; }
 
-  void prepare_stage_solve(double t) override {
+  void prepare_stage_solve(double t, const StepWindow& window) override {
     // Keep the evaluation at the step's start: its kinematics, inertias and
     // forces define the local Jacobian for all stages of the step. Swapped,
     // not copied (~4 % of a km-cable-1000 run): the next derivative()
@@ -295,7 +300,7 @@ class DefaultSystem final : public System {
     std::swap(jws_, ws_);
     std::swap(js_, s_);
     std::swap(jac_from_s_, ws_from_s_);
-    local_jacobian(model_, js_, jws_, law_time(t), iw_.jac);
+    local_jacobian(model_, js_, jws_, window.law_time(t), iw_.jac);
     iw_.hg = -1;  // a new Jacobian: factorise again at the next stage solve
   }
 
@@ -420,10 +425,10 @@ class DefaultSystem final : public System {
   }
   /// dy = f(y, t) evaluated on (s, ws): derivative()'s work, on the main
   /// workspace or the worker's. Reads the model and the step's window only.
-  void rates(const StateVector& y, StateVector& dy, double t, PhysicalState& s, Workspace& ws, bool time_shift = false,
-             Fork* fork = nullptr) const {
+  void rates(const StateVector& y, StateVector& dy, double t, const StepWindow& window, PhysicalState& s, Workspace& ws,
+             bool time_shift = false, Fork* fork = nullptr) const {
     unpack(y, s);
-    const double tl = law_time(t);
+    const double tl = window.law_time(t);
     impose_tow(model_, tl, s.r0, s.v0, ws.course);
     impose_winch(tl, s);
     if (time_shift && inertias_in_jws(s))
@@ -462,7 +467,7 @@ class DefaultSystem final : public System {
   static void side_job(void* self) {
     auto& sys = *static_cast<DefaultSystem*>(self);
     SideEvaluation& side = *sys.side_;
-    sys.rates(*side.y, side.dy, side.t, side.s, side.ws);
+    sys.rates(*side.y, side.dy, side.t, side.window, side.s, side.ws);
     side.out->tow_force = side.ws.acc.tow_force;
     side.out->link_force = side.ws.acc.link_force;
   }
@@ -506,6 +511,9 @@ class DefaultSystem final : public System {
 
   const Model& model_;
   StateLayout layout_;  // the flat state's blocks
+  // The chain's shape: sizes, and what the state does not carry (the
+  // model's lengths of the elements without a length in the state).
+  PhysicalState shape_;
   Workspace ws_;
   PhysicalState s_;
   Workspace jws_;         // evaluation at the start of the step (Jacobian point)
@@ -530,6 +538,7 @@ class DefaultSystem final : public System {
     StateVector dy;  // discarded rates
     const StateVector* y = nullptr;
     double t = 0;
+    StepWindow window;
     EvaluationForces* out = nullptr;
     bool running = false;  // started, not finished or cancelled yet
     Worker worker;         // last: its thread ends before the rest goes
@@ -548,7 +557,7 @@ class DefaultSystem final : public System {
   }
   /// The side evaluation's storage and worker, made at first use.
   SideEvaluation& side_evaluation() {
-    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, s_);
+    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, shape_);
     return *side_;
   }
   int threads_ = 1;                       // evaluation_threads(model_) [-]
@@ -576,19 +585,9 @@ class PaperSystem final : public System {
     return from_paper(model_, p);
   }
 
-  void derivative(const StateVector& y, StateVector& dy, double t) override {
+  void derivative(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override {
     ++rhs_evaluations;
-    unpack(y, p_);
-    const double tl = law_time(t);
-    impose_tow(model_, tl, p_.r0, p_.v0, eval_ws_.course);
-    paper_dynamics(model_, p_, tl, pw_);
-    dy.resize(y.size());
-    set3(dy, 0, p_.v0);
-    set3(dy, 3, pw_.acc.a0);
-    Eigen::Map<Eigen::VectorXd>(&dy[layout_.angles.offset], na_) = p_.qd;
-    Eigen::Map<Eigen::VectorXd>(&dy[layout_.angle_rates.offset], na_) = pw_.qdd;
-    // The charts change only by project() (rechart).
-    std::fill(dy.begin() + static_cast<std::ptrdiff_t>(layout_.charts.offset), dy.end(), 0.0);
+    rates(y, dy, t, window);
   }
 
   void project(StateVector& y, double t) override {
@@ -602,9 +601,7 @@ class PaperSystem final : public System {
     // Forces from the paper's own solve; joint tensions from the recursion
     // on the same physical state (they agree to round-off: tests).
     StateVector dy;
-    set_window(t, 1e300);  // right limit at a breakpoint: the state is already past it
-    derivative(y, dy, t);
-    --rhs_evaluations;
+    rates(y, dy, t, StepWindow::after(t));
     PhysicalState s = from_paper(model_, p_);
     forward_dynamics(model_, s, t, eval_ws_);
     eval_ws_.acc.tow_force = pw_.acc.tow_force;
@@ -629,6 +626,20 @@ class PaperSystem final : public System {
   std::string describe(std::size_t i) const override { return layout_.describe(i, model_); }
 
  private:
+  /// dy = f(y, t), uncounted, on the workspace (p_, pw_).
+  void rates(const StateVector& y, StateVector& dy, double t, const StepWindow& window) {
+    unpack(y, p_);
+    const double tl = window.law_time(t);
+    impose_tow(model_, tl, p_.r0, p_.v0, eval_ws_.course);
+    paper_dynamics(model_, p_, tl, pw_);
+    dy.resize(y.size());
+    set3(dy, 0, p_.v0);
+    set3(dy, 3, pw_.acc.a0);
+    Eigen::Map<Eigen::VectorXd>(&dy[layout_.angles.offset], na_) = p_.qd;
+    Eigen::Map<Eigen::VectorXd>(&dy[layout_.angle_rates.offset], na_) = pw_.qdd;
+    // The charts change only by project() (rechart).
+    std::fill(dy.begin() + static_cast<std::ptrdiff_t>(layout_.charts.offset), dy.end(), 0.0);
+  }
   void pack(const PaperState& p, StateVector& y) const {
     set3(y, 0, p.r0);
     set3(y, 3, p.v0);

@@ -201,18 +201,17 @@ TEST_P(NoMutation, SystemEvaluationsLeaveTheStateVectorUnchanged) {
     const StateVector y = sys->initial(state_at(m, rng, 0.6), 0.6);
     const StateVector y0 = y;
     const auto s0 = flatten(sys->physical(y));
-    // The window of the step being taken (as simulate() sets it).
-    sys->set_window(0.5, 0.7);
+    // The window of the step being taken (as simulate() gives it).
+    const StepWindow window{0.5, 0.7};
     StateVector dy1, dy2;
-    sys->derivative(y, dy1, 0.6);
+    sys->derivative(y, dy1, 0.6, window);
     EXPECT_TRUE(same_bits(y, y0)) << testing::formulation_name(f) << ": derivative";
     EXPECT_TRUE(same_bits(flatten(sys->physical(y)), s0)) << testing::formulation_name(f) << ": derivative";
     sys->evaluate(y, 0.6);
     EXPECT_TRUE(same_bits(y, y0)) << testing::formulation_name(f) << ": evaluate";
     EXPECT_TRUE(same_bits(flatten(sys->physical(y)), s0)) << testing::formulation_name(f) << ": evaluate";
     // An evaluation leaves nothing behind that changes the next one.
-    sys->set_window(0.5, 0.7);
-    sys->derivative(y, dy2, 0.6);
+    sys->derivative(y, dy2, 0.6, window);
     EXPECT_TRUE(same_bits(dy1, dy2)) << testing::formulation_name(f);
   }
 }
@@ -262,13 +261,12 @@ TEST_P(ReusedWorkspace, SystemAThenBThenAEqualsFresh) {
     const StateVector ya = used->initial(state_at(m, rng, 0.6), 0.6);
     const StateVector yb = used->initial(state_at(m, rng, 0.6), 0.6);
     StateVector dy_used, dy_fresh, scratch;
-    used->set_window(0.5, 0.7);
-    used->derivative(ya, scratch, 0.6);
-    used->derivative(yb, scratch, 0.6);
-    used->derivative(ya, dy_used, 0.6);
+    const StepWindow window{0.5, 0.7};
+    used->derivative(ya, scratch, 0.6, window);
+    used->derivative(yb, scratch, 0.6, window);
+    used->derivative(ya, dy_used, 0.6, window);
     const auto fresh = make_system(m);
-    fresh->set_window(0.5, 0.7);
-    fresh->derivative(ya, dy_fresh, 0.6);
+    fresh->derivative(ya, dy_fresh, 0.6, window);
     EXPECT_TRUE(same_bits(dy_used, dy_fresh)) << testing::formulation_name(f);
     used->evaluate(yb, 0.6);
     EXPECT_TRUE(same_bits(flatten(used->evaluate(ya, 0.6)), flatten(fresh->evaluate(ya, 0.6))))
