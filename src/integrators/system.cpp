@@ -67,6 +67,29 @@ Vec3 sheave_jump(const Model& m, const PhysicalState& s, double dL) {
   return s.length_of(m, 0) / s.top_unstretched * dL * s.e[0];
 }
 
+/// The default system's workspace: the storage its evaluations write and
+/// the cache of the stage solves (the Jacobian point). What derivative()
+/// returns never depends on it: each evaluation rewrites what it reads, and
+/// the cache is read only where it provably holds the same bits.
+struct DefaultWorkspace {
+  DefaultWorkspace(const Model& m, const PhysicalState& shape) : ws(m), s(shape), jws(m), js(shape), iw(m) {
+    rhs.dw.assign(shape.e.size(), Vec3::Zero());
+    rhs.rot.assign(shape.e.size(), Vec3::Zero());
+    rhs.dwb.assign(shape.bodies.size(), Vec3::Zero());
+    rhs.rotb.assign(shape.bodies.size(), Vec3::Zero());
+    rhs.dl.assign(shape.e.size(), 0.0);
+    rhs.dlr.assign(shape.e.size(), 0.0);
+  }
+  Workspace ws;             // the last derivative()'s evaluation (last_accelerations)
+  PhysicalState s;          // its state
+  Workspace jws;            // the evaluation at the step's start (the Jacobian point)
+  PhysicalState js;         // its state
+  ImplicitWorkspace iw;     // local Jacobian and stage-solve work arrays
+  StageRhs rhs;             // one stage's right-hand side, per part
+  bool ws_from_s = false;   // ws holds derivative()'s evaluation at s
+  bool jac_from_s = false;  // jws holds it at js (swapped with ws_from_s)
+};
+
 /// Default formulation: unit vectors e_k, angular velocities, body
 /// quaternions; its flat state's blocks: StateLayout::default_of.
 class DefaultSystem final : public System {
@@ -75,11 +98,7 @@ class DefaultSystem final : public System {
       : model_(m),
         layout_(StateLayout::default_of(m)),
         shape_(PhysicalState::hanging(m)),
-        ws_(m),
-        s_(shape_),
-        jws_(m),
-        js_(s_),
-        iw_(m),
+        work_(m, shape_),
         threads_(evaluation_threads(m)) {
     n_ = m.cable.n();
     winch_ = layout_.winch.size > 0;
@@ -88,12 +107,6 @@ class DefaultSystem final : public System {
     // Length control: l_1 = L(t) - (the fixed elements below + cable drawn in by removals).
     fixed_length_ = m.winch.length_offset;
     for (int k = 1; k < n_; ++k) fixed_length_ += m.cable.elements[static_cast<std::size_t>(k)].length;
-    rhs_.dw.assign(s_.e.size(), Vec3::Zero());
-    rhs_.rot.assign(s_.e.size(), Vec3::Zero());
-    rhs_.dwb.assign(s_.bodies.size(), Vec3::Zero());
-    rhs_.rotb.assign(s_.bodies.size(), Vec3::Zero());
-    rhs_.dl.assign(s_.e.size(), 0.0);
-    rhs_.dlr.assign(s_.e.size(), 0.0);
   }
 
   StateVector initial(const PhysicalState& s, double) override {
@@ -146,14 +159,14 @@ class DefaultSystem final : public System {
   }
 
   /// dy = f(y, t) on the main workspace, uncounted; time_shift: the rigid
-  /// elements' inertias from jws_ when it provably holds them for this state
-  /// (jac_from_s_ and js_'s directions and body attitudes bitwise those of
-  /// s_: the inertias read nothing else without a winch or elastic
+  /// elements' inertias from work_.jws when it provably holds them for this state
+  /// (work_.jac_from_s and work_.js's directions and body attitudes bitwise those of
+  /// work_.s: the inertias read nothing else without a winch or elastic
   /// elements). Bit-identical either way.
   void main_rates(const StateVector& y, StateVector& dy, double t, const StepWindow& window, bool time_shift) {
-    ws_from_s_ = false;  // until the evaluation completes
-    rates(y, dy, t, window, s_, ws_, time_shift, fork());
-    ws_from_s_ = true;
+    work_.ws_from_s = false;  // until the evaluation completes
+    rates(y, dy, t, window, work_.s, work_.ws, time_shift, fork());
+    work_.ws_from_s = true;
   }
 
   void start_side_forces(const StateVector& y_side, double t_side, const StepWindow& window,
@@ -177,9 +190,9 @@ class DefaultSystem final : public System {
     // f(y, t) here while the side runs; the side's failure first (serially it comes first).
     std::exception_ptr error;
     try {
-      ws_from_s_ = false;  // until the evaluation completes
-      rates(y, dy, t, window, s_, ws_);
-      ws_from_s_ = true;
+      work_.ws_from_s = false;  // until the evaluation completes
+      rates(y, dy, t, window, work_.s, work_.ws);
+      work_.ws_from_s = true;
     } catch (...) {
       error = std::current_exception();
     }
@@ -210,7 +223,7 @@ class DefaultSystem final : public System {
 
   void project(StateVector& y, double t) override {
     if (model_.tow.mode == Tow::Mode::Motion) {
-      const TowKinematics k = tow_kinematics(model_.tow, t, ws_.course);
+      const TowKinematics k = tow_kinematics(model_.tow, t, work_.ws.course);
       set3(y, 0, k.pos);
       set3(y, 3, k.vel);
     }
@@ -244,13 +257,13 @@ class DefaultSystem final : public System {
     l = (at_max ? model_.winch.max_length : model_.winch.min_length) - fixed_length_;
     PhysicalState s = physical(y);
     const Vec3 dv = -sheave_jump(model_, s, rate);
-    ws_from_s_ = false;
-    tow_velocity_jump(model_, s, dv, ws_);
-    for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws_.acc.alpha[k];
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws_.acc.alpha_b[b];
+    work_.ws_from_s = false;
+    tow_velocity_jump(model_, s, dv, work_.ws);
+    for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += work_.ws.acc.alpha[k];
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += work_.ws.acc.alpha_b[b];
     if (elastic_top_) {
       // The elements' stretch rates jump too; l_1' by the sheave's jump besides.
-      for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws_.acc.length_acc[k];
+      for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += work_.ws.acc.length_acc[k];
       s.length_rate[0] += dv.dot(s.e[0]);
       s.top_unstretched_rate = 0;
     } else {
@@ -262,7 +275,7 @@ class DefaultSystem final : public System {
   const Workspace& evaluate(const StateVector& y, double t) override {
     StateVector dy;
     main_rates(y, dy, t, StepWindow::after(t), false);
-    return ws_;
+    return work_.ws;
   }
 
   double apply_tow_jump(StateVector& y, double t) override {
@@ -273,8 +286,8 @@ class DefaultSystem final : public System {
     const Vec3 dsheave = winch_ ? Vec3(sheave_jump(model_, s, dl)) : Vec3::Zero();
     const Vec3 dv = tow_jump(model_, t) + dsheave;
     if (dv.norm() == 0) return 0;
-    ws_from_s_ = false;
-    s = jumped(model_, s, dv, t, ws_);
+    work_.ws_from_s = false;
+    s = jumped(model_, s, dv, t, work_.ws);
     if (elastic_top_ && model_.winch.mode == Winch::Mode::Imposed) {
       // l_1' = (d_1' relative to the sheave's material) + the sheave's pay-out.
       s.length_rate[0] += dsheave.dot(s.e[0]);
@@ -295,50 +308,50 @@ class DefaultSystem final : public System {
     // Keep the evaluation at the step's start: its kinematics, inertias and
     // forces define the local Jacobian for all stages of the step. Swapped,
     // not copied (~4 % of a km-cable-1000 run): the next derivative()
-    // rewrites what it reads of ws_ and s_, the rest is the model's and the
+    // rewrites what it reads of work_.ws and work_.s, the rest is the model's and the
     // same in both (outputs bit-identical, docs/performance.md).
-    std::swap(jws_, ws_);
-    std::swap(js_, s_);
-    std::swap(jac_from_s_, ws_from_s_);
-    local_jacobian(model_, js_, jws_, window.law_time(t), iw_.jac);
-    iw_.hg = -1;  // a new Jacobian: factorise again at the next stage solve
+    std::swap(work_.jws, work_.ws);
+    std::swap(work_.js, work_.s);
+    std::swap(work_.jac_from_s, work_.ws_from_s);
+    local_jacobian(model_, work_.js, work_.jws, window.law_time(t), work_.iw.jac);
+    work_.iw.hg = -1;  // a new Jacobian: factorise again at the next stage solve
   }
 
   void stage_solve(double hg, const StateVector& r, StateVector& k) override {
     // Velocity rows: (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x), k_v = r_v + z.
-    rhs_.dv0 = CMap3(&r[3]);
-    rhs_.dx0 = CMap3(r.data());
+    work_.rhs.dv0 = CMap3(&r[3]);
+    work_.rhs.dx0 = CMap3(r.data());
     for (int i = 0; i < n_; ++i) {
-      rhs_.dw[i] = CMap3(&r[layout_.rate(i)]);
-      rhs_.rot[i] = js_.e[i].cross(CMap3(&r[layout_.direction(i)]));
+      work_.rhs.dw[i] = CMap3(&r[layout_.rate(i)]);
+      work_.rhs.rot[i] = work_.js.e[i].cross(CMap3(&r[layout_.direction(i)]));
     }
-    for (std::size_t b = 0; b < js_.bodies.size(); ++b) {
+    for (std::size_t b = 0; b < work_.js.bodies.size(); ++b) {
       const std::size_t o = layout_.body(b);
-      rhs_.dwb[b] = CMap3(&r[o + 4]);
+      work_.rhs.dwb[b] = CMap3(&r[o + 4]);
       // dq = 1/2 (0, rot) q  =>  rot = 2 vec(dq q^-1).
-      rhs_.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * js_.bodies[b].q.conjugate()).vec();
+      work_.rhs.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * work_.js.bodies[b].q.conjugate()).vec();
     }
     // Lengths' rows (elastic elements; a winch's top length: below).
     if (lengths_) {
       for (int i = 0; i < n_; ++i) {
         const bool el = is_elastic(model_.cable.elements[static_cast<std::size_t>(i)]);
-        rhs_.dl[i] = el ? r[layout_.length(i)] : 0.0;
-        rhs_.dlr[i] = el ? r[layout_.length_rate(i)] : 0.0;
+        work_.rhs.dl[i] = el ? r[layout_.length(i)] : 0.0;
+        work_.rhs.dlr[i] = el ? r[layout_.length_rate(i)] : 0.0;
       }
     }
     // A tension-controlled winch's rows (l_1, l_1'): the drum in the stage solve.
     // (Over an elastic top element the winch sets its unstretched L_1, which
     // moves no joint: W = I on those rows.)
     const bool drum = winch_ && model_.winch.mode == Winch::Mode::Tension && !elastic_top_;
-    rhs_.winch_dl = drum ? r[layout_.winch.offset] : 0.0;
-    rhs_.winch_dlr = drum ? r[layout_.winch.offset + 1] : 0.0;
+    work_.rhs.winch_dl = drum ? r[layout_.winch.offset] : 0.0;
+    work_.rhs.winch_dlr = drum ? r[layout_.winch.offset + 1] : 0.0;
     if (elastic_top_) {
       // The top element's spring and damper see L_1, L_1' (their rows stay explicit: W = I there).
-      const double lam = js_.length[0] / js_.top_unstretched;
-      rhs_.top_dL = lam * r[layout_.winch.offset];
-      rhs_.top_dLr = lam * r[layout_.winch.offset + 1];
+      const double lam = work_.js.length[0] / work_.js.top_unstretched;
+      work_.rhs.top_dL = lam * r[layout_.winch.offset];
+      work_.rhs.top_dLr = lam * r[layout_.winch.offset + 1];
     }
-    implicit_stage_solve(model_, js_, jws_, hg, rhs_, iw_);
+    implicit_stage_solve(model_, work_.js, work_.jws, hg, work_.rhs, work_.iw);
     // Rows without local terms keep k = r (W = I there: still a W-method);
     // the tow point's and the elements' rows (the first layout_.bodies.offset) are
     // all written below, so only the rest is copied.
@@ -346,47 +359,47 @@ class DefaultSystem final : public System {
     std::copy(r.begin() + static_cast<std::ptrdiff_t>(layout_.bodies.offset), r.end(),
               k.begin() + static_cast<std::ptrdiff_t>(layout_.bodies.offset));
     // Position rows: k_x = r_x + hg B k_v (B: velocities -> position rates at the step's start).
-    const Vec3 kv0 = CMap3(&r[3]) + iw_.a0;
+    const Vec3 kv0 = CMap3(&r[3]) + work_.iw.a0;
     set3(k, 3, kv0);
     set3(k, 0, CMap3(r.data()) + hg * kv0);
     for (int i = 0; i < n_; ++i) {
-      const Vec3 kw = rhs_.dw[i] + iw_.alpha[i];
+      const Vec3 kw = work_.rhs.dw[i] + work_.iw.alpha[i];
       set3(k, layout_.rate(i), kw);
-      set3(k, layout_.direction(i), CMap3(&r[layout_.direction(i)]) + hg * kw.cross(js_.e[i]));
+      set3(k, layout_.direction(i), CMap3(&r[layout_.direction(i)]) + hg * kw.cross(work_.js.e[i]));
     }
     if (lengths_) {
       // k_l' = r_l' + z_l, k_l = r_l + hg k_l' (elastic elements; z_l = 0 else).
       for (int i = 0; i < n_; ++i) {
         if (!is_elastic(model_.cable.elements[static_cast<std::size_t>(i)])) continue;
         const std::size_t l = layout_.length(i), lr = layout_.length_rate(i);
-        const double klr = r[lr] + iw_.zl[i];
+        const double klr = r[lr] + work_.iw.zl[i];
         k[lr] = klr;
         k[l] = r[l] + hg * klr;
       }
     }
     if (drum && model_.tow.mode == Tow::Mode::Motion) {
       // k_l' = r_l' + z_l, k_l = r_l + hg k_l' (Force mode: W = I there).
-      k[layout_.winch.offset + 1] = r[layout_.winch.offset + 1] + iw_.z_winch;
+      k[layout_.winch.offset + 1] = r[layout_.winch.offset + 1] + work_.iw.z_winch;
       k[layout_.winch.offset] = r[layout_.winch.offset] + hg * k[layout_.winch.offset + 1];
     }
-    for (std::size_t b = 0; b < js_.bodies.size(); ++b) {
+    for (std::size_t b = 0; b < work_.js.bodies.size(); ++b) {
       const std::size_t o = layout_.body(b);
-      const Vec3 kw = rhs_.dwb[b] + iw_.alpha_b[b];
+      const Vec3 kw = work_.rhs.dwb[b] + work_.iw.alpha_b[b];
       set3(k, o + 4, kw);
-      const Quat dq = Quat(0, kw.x(), kw.y(), kw.z()) * js_.bodies[b].q;
+      const Quat dq = Quat(0, kw.x(), kw.y(), kw.z()) * work_.js.bodies[b].q;
       k[o] = r[o] + 0.5 * hg * dq.w(), k[o + 1] = r[o + 1] + 0.5 * hg * dq.x();
       k[o + 2] = r[o + 2] + 0.5 * hg * dq.y(), k[o + 3] = r[o + 3] + 0.5 * hg * dq.z();
     }
   }
 
-  const Accelerations* last_accelerations() const override { return &ws_.acc; }
+  const Accelerations* last_accelerations() const override { return &work_.ws.acc; }
 
   std::string describe(std::size_t i) const override { return layout_.describe(i, model_); }
 
  private:
-  /// jws_ holds the rigid elements' inertias of s's state (after unpack).
+  /// work_.jws holds the rigid elements' inertias of s's state (after unpack).
   bool inertias_in_jws(const PhysicalState& s) const {
-    if (!jac_from_s_ || winch_ || lengths_) return false;
+    if (!work_.jac_from_s || winch_ || lengths_) return false;
     // Bitwise (-0 and NaN included): the inertias were computed from these bits.
     const auto same = [](const auto& a, const auto& b) {
       for (Eigen::Index i = 0; i < a.size(); ++i)
@@ -394,9 +407,9 @@ class DefaultSystem final : public System {
       return true;
     };
     for (std::size_t k = 0; k < s.e.size(); ++k)
-      if (!same(s.e[k], js_.e[k])) return false;
+      if (!same(s.e[k], work_.js.e[k])) return false;
     for (std::size_t b = 0; b < s.bodies.size(); ++b)
-      if (!same(s.bodies[b].q.coeffs(), js_.bodies[b].q.coeffs())) return false;
+      if (!same(s.bodies[b].q.coeffs(), work_.js.bodies[b].q.coeffs())) return false;
     return true;
   }
   void unpack(const StateVector& y, PhysicalState& s) const {
@@ -432,7 +445,7 @@ class DefaultSystem final : public System {
     impose_tow(model_, tl, s.r0, s.v0, ws.course);
     impose_winch(tl, s);
     if (time_shift && inertias_in_jws(s))
-      forward_dynamics_time_shift(model_, s, tl, jws_, ws, fork);
+      forward_dynamics_time_shift(model_, s, tl, work_.jws, ws, fork);
     else
       forward_dynamics(model_, s, tl, ws, fork);
     dy.resize(layout_.size);
@@ -514,22 +527,15 @@ class DefaultSystem final : public System {
   // The chain's shape: sizes, and what the state does not carry (the
   // model's lengths of the elements without a length in the state).
   PhysicalState shape_;
-  Workspace ws_;
-  PhysicalState s_;
-  Workspace jws_;         // evaluation at the start of the step (Jacobian point)
-  PhysicalState js_;      // its state
-  ImplicitWorkspace iw_;  // local Jacobian and stage-solve work arrays
-  StageRhs rhs_;          // one stage's right-hand side, per part
+  DefaultWorkspace work_;  // storage and caches: derivative()'s results do not depend on it
   int n_ = 0;
   bool lengths_ = false;      // the state carries element lengths and rates
   bool winch_ = false;        // the state carries the winch's l_1, l_1'
   bool elastic_top_ = false;  // ... as L_1, L_1' of an elastic top element (l_1, l_1' among the lengths)
   double fixed_length_ = 0;   // deployed length but l_1 [m]
-  bool ws_from_s_ = false;    // ws_ holds derivative()'s evaluation at s_
-  bool jac_from_s_ = false;   // jws_ holds it at js_ (swapped with ws_from_s_)
 
   /// The side evaluation (start_side_forces) on the worker: its
-  /// own state and workspace (sized as s_ and ws_; every evaluation rewrites
+  /// own state and workspace (sized as work_.s and work_.ws; every evaluation rewrites
   /// what it reads of them, the rest is the model's), its inputs and output.
   struct SideEvaluation {
     SideEvaluation(const Model& m, const PhysicalState& s0) : ws(m), s(s0) {}
@@ -660,10 +666,11 @@ class PaperSystem final : public System {
 
   const Model& model_;
   StateLayout layout_;  // the flat state's blocks
-  PaperWorkspace pw_;
-  Workspace eval_ws_;
-  PaperState p_;
-  int na_ = 0;
+  int na_ = 0;          // angles [-]
+  // The workspace, storage only (derivative()'s results do not depend on it):
+  PaperWorkspace pw_;  // the paper's dense solve
+  Workspace eval_ws_;  // the recursion's, for outputs and tow jumps
+  PaperState p_;       // y's coordinates, unpacked
 };
 
 }  // namespace
