@@ -16,6 +16,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../support/cli.hpp"
@@ -24,6 +25,9 @@
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/paper.hpp"
 #include "towsim/integrators/system.hpp"
+#include "towsim/model/winch.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim {
@@ -217,6 +221,120 @@ TEST_P(NoMutation, SystemEvaluationsLeaveTheStateVectorUnchanged) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Anchors, NoMutation, ::testing::Bool(), with_body_name);
+
+// --- derivative() is a function of its arguments --------------------------------
+
+/// A built-in example with --set overrides, compiled.
+Model example(const std::string& name, const std::vector<std::string>& sets = {}) {
+  const io::Example* e = io::find_example(name);
+  EXPECT_NE(e, nullptr) << name;
+  if (e == nullptr) return Model{};
+  io::LoadedScenario sc = io::load_scenario_text(e->yaml, name + ".yaml", name, "", sets);
+  EXPECT_TRUE(sc.ok()) << sc.diags.str();
+  return sc.ok() ? *sc.model : Model{};
+}
+
+/// Models with every kind of block in the flat state, the paper's and a
+/// worker thread; each with its name.
+std::vector<std::pair<std::string, Model>> block_models() {
+  std::vector<std::pair<std::string, Model>> v;
+  v.emplace_back("cable", anchor_model(false));
+  v.emplace_back("body", anchor_model(true));
+  v.emplace_back("paper, body", anchor_model(true, Formulation::Paper));
+  v.emplace_back("imposed winch", example("fish-depth-change"));
+  Model tension = example("fish-depth-change");
+  tension.winch.mode = Winch::Mode::Tension;
+  tension.winch.tension = 2e4, tension.winch.drum_inertia = 200, tension.winch.damping = 500;
+  v.emplace_back("tension winch", tension);
+  v.emplace_back("depth controllers", example("fish-depth-control"));
+  v.emplace_back("elastic", example("cable-tow", {"cable.axial_stiffness=1e7"}));
+  v.emplace_back("two bodies", example("two-part-tow"));
+  v.emplace_back("worker thread", example("paper-3d-turn", {"simulation.threads=2"}));
+  return v;
+}
+
+/// Every call of the System's interface once, at the state `y` [t = 2.2 s,
+/// window 2.0-2.5 s]: what may come between two evaluations of a run.
+void call_everything(System& sys, const StateVector& y) {
+  const StepWindow elsewhere{2.0, 2.5};
+  StateVector dy, k, x = y;
+  EvaluationForces side;
+  PhysicalState view;
+  sys.derivative(y, dy, 2.2, elsewhere);
+  if (sys.has_stage_solve()) {
+    sys.prepare_stage_solve(2.2, elsewhere);
+    sys.stage_solve(0.01, dy, k);
+    sys.derivative_time_shift(y, dy, 2.3, elsewhere);
+  }
+  sys.derivative_with_side_forces(y, dy, 2.2, y, 2.4, elsewhere, side);
+  sys.derivative(y, dy, 2.2);
+  (void)sys.evaluate(y, 2.2);
+  sys.physical_into(y, view);
+  sys.project(x, 2.2);
+  x = y;
+  (void)sys.apply_tow_jump(x, 1.0);
+}
+
+// MuJoCo's determinism check: derivative() twice with the same arguments,
+// every other call between at another state, time and window, gives the same
+// bits, and the same as a fresh System's.
+TEST(PureDerivative, SameArgumentsSameBitsWhateverCameBetween) {
+  for (const auto& [name, m] : block_models()) {
+    const auto sys = make_system(m), fresh = make_system(m);
+    std::mt19937 rng(17);
+    const StateVector y = sys->initial(state_at(m, rng, 0.6), 0.6);
+    const StateVector other = sys->initial(state_at(m, rng, 2.2), 2.2);
+    const StepWindow window{0.5, 0.7};
+    StateVector dy1, dy2, dy_fresh, shifted;
+    sys->derivative(y, dy1, 0.6, window);
+    call_everything(*sys, other);
+    sys->derivative(y, dy2, 0.6, window);
+    fresh->derivative(y, dy_fresh, 0.6, window);
+    EXPECT_TRUE(same_bits(dy1, dy2)) << name;
+    EXPECT_TRUE(same_bits(dy1, dy_fresh)) << name;
+    // The time shift (a cache of the Jacobian point's inertias) is the same function.
+    call_everything(*sys, other);
+    sys->derivative_time_shift(y, shifted, 0.6, window);
+    EXPECT_TRUE(same_bits(dy1, shifted)) << name << ": time shift";
+    // The window is an argument: another window, another law time.
+    sys->derivative(y, dy2, 0.6, StepWindow::after(0.6));
+    fresh->derivative(y, dy_fresh, 0.6, StepWindow::after(0.6));
+    EXPECT_TRUE(same_bits(dy2, dy_fresh)) << name << ": right limit";
+  }
+}
+
+// Evaluating for output changes nothing observable: the same outputs, row
+// names, physical states, projections and jumps as a fresh System's, and no
+// evaluation counted (derivative() counts one).
+TEST(PureDerivative, EvaluatingChangesNothingObservable) {
+  for (const auto& [name, m] : block_models()) {
+    const auto sys = make_system(m), fresh = make_system(m);
+    std::mt19937 rng(19);
+    const StateVector y = sys->initial(state_at(m, rng, 0.6), 0.6);
+    const StateVector other = sys->initial(state_at(m, rng, 2.2), 2.2);
+    const std::vector<double> out = flatten(sys->evaluate(y, 0.6));
+    call_everything(*sys, other);
+    EXPECT_TRUE(same_bits(flatten(sys->evaluate(y, 0.6)), out)) << name;
+    EXPECT_TRUE(same_bits(flatten(fresh->evaluate(y, 0.6)), out)) << name;
+    const long n = sys->rhs_evaluations;
+    (void)sys->evaluate(y, 0.6);
+    EXPECT_EQ(sys->rhs_evaluations, n) << name;
+    StateVector dy;
+    sys->derivative(y, dy, 0.6);
+    EXPECT_EQ(sys->rhs_evaluations, n + 1) << name;
+    PhysicalState view;
+    sys->physical_into(y, view);
+    EXPECT_TRUE(same_bits(flatten(view), flatten(fresh->physical(y)))) << name;
+    EXPECT_TRUE(same_bits(flatten(sys->physical(y)), flatten(fresh->physical(y)))) << name;
+    for (std::size_t i = 0; i < y.size(); ++i) EXPECT_EQ(sys->describe(i), fresh->describe(i)) << name;
+    StateVector a = y, b = y;
+    sys->project(a, 0.6), fresh->project(b, 0.6);
+    EXPECT_TRUE(same_bits(a, b)) << name << ": project";
+    a = y, b = y;
+    EXPECT_EQ(sys->apply_tow_jump(a, 1.0), fresh->apply_tow_jump(b, 1.0)) << name;
+    EXPECT_TRUE(same_bits(a, b)) << name << ": apply_tow_jump";
+  }
+}
 
 // --- a reused workspace gives what a fresh one gives ---------------------------
 
