@@ -1,9 +1,10 @@
 // Properties that MuJoCo's and Pinocchio's suites check and that every
 // evaluation here must have: determinism (in one process and across two),
-// evaluations that leave their inputs unchanged, a reused workspace that
-// gives what a fresh one gives, and the impulsive response to a tow-velocity
-// jump against the dense formula of docs/theory.md 6.1,
-// dq'_a = -M_aa^-1 M_a0 dv, from the paper formulation's mass matrix.
+// evaluations that leave their inputs unchanged, a derivative that depends
+// on its arguments only, a reused workspace that gives what a fresh one
+// gives, and the impulsive response to a tow-velocity jump against the
+// dense formula of docs/theory.md 6.1, dq'_a = -M_aa^-1 M_a0 dv, from the
+// paper formulation's mass matrix.
 //
 // States and results are compared through the flatten() helpers below, the
 // one place that lists their fields.
