@@ -56,7 +56,7 @@ void step_end_pair(benchmark::State& st) {
   for (std::size_t i = 6; i < y_side.size(); ++i) y_side[i] *= 1 + 1e-9;  // another state
   EvaluationForces side;
   for (auto _ : st) {
-    sys->derivative_with_side_forces(y, dy, 1.0, y_side, 1.0, side);
+    sys->derivative_with_side_forces(y, dy, 1.0, y_side, 1.0, StepWindow{}, side);
     benchmark::DoNotOptimize(dy.data());
   }
   st.counters["threads"] = sys->threads();

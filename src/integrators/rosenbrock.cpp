@@ -18,7 +18,7 @@ inline std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 constexpr double kGamma = 4.3586652150845900e-01;
 constexpr double kSafety = 0.95;  // step size controller's safety factor [-]
 // f_t's forward difference over kTimeDifference h: far above the 1e-12 |t|
-// by which law times are moved inside a step's window (System::law_time),
+// by which law times are moved inside a step's window (StepWindow::law_time),
 // far below the inputs' time scales. Measured on paper-3d-turn: 1e-3 and
 // 1e-5 give the same steps (1836, 1837) and errors; any f_t keeps the order
 // (it is W's time column).
@@ -129,13 +129,13 @@ class SideForces {
   ~SideForces() { cancel(); }
   SideForces(const SideForces&) = delete;
   SideForces& operator=(const SideForces&) = delete;
-  void start(const StateVector& y_side, double t_side, EvaluationForces& out) {
-    sys_.start_side_forces(y_side, t_side, out);
+  void start(const StateVector& y_side, double t_side, const StepWindow& window, EvaluationForces& out) {
+    sys_.start_side_forces(y_side, t_side, window, out);
     started_ = true;
   }
-  void finish(const StateVector& y, StateVector& dy, double t) {
+  void finish(const StateVector& y, StateVector& dy, double t, const StepWindow& window) {
     started_ = false;  // finish_side_forces ends it, even by an exception
-    sys_.finish_side_forces(y, dy, t);
+    sys_.finish_side_forces(y, dy, t, window);
   }
   void cancel() noexcept {
     if (started_) sys_.cancel_side_forces();
@@ -189,7 +189,7 @@ RosenbrockW::RosenbrockW(System& sys, double tol, double force_scale, ForceEstim
 bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
   const double t1 = t + h, hg = h * gamma_;
   dense_ = false;  // u_ is about to change
-  sys_.set_window(t, t1);
+  window_ = {t, t1};
   // f0 = f(y, t) and the stage solve's factors, unless held from the last step.
   start_derivative(y, t);
   // W's time column f_t at the step's start: a difference, extrapolated, or none.
@@ -208,12 +208,12 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
   SideForces side(sys_);
   if (embedded) {
     sys_.project(yi_, t1);
-    side.start(yi_, t1, hat_);
+    side.start(yi_, t1, window_, hat_);
   }
   // Filtered error estimate: yhat = y1 - (I - hg J)^-1 (y1 - yhat), projected;
   // with the filtered force estimate, the solution whose forces are compared.
   filtered_solution(hg, t1);
-  if (!embedded) side.start(yhat_, t1, hat_);
+  if (!embedded) side.start(yhat_, t1, window_, hat_);
   sys_.project(y1_, t1);
   // State error: |y1 - yhat| against tol (1 + |y|), max norm.
   double err = state_error(y);
@@ -223,7 +223,7 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
   double ferr = 0;
   if (err <= 1) {
     const Accelerations* acc = sys_.last_accelerations();
-    side.finish(y1_, fi_, t1);
+    side.finish(y1_, fi_, t1, window_);
     ferr = force_error(acc);
     err = std::max(err, ferr / tol_);
   } else {
@@ -241,8 +241,8 @@ bool RosenbrockW::try_step(StateVector& y, double& t, double& h) {
 
 void RosenbrockW::start_derivative(const StateVector& y, double t) {
   if (have_f0_) return;
-  sys_.derivative(y, f0_, t);
-  sys_.prepare_stage_solve(t);
+  sys_.derivative(y, f0_, t, window_);
+  sys_.prepare_stage_solve(t, window_);
   have_f0_ = true;
 }
 
@@ -279,7 +279,7 @@ void RosenbrockW::time_column(const StateVector& y, double t, double h) {
     const double dt = kTimeDifference * h;
     use_ft_ = dt > 1e-9 * std::max(1.0, std::abs(t));  // else law_time's shift would dominate: no column
     if (use_ft_) {
-      sys_.derivative_time_shift(y, scratch_, t + dt);  // y's inertias kept (y alone sets them)
+      sys_.derivative_time_shift(y, scratch_, t + dt, window_);  // y's inertias kept (y alone sets them)
       ft_.resize(N);
       for (std::size_t q = 0; q < N; ++q) ft_[q] = (scratch_[q] - f0_[q]) / dt;
       ft_zero_ = std::all_of(ft_.begin(), ft_.end(), [](double v) { return v == 0; });
@@ -316,7 +316,7 @@ void RosenbrockW::stages(const StateVector& y, double t, double h, double hg) {
       if (i == 1) sys_.expect_side_evaluation();
       yi_.resize(N);
       combine(N, yi_.data(), y.data(), nullptr, terms);
-      sys_.derivative(yi_, fi_, t + alpha_[i] * h);
+      sys_.derivative(yi_, fi_, t + alpha_[i] * h, window_);
       f = &fi_;
     }
     // (I - hg W) u_i = hg f_i + sum_j gamma c_ij u_j + hg gamma_i h f_t.
@@ -417,7 +417,7 @@ void RosenbrockW::accept(StateVector& y, double& t, double& h, double t1, double
   t = t1;
   f0_.swap(fi_);
   have_ft_ = false;
-  sys_.prepare_stage_solve(t1);
+  sys_.prepare_stage_solve(t1, window_);  // the Jacobian at y1, in the step's window
   max_error = std::max(max_error, err * tol_);
   max_force_error = std::max(max_force_error, ferr);
   h *= fac;

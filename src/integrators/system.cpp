@@ -11,6 +11,7 @@
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/implicit.hpp"
 #include "towsim/dynamics/paper.hpp"
+#include "towsim/integrators/state_layout.hpp"
 #include "towsim/integrators/worker.hpp"
 
 namespace towsim {
@@ -66,54 +67,70 @@ Vec3 sheave_jump(const Model& m, const PhysicalState& s, double dL) {
   return s.length_of(m, 0) / s.top_unstretched * dL * s.e[0];
 }
 
-/// Default formulation: y = [r0, v0, e_1..e_n, w_1..w_n, then per body quaternion (w,x,y,z), w_body],
-/// then with a winch [l_1, l_1'] (over an elastic top element: [L_1, L_1'], the paid-out
-/// unstretched length), then, when the cable has elastic elements, [l_1..l_n, l'_1..l'_n],
-/// then per depth controller (bodies in order, surfaces in order) its integral and deflection.
+/// The default system's workspace: the storage its evaluations write and
+/// the cache of the stage solves (the Jacobian point). What derivative()
+/// returns never depends on it: each evaluation rewrites what it reads, and
+/// the cache is read only where it provably holds the same bits.
+struct DefaultWorkspace {
+  DefaultWorkspace(const Model& m, const PhysicalState& shape) : ws(m), s(shape), jws(m), js(shape), iw(m) {
+    rhs.dw.assign(shape.e.size(), Vec3::Zero());
+    rhs.rot.assign(shape.e.size(), Vec3::Zero());
+    rhs.dwb.assign(shape.bodies.size(), Vec3::Zero());
+    rhs.rotb.assign(shape.bodies.size(), Vec3::Zero());
+    rhs.dl.assign(shape.e.size(), 0.0);
+    rhs.dlr.assign(shape.e.size(), 0.0);
+  }
+  Workspace ws;             // the last derivative()'s evaluation (last_accelerations)
+  PhysicalState s;          // its state
+  Workspace jws;            // the evaluation at the step's start (the Jacobian point)
+  PhysicalState js;         // its state
+  ImplicitWorkspace iw;     // local Jacobian and stage-solve work arrays
+  StageRhs rhs;             // one stage's right-hand side, per part
+  bool ws_from_s = false;   // ws holds derivative()'s evaluation at s
+  bool jac_from_s = false;  // jws holds it at js (swapped with ws_from_s)
+};
+
+/// Default formulation: unit vectors e_k, angular velocities, body
+/// quaternions; its flat state's blocks: StateLayout::default_of.
 class DefaultSystem final : public System {
  public:
   explicit DefaultSystem(const Model& m)
-      : model_(m), ws_(m), s_(PhysicalState::hanging(m)), jws_(m), js_(s_), iw_(m), threads_(evaluation_threads(m)) {
+      : model_(m),
+        layout_(StateLayout::default_of(m)),
+        shape_(PhysicalState::hanging(m)),
+        work_(m, shape_),
+        threads_(evaluation_threads(m)) {
     n_ = m.cable.n();
-    winch_ = m.winch.active() && n_ > 0;
+    winch_ = layout_.winch.size > 0;
     elastic_top_ = elastic_winch(m);
-    lengths_ = lengths_in_state(m);
-    for (const Body& b : m.bodies) controls_ += static_cast<std::size_t>(control_count(b));
-    size_ = control_offset(controls_);
+    lengths_ = layout_.lengths.size > 0;
     // Length control: l_1 = L(t) - (the fixed elements below + cable drawn in by removals).
     fixed_length_ = m.winch.length_offset;
     for (int k = 1; k < n_; ++k) fixed_length_ += m.cable.elements[static_cast<std::size_t>(k)].length;
-    rhs_.dw.assign(s_.e.size(), Vec3::Zero());
-    rhs_.rot.assign(s_.e.size(), Vec3::Zero());
-    rhs_.dwb.assign(s_.bodies.size(), Vec3::Zero());
-    rhs_.rotb.assign(s_.bodies.size(), Vec3::Zero());
-    rhs_.dl.assign(s_.e.size(), 0.0);
-    rhs_.dlr.assign(s_.e.size(), 0.0);
   }
 
   StateVector initial(const PhysicalState& s, double) override {
-    StateVector y(size_);
+    StateVector y(layout_.size);
     set3(y, 0, s.r0);
     set3(y, 3, s.v0);
     for (int k = 0; k < n_; ++k) {
-      set3(y, 6 + 3 * k, s.e[k]);
-      set3(y, 6 + 3 * n_ + 3 * k, s.w[k]);
+      set3(y, layout_.direction(k), s.e[k]);
+      set3(y, layout_.rate(k), s.w[k]);
     }
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-      const std::size_t o = body_offset(b);
+      const std::size_t o = layout_.body(b);
       const Quat& q = s.bodies[b].q;
       y[o] = q.w(), y[o + 1] = q.x(), y[o + 2] = q.y(), y[o + 3] = q.z();
       set3(y, o + 4, s.bodies[b].w);
     }
     if (elastic_top_)
-      y[winch_offset()] = s.top_unstretched, y[winch_offset() + 1] = s.top_unstretched_rate;
+      y[layout_.winch.offset] = s.top_unstretched, y[layout_.winch.offset + 1] = s.top_unstretched_rate;
     else if (winch_)
-      y[winch_offset()] = element_length(model_, s, 0), y[winch_offset() + 1] = element_length_rate(s, 0);
+      y[layout_.winch.offset] = element_length(model_, s, 0), y[layout_.winch.offset + 1] = element_length_rate(s, 0);
     if (lengths_) {
-      const std::size_t o = length_offset();
       for (int k = 0; k < n_; ++k) {
-        y[o + k] = s.length_of(model_, k);
-        y[o + n_ + k] = s.length_rate_of(k);
+        y[layout_.length(k)] = s.length_of(model_, k);
+        y[layout_.length_rate(k)] = s.length_rate_of(k);
       }
     }
     pack_controls(s, y);
@@ -121,55 +138,61 @@ class DefaultSystem final : public System {
   }
 
   PhysicalState physical(const StateVector& y) const override {
-    PhysicalState s = s_;
+    PhysicalState s = shape_;
     unpack(y, s);
     return s;
   }
 
-  const PhysicalState& physical_view(const StateVector& y) const override {
-    view_ = s_;  // as physical(y), into storage of the same sizes
-    unpack(y, view_);
-    return view_;
+  void physical_into(const StateVector& y, PhysicalState& out) const override {
+    out = shape_;  // as physical(y), into storage of the same sizes
+    unpack(y, out);
   }
 
-  void derivative(const StateVector& y, StateVector& dy, double t) override { evaluate_at(y, dy, t, false); }
-
-  void derivative_time_shift(const StateVector& y, StateVector& dy, double t) override { evaluate_at(y, dy, t, true); }
-
-  /// derivative(); time_shift: the rigid elements' inertias from jws_ when it
-  /// provably holds them for this state (jac_from_s_ and js_'s directions
-  /// and body attitudes bitwise those of s_: the inertias read nothing else
-  /// without a winch or elastic elements). Bit-identical either way.
-  void evaluate_at(const StateVector& y, StateVector& dy, double t, bool time_shift) {
+  void derivative(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override {
     ++rhs_evaluations;
-    ws_from_s_ = false;  // until the evaluation completes
-    rates(y, dy, t, s_, ws_, time_shift, fork());
-    ws_from_s_ = true;
+    main_rates(y, dy, t, window, false);
   }
 
-  void start_side_forces(const StateVector& y_side, double t_side, EvaluationForces& side) override {
+  void derivative_time_shift(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override {
+    ++rhs_evaluations;
+    main_rates(y, dy, t, window, true);
+  }
+
+  /// dy = f(y, t) on the main workspace, uncounted; time_shift: the rigid
+  /// elements' inertias from work_.jws when it provably holds them for this state
+  /// (work_.jac_from_s and work_.js's directions and body attitudes bitwise those of
+  /// work_.s: the inertias read nothing else without a winch or elastic
+  /// elements). Bit-identical either way.
+  void main_rates(const StateVector& y, StateVector& dy, double t, const StepWindow& window, bool time_shift) {
+    work_.ws_from_s = false;  // until the evaluation completes
+    rates(y, dy, t, window, work_.s, work_.ws, time_shift, fork());
+    work_.ws_from_s = true;
+  }
+
+  void start_side_forces(const StateVector& y_side, double t_side, const StepWindow& window,
+                         EvaluationForces& side) override {
     if (!use_worker()) {
-      System::start_side_forces(y_side, t_side, side);
+      System::start_side_forces(y_side, t_side, window, side);
       return;
     }
     SideEvaluation& sv = side_evaluation();
-    sv.y = &y_side, sv.t = t_side, sv.out = &side;
+    sv.y = &y_side, sv.t = t_side, sv.window = window, sv.out = &side;
     sv.worker.start(&side_job, this);
     sv.running = true;
   }
 
-  void finish_side_forces(const StateVector& y, StateVector& dy, double t) override {
+  void finish_side_forces(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override {
     if (!side_ || !side_->running) {  // started serially
-      System::finish_side_forces(y, dy, t);
+      System::finish_side_forces(y, dy, t, window);
       return;
     }
     rhs_evaluations += 2;
     // f(y, t) here while the side runs; the side's failure first (serially it comes first).
     std::exception_ptr error;
     try {
-      ws_from_s_ = false;  // until the evaluation completes
-      rates(y, dy, t, s_, ws_);
-      ws_from_s_ = true;
+      work_.ws_from_s = false;  // until the evaluation completes
+      rates(y, dy, t, window, work_.s, work_.ws);
+      work_.ws_from_s = true;
     } catch (...) {
       error = std::current_exception();
     }
@@ -200,17 +223,17 @@ class DefaultSystem final : public System {
 
   void project(StateVector& y, double t) override {
     if (model_.tow.mode == Tow::Mode::Motion) {
-      const TowKinematics k = tow_kinematics(model_.tow, t, ws_.course);
+      const TowKinematics k = tow_kinematics(model_.tow, t, work_.ws.course);
       set3(y, 0, k.pos);
       set3(y, 3, k.vel);
     }
     for (int k = 0; k < n_; ++k) {
-      Map3 e(&y[6 + 3 * k]), w(&y[6 + 3 * n_ + 3 * k]);
+      Map3 e(&y[layout_.direction(k)]), w(&y[layout_.rate(k)]);
       e.normalize();
       w -= w.dot(e) * e;
     }
     for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
-      Eigen::Map<Eigen::Vector4d> q(&y[body_offset(b)]);
+      Eigen::Map<Eigen::Vector4d> q(&y[layout_.body(b)]);
       q.normalize();
     }
     if (!winch_) return;
@@ -218,14 +241,14 @@ class DefaultSystem final : public System {
       // A step ending on a breakpoint ends on the piece before it (the
       // jump, if any, comes next: apply_tow_jump).
       const WinchKinematics k = winch_kinematics_before(model_.winch, t);
-      y[winch_offset()] = k.length - fixed_length_;
-      y[winch_offset() + 1] = k.rate;
+      y[layout_.winch.offset] = k.length - fixed_length_;
+      y[layout_.winch.offset + 1] = k.rate;
       return;
     }
     // Tension control: the winch stops at min_length and max_length (an
     // impulse: the pay-out speed drops to zero) and at the speed limit.
-    double& l = y[winch_offset()];
-    double& rate = y[winch_offset() + 1];
+    double& l = y[layout_.winch.offset];
+    double& rate = y[layout_.winch.offset + 1];
     rate = std::clamp(rate, -model_.winch.max_speed, model_.winch.max_speed);
     const double L = l + fixed_length_;
     const bool at_max = L >= model_.winch.max_length && rate > 0;
@@ -234,13 +257,13 @@ class DefaultSystem final : public System {
     l = (at_max ? model_.winch.max_length : model_.winch.min_length) - fixed_length_;
     PhysicalState s = physical(y);
     const Vec3 dv = -sheave_jump(model_, s, rate);
-    ws_from_s_ = false;
-    tow_velocity_jump(model_, s, dv, ws_);
-    for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws_.acc.alpha[k];
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws_.acc.alpha_b[b];
+    work_.ws_from_s = false;
+    tow_velocity_jump(model_, s, dv, work_.ws);
+    for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += work_.ws.acc.alpha[k];
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += work_.ws.acc.alpha_b[b];
     if (elastic_top_) {
       // The elements' stretch rates jump too; l_1' by the sheave's jump besides.
-      for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws_.acc.length_acc[k];
+      for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += work_.ws.acc.length_acc[k];
       s.length_rate[0] += dv.dot(s.e[0]);
       s.top_unstretched_rate = 0;
     } else {
@@ -251,10 +274,8 @@ class DefaultSystem final : public System {
 
   const Workspace& evaluate(const StateVector& y, double t) override {
     StateVector dy;
-    set_window(t, 1e300);  // right limit at a breakpoint: the state is already past it
-    derivative(y, dy, t);
-    --rhs_evaluations;
-    return ws_;
+    main_rates(y, dy, t, StepWindow::after(t), false);
+    return work_.ws;
   }
 
   double apply_tow_jump(StateVector& y, double t) override {
@@ -265,8 +286,8 @@ class DefaultSystem final : public System {
     const Vec3 dsheave = winch_ ? Vec3(sheave_jump(model_, s, dl)) : Vec3::Zero();
     const Vec3 dv = tow_jump(model_, t) + dsheave;
     if (dv.norm() == 0) return 0;
-    ws_from_s_ = false;
-    s = jumped(model_, s, dv, t, ws_);
+    work_.ws_from_s = false;
+    s = jumped(model_, s, dv, t, work_.ws);
     if (elastic_top_ && model_.winch.mode == Winch::Mode::Imposed) {
       // l_1' = (d_1' relative to the sheave's material) + the sheave's pay-out.
       s.length_rate[0] += dsheave.dot(s.e[0]);
@@ -280,115 +301,105 @@ class DefaultSystem final : public System {
 
   bool has_stage_solve() const override { return true; }
   // w_k after the e_k block; a body's w after its quaternion.
-  std::size_t element_rate_row(std::size_t k) const override { return 6 + 3 * (static_cast<std::size_t>(n_) + k); }
-  std::size_t body_rate_row(std::size_t b) const override { return body_offset(b) + 4; }
+  std::size_t element_rate_row(std::size_t k) const override { return layout_.rate(k); }
+  std::size_t body_rate_row(std::size_t b) const override { return layout_.body(b) + 4; }
 
-  void prepare_stage_solve(double t) override {
+  void prepare_stage_solve(double t, const StepWindow& window) override {
     // Keep the evaluation at the step's start: its kinematics, inertias and
     // forces define the local Jacobian for all stages of the step. Swapped,
     // not copied (~4 % of a km-cable-1000 run): the next derivative()
-    // rewrites what it reads of ws_ and s_, the rest is the model's and the
+    // rewrites what it reads of work_.ws and work_.s, the rest is the model's and the
     // same in both (outputs bit-identical, docs/performance.md).
-    std::swap(jws_, ws_);
-    std::swap(js_, s_);
-    std::swap(jac_from_s_, ws_from_s_);
-    local_jacobian(model_, js_, jws_, law_time(t), iw_.jac);
-    iw_.hg = -1;  // a new Jacobian: factorise again at the next stage solve
+    std::swap(work_.jws, work_.ws);
+    std::swap(work_.js, work_.s);
+    std::swap(work_.jac_from_s, work_.ws_from_s);
+    local_jacobian(model_, work_.js, work_.jws, window.law_time(t), work_.iw.jac);
+    work_.iw.hg = -1;  // a new Jacobian: factorise again at the next stage solve
   }
 
   void stage_solve(double hg, const StateVector& r, StateVector& k) override {
     // Velocity rows: (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x), k_v = r_v + z.
-    rhs_.dv0 = CMap3(&r[3]);
-    rhs_.dx0 = CMap3(r.data());
+    work_.rhs.dv0 = CMap3(&r[3]);
+    work_.rhs.dx0 = CMap3(r.data());
     for (int i = 0; i < n_; ++i) {
-      rhs_.dw[i] = CMap3(&r[6 + 3 * n_ + 3 * i]);
-      rhs_.rot[i] = js_.e[i].cross(CMap3(&r[6 + 3 * i]));
+      work_.rhs.dw[i] = CMap3(&r[layout_.rate(i)]);
+      work_.rhs.rot[i] = work_.js.e[i].cross(CMap3(&r[layout_.direction(i)]));
     }
-    for (std::size_t b = 0; b < js_.bodies.size(); ++b) {
-      const std::size_t o = body_offset(b);
-      rhs_.dwb[b] = CMap3(&r[o + 4]);
+    for (std::size_t b = 0; b < work_.js.bodies.size(); ++b) {
+      const std::size_t o = layout_.body(b);
+      work_.rhs.dwb[b] = CMap3(&r[o + 4]);
       // dq = 1/2 (0, rot) q  =>  rot = 2 vec(dq q^-1).
-      rhs_.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * js_.bodies[b].q.conjugate()).vec();
+      work_.rhs.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * work_.js.bodies[b].q.conjugate()).vec();
     }
     // Lengths' rows (elastic elements; a winch's top length: below).
     if (lengths_) {
-      const std::size_t o = length_offset();
       for (int i = 0; i < n_; ++i) {
         const bool el = is_elastic(model_.cable.elements[static_cast<std::size_t>(i)]);
-        rhs_.dl[i] = el ? r[o + i] : 0.0;
-        rhs_.dlr[i] = el ? r[o + n_ + i] : 0.0;
+        work_.rhs.dl[i] = el ? r[layout_.length(i)] : 0.0;
+        work_.rhs.dlr[i] = el ? r[layout_.length_rate(i)] : 0.0;
       }
     }
     // A tension-controlled winch's rows (l_1, l_1'): the drum in the stage solve.
     // (Over an elastic top element the winch sets its unstretched L_1, which
     // moves no joint: W = I on those rows.)
     const bool drum = winch_ && model_.winch.mode == Winch::Mode::Tension && !elastic_top_;
-    rhs_.winch_dl = drum ? r[winch_offset()] : 0.0;
-    rhs_.winch_dlr = drum ? r[winch_offset() + 1] : 0.0;
+    work_.rhs.winch_dl = drum ? r[layout_.winch.offset] : 0.0;
+    work_.rhs.winch_dlr = drum ? r[layout_.winch.offset + 1] : 0.0;
     if (elastic_top_) {
       // The top element's spring and damper see L_1, L_1' (their rows stay explicit: W = I there).
-      const double lam = js_.length[0] / js_.top_unstretched;
-      rhs_.top_dL = lam * r[winch_offset()];
-      rhs_.top_dLr = lam * r[winch_offset() + 1];
+      const double lam = work_.js.length[0] / work_.js.top_unstretched;
+      work_.rhs.top_dL = lam * r[layout_.winch.offset];
+      work_.rhs.top_dLr = lam * r[layout_.winch.offset + 1];
     }
-    implicit_stage_solve(model_, js_, jws_, hg, rhs_, iw_);
+    implicit_stage_solve(model_, work_.js, work_.jws, hg, work_.rhs, work_.iw);
     // Rows without local terms keep k = r (W = I there: still a W-method);
-    // the tow point's and the elements' rows (the first body_offset(0)) are
+    // the tow point's and the elements' rows (the first layout_.bodies.offset) are
     // all written below, so only the rest is copied.
     k.resize(r.size());
-    std::copy(r.begin() + static_cast<std::ptrdiff_t>(body_offset(0)), r.end(),
-              k.begin() + static_cast<std::ptrdiff_t>(body_offset(0)));
+    std::copy(r.begin() + static_cast<std::ptrdiff_t>(layout_.bodies.offset), r.end(),
+              k.begin() + static_cast<std::ptrdiff_t>(layout_.bodies.offset));
     // Position rows: k_x = r_x + hg B k_v (B: velocities -> position rates at the step's start).
-    const Vec3 kv0 = CMap3(&r[3]) + iw_.a0;
+    const Vec3 kv0 = CMap3(&r[3]) + work_.iw.a0;
     set3(k, 3, kv0);
     set3(k, 0, CMap3(r.data()) + hg * kv0);
     for (int i = 0; i < n_; ++i) {
-      const Vec3 kw = rhs_.dw[i] + iw_.alpha[i];
-      set3(k, 6 + 3 * n_ + 3 * i, kw);
-      set3(k, 6 + 3 * i, CMap3(&r[6 + 3 * i]) + hg * kw.cross(js_.e[i]));
+      const Vec3 kw = work_.rhs.dw[i] + work_.iw.alpha[i];
+      set3(k, layout_.rate(i), kw);
+      set3(k, layout_.direction(i), CMap3(&r[layout_.direction(i)]) + hg * kw.cross(work_.js.e[i]));
     }
     if (lengths_) {
       // k_l' = r_l' + z_l, k_l = r_l + hg k_l' (elastic elements; z_l = 0 else).
-      const std::size_t o = length_offset();
       for (int i = 0; i < n_; ++i) {
         if (!is_elastic(model_.cable.elements[static_cast<std::size_t>(i)])) continue;
-        const double klr = r[o + n_ + i] + iw_.zl[i];
-        k[o + n_ + i] = klr;
-        k[o + i] = r[o + i] + hg * klr;
+        const std::size_t l = layout_.length(i), lr = layout_.length_rate(i);
+        const double klr = r[lr] + work_.iw.zl[i];
+        k[lr] = klr;
+        k[l] = r[l] + hg * klr;
       }
     }
     if (drum && model_.tow.mode == Tow::Mode::Motion) {
       // k_l' = r_l' + z_l, k_l = r_l + hg k_l' (Force mode: W = I there).
-      k[winch_offset() + 1] = r[winch_offset() + 1] + iw_.z_winch;
-      k[winch_offset()] = r[winch_offset()] + hg * k[winch_offset() + 1];
+      k[layout_.winch.offset + 1] = r[layout_.winch.offset + 1] + work_.iw.z_winch;
+      k[layout_.winch.offset] = r[layout_.winch.offset] + hg * k[layout_.winch.offset + 1];
     }
-    for (std::size_t b = 0; b < js_.bodies.size(); ++b) {
-      const std::size_t o = body_offset(b);
-      const Vec3 kw = rhs_.dwb[b] + iw_.alpha_b[b];
+    for (std::size_t b = 0; b < work_.js.bodies.size(); ++b) {
+      const std::size_t o = layout_.body(b);
+      const Vec3 kw = work_.rhs.dwb[b] + work_.iw.alpha_b[b];
       set3(k, o + 4, kw);
-      const Quat dq = Quat(0, kw.x(), kw.y(), kw.z()) * js_.bodies[b].q;
+      const Quat dq = Quat(0, kw.x(), kw.y(), kw.z()) * work_.js.bodies[b].q;
       k[o] = r[o] + 0.5 * hg * dq.w(), k[o + 1] = r[o + 1] + 0.5 * hg * dq.x();
       k[o + 2] = r[o + 2] + 0.5 * hg * dq.y(), k[o + 3] = r[o + 3] + 0.5 * hg * dq.z();
     }
   }
 
-  const Accelerations* last_accelerations() const override { return &ws_.acc; }
+  const Accelerations* last_accelerations() const override { return &work_.ws.acc; }
 
-  std::string describe(std::size_t i) const override {
-    if (i < 6) return "tow point";
-    if (i >= control_offset(0)) return "depth controller " + std::to_string((i - control_offset(0)) / 2 + 1);
-    if (lengths_ && i >= length_offset())
-      return "element " + std::to_string((i - length_offset()) % n_ + 1) + " (length)";
-    if (winch_ && i >= winch_offset()) return "winch";
-    if (i < body_offset(0)) return "element " + std::to_string((i - 6) % (3 * n_) / 3 + 1);
-    const std::size_t b = std::min((i - body_offset(0)) / 7, model_.bodies.size() - 1);
-    return "body " + model_.bodies[b].name;
-  }
+  std::string describe(std::size_t i) const override { return layout_.describe(i, model_); }
 
  private:
-  /// jws_ holds the rigid elements' inertias of s's state (after unpack).
+  /// work_.jws holds the rigid elements' inertias of s's state (after unpack).
   bool inertias_in_jws(const PhysicalState& s) const {
-    if (!jac_from_s_ || winch_ || lengths_) return false;
+    if (!work_.jac_from_s || winch_ || lengths_) return false;
     // Bitwise (-0 and NaN included): the inertias were computed from these bits.
     const auto same = [](const auto& a, const auto& b) {
       for (Eigen::Index i = 0; i < a.size(); ++i)
@@ -396,62 +407,61 @@ class DefaultSystem final : public System {
       return true;
     };
     for (std::size_t k = 0; k < s.e.size(); ++k)
-      if (!same(s.e[k], js_.e[k])) return false;
+      if (!same(s.e[k], work_.js.e[k])) return false;
     for (std::size_t b = 0; b < s.bodies.size(); ++b)
-      if (!same(s.bodies[b].q.coeffs(), js_.bodies[b].q.coeffs())) return false;
+      if (!same(s.bodies[b].q.coeffs(), work_.js.bodies[b].q.coeffs())) return false;
     return true;
   }
   void unpack(const StateVector& y, PhysicalState& s) const {
     s.r0 = CMap3(y.data());
     s.v0 = CMap3(&y[3]);
     for (int k = 0; k < n_; ++k) {
-      s.e[k] = CMap3(&y[6 + 3 * k]);
-      s.w[k] = CMap3(&y[6 + 3 * n_ + 3 * k]);
+      s.e[k] = CMap3(&y[layout_.direction(k)]);
+      s.w[k] = CMap3(&y[layout_.rate(k)]);
     }
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-      const std::size_t o = body_offset(b);
+      const std::size_t o = layout_.body(b);
       s.bodies[b].q = Quat(y[o], y[o + 1], y[o + 2], y[o + 3]).normalized();
       s.bodies[b].w = CMap3(&y[o + 4]);
     }
     if (elastic_top_)
-      s.top_unstretched = y[winch_offset()], s.top_unstretched_rate = y[winch_offset() + 1];
+      s.top_unstretched = y[layout_.winch.offset], s.top_unstretched_rate = y[layout_.winch.offset + 1];
     else if (winch_)
-      s.length[0] = y[winch_offset()], s.length_rate[0] = y[winch_offset() + 1];
+      s.length[0] = y[layout_.winch.offset], s.length_rate[0] = y[layout_.winch.offset + 1];
     if (lengths_) {
-      const std::size_t o = length_offset();
       for (int k = 0; k < n_; ++k) {
-        s.length[k] = y[o + k];
-        s.length_rate[k] = y[o + n_ + k];
+        s.length[k] = y[layout_.length(k)];
+        s.length_rate[k] = y[layout_.length_rate(k)];
       }
     }
     unpack_controls(y, s);
   }
   /// dy = f(y, t) evaluated on (s, ws): derivative()'s work, on the main
   /// workspace or the worker's. Reads the model and the step's window only.
-  void rates(const StateVector& y, StateVector& dy, double t, PhysicalState& s, Workspace& ws, bool time_shift = false,
-             Fork* fork = nullptr) const {
+  void rates(const StateVector& y, StateVector& dy, double t, const StepWindow& window, PhysicalState& s, Workspace& ws,
+             bool time_shift = false, Fork* fork = nullptr) const {
     unpack(y, s);
-    const double tl = law_time(t);
+    const double tl = window.law_time(t);
     impose_tow(model_, tl, s.r0, s.v0, ws.course);
     impose_winch(tl, s);
     if (time_shift && inertias_in_jws(s))
-      forward_dynamics_time_shift(model_, s, tl, jws_, ws, fork);
+      forward_dynamics_time_shift(model_, s, tl, work_.jws, ws, fork);
     else
       forward_dynamics(model_, s, tl, ws, fork);
-    dy.resize(size_);
+    dy.resize(layout_.size);
     if (elastic_top_)
-      dy[winch_offset()] = s.top_unstretched_rate, dy[winch_offset() + 1] = ws.acc.top_length_acc;
+      dy[layout_.winch.offset] = s.top_unstretched_rate, dy[layout_.winch.offset + 1] = ws.acc.top_length_acc;
     else if (winch_)
-      dy[winch_offset()] = s.length_rate[0], dy[winch_offset() + 1] = ws.acc.top_length_acc;
+      dy[layout_.winch.offset] = s.length_rate[0], dy[layout_.winch.offset + 1] = ws.acc.top_length_acc;
     // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
     set3(dy, 0, s.v0);
     set3(dy, 3, ws.acc.a0);
     for (int k = 0; k < n_; ++k) {
-      set3(dy, 6 + 3 * k, s.w[k].cross(s.e[k]));
-      set3(dy, 6 + 3 * n_ + 3 * k, ws.acc.alpha[k]);
+      set3(dy, layout_.direction(k), s.w[k].cross(s.e[k]));
+      set3(dy, layout_.rate(k), ws.acc.alpha[k]);
     }
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-      const std::size_t o = body_offset(b);
+      const std::size_t o = layout_.body(b);
       const BodyState& bs = s.bodies[b];
       const Quat dq = Quat(0, bs.w.x(), bs.w.y(), bs.w.z()) * bs.q;
       dy[o] = 0.5 * dq.w(), dy[o + 1] = 0.5 * dq.x(), dy[o + 2] = 0.5 * dq.y(), dy[o + 3] = 0.5 * dq.z();
@@ -459,10 +469,9 @@ class DefaultSystem final : public System {
     }
     // dl/dt = l', dl'/dt = l''.
     if (lengths_) {
-      const std::size_t o = length_offset();
       for (int k = 0; k < n_; ++k) {
-        dy[o + k] = s.length_rate[k];
-        dy[o + n_ + k] = ws.acc.length_acc[k];
+        dy[layout_.length(k)] = s.length_rate[k];
+        dy[layout_.length_rate(k)] = ws.acc.length_acc[k];
       }
     }
     control_rates(dy, s, ws);
@@ -471,7 +480,7 @@ class DefaultSystem final : public System {
   static void side_job(void* self) {
     auto& sys = *static_cast<DefaultSystem*>(self);
     SideEvaluation& side = *sys.side_;
-    sys.rates(*side.y, side.dy, side.t, side.s, side.ws);
+    sys.rates(*side.y, side.dy, side.t, side.window, side.s, side.ws);
     side.out->tow_force = side.ws.acc.tow_force;
     side.out->link_force = side.ws.acc.link_force;
   }
@@ -485,28 +494,18 @@ class DefaultSystem final : public System {
     s.length[0] = k.length - fixed_length_;
     s.length_rate[0] = k.rate;
   }
-  /// Offset of body b's block in the flat state (b = count: the winch's block).
-  std::size_t body_offset(std::size_t b) const { return 6 + 6 * static_cast<std::size_t>(n_) + 7 * b; }
-  /// Offset of the winch's block (l_1, l_1').
-  std::size_t winch_offset() const { return body_offset(model_.bodies.size()); }
-  /// Offset of the element lengths' block (when lengths_).
-  std::size_t length_offset() const { return winch_offset() + (winch_ ? 2 : 0); }
-
   // ---- Depth controllers (docs/theory.md "Depth control"): [I, delta] each.
-  /// Offset of controller i in the flat state (i = count: the state's size).
-  std::size_t control_offset(std::size_t i) const {
-    return length_offset() + (lengths_ ? 2 * static_cast<std::size_t>(n_) : 0) + 2 * i;
-  }
   void pack_controls(const PhysicalState& s, StateVector& y) const {
     std::size_t i = 0;
     for (const BodyState& bs : s.bodies)
       for (const ControlState& c : bs.controls)
-        y[control_offset(i)] = c.integral, y[control_offset(i++) + 1] = c.deflection;
+        y[layout_.control(i)] = c.integral, y[layout_.control(i++) + 1] = c.deflection;
   }
   void unpack_controls(const StateVector& y, PhysicalState& s) const {
     std::size_t i = 0;
     for (BodyState& bs : s.bodies)
-      for (ControlState& c : bs.controls) c.integral = y[control_offset(i)], c.deflection = y[control_offset(i++) + 1];
+      for (ControlState& c : bs.controls)
+        c.integral = y[layout_.control(i)], c.deflection = y[layout_.control(i++) + 1];
   }
   /// dI/dt and d delta/dt from the depth of each controlled body (ws and s of this evaluation).
   void control_rates(StateVector& dy, const PhysicalState& s, const Workspace& ws) const {
@@ -517,31 +516,26 @@ class DefaultSystem final : public System {
       for (const LiftingSurface& ls : model_.bodies[b].surfaces) {
         if (!ls.depth_control) continue;
         const ControlRates r = depth_control_rates(*ls.depth_control, s.bodies[b].controls[c++], -bw.O.z(), -bw.vO.z());
-        dy[control_offset(i)] = r.dintegral, dy[control_offset(i++) + 1] = r.ddeflection;
+        dy[layout_.control(i)] = r.dintegral, dy[layout_.control(i++) + 1] = r.ddeflection;
       }
     }
   }
-  std::size_t controls_ = 0;  // number of depth controllers
   // ---- end of depth controllers
 
   const Model& model_;
-  Workspace ws_;
-  PhysicalState s_;
-  Workspace jws_;         // evaluation at the start of the step (Jacobian point)
-  PhysicalState js_;      // its state
-  ImplicitWorkspace iw_;  // local Jacobian and stage-solve work arrays
-  StageRhs rhs_;          // one stage's right-hand side, per part
+  StateLayout layout_;  // the flat state's blocks
+  // The chain's shape: sizes, and what the state does not carry (the
+  // model's lengths of the elements without a length in the state).
+  PhysicalState shape_;
+  DefaultWorkspace work_;  // storage and caches: derivative()'s results do not depend on it
   int n_ = 0;
-  bool lengths_ = false;  // the state carries element lengths and rates
-  std::size_t size_ = 0;
+  bool lengths_ = false;      // the state carries element lengths and rates
   bool winch_ = false;        // the state carries the winch's l_1, l_1'
   bool elastic_top_ = false;  // ... as L_1, L_1' of an elastic top element (l_1, l_1' among the lengths)
   double fixed_length_ = 0;   // deployed length but l_1 [m]
-  bool ws_from_s_ = false;    // ws_ holds derivative()'s evaluation at s_
-  bool jac_from_s_ = false;   // jws_ holds it at js_ (swapped with ws_from_s_)
 
   /// The side evaluation (start_side_forces) on the worker: its
-  /// own state and workspace (sized as s_ and ws_; every evaluation rewrites
+  /// own state and workspace (sized as work_.s and work_.ws; every evaluation rewrites
   /// what it reads of them, the rest is the model's), its inputs and output.
   struct SideEvaluation {
     SideEvaluation(const Model& m, const PhysicalState& s0) : ws(m), s(s0) {}
@@ -550,6 +544,7 @@ class DefaultSystem final : public System {
     StateVector dy;  // discarded rates
     const StateVector* y = nullptr;
     double t = 0;
+    StepWindow window;
     EvaluationForces* out = nullptr;
     bool running = false;  // started, not finished or cancelled yet
     Worker worker;         // last: its thread ends before the rest goes
@@ -568,21 +563,24 @@ class DefaultSystem final : public System {
   }
   /// The side evaluation's storage and worker, made at first use.
   SideEvaluation& side_evaluation() {
-    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, s_);
+    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, shape_);
     return *side_;
   }
   int threads_ = 1;                       // evaluation_threads(model_) [-]
   std::unique_ptr<SideEvaluation> side_;  // made at the first side evaluation with threads_ >= 2
 };
 
-/// Paper formulation: y = [r0, v0, q, q'] with q the angles in their charts.
+/// Paper formulation: the angles q in their charts, the charts in the state
+/// (they give the angles their meaning); its blocks: StateLayout::paper_of.
 class PaperSystem final : public System {
  public:
-  explicit PaperSystem(const Model& m) : model_(m), pw_(m), eval_ws_(m) { na_ = paper_angle_count(m); }
+  explicit PaperSystem(const Model& m) : model_(m), layout_(StateLayout::paper_of(m)), pw_(m), eval_ws_(m) {
+    na_ = paper_angle_count(m);
+  }
 
   StateVector initial(const PhysicalState& s, double) override {
     p_ = to_paper(model_, s);
-    StateVector y(6 + 2 * na_);
+    StateVector y(layout_.size);
     pack(p_, y);
     return y;
   }
@@ -593,17 +591,9 @@ class PaperSystem final : public System {
     return from_paper(model_, p);
   }
 
-  void derivative(const StateVector& y, StateVector& dy, double t) override {
+  void derivative(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override {
     ++rhs_evaluations;
-    unpack(y, p_);
-    const double tl = law_time(t);
-    impose_tow(model_, tl, p_.r0, p_.v0, eval_ws_.course);
-    paper_dynamics(model_, p_, tl, pw_);
-    dy.resize(y.size());
-    set3(dy, 0, p_.v0);
-    set3(dy, 3, pw_.acc.a0);
-    Eigen::Map<Eigen::VectorXd>(&dy[6], na_) = p_.qd;
-    Eigen::Map<Eigen::VectorXd>(&dy[6 + na_], na_) = pw_.qdd;
+    rates(y, dy, t, window);
   }
 
   void project(StateVector& y, double t) override {
@@ -617,9 +607,7 @@ class PaperSystem final : public System {
     // Forces from the paper's own solve; joint tensions from the recursion
     // on the same physical state (they agree to round-off: tests).
     StateVector dy;
-    set_window(t, 1e300);  // right limit at a breakpoint: the state is already past it
-    derivative(y, dy, t);
-    --rhs_evaluations;
+    rates(y, dy, t, StepWindow::after(t));
     PhysicalState s = from_paper(model_, p_);
     forward_dynamics(model_, s, t, eval_ws_);
     eval_ws_.acc.tow_force = pw_.acc.tow_force;
@@ -641,32 +629,48 @@ class PaperSystem final : public System {
     return dv.norm();
   }
 
-  std::string describe(std::size_t i) const override {
-    if (i < 6) return "tow point";
-    const std::size_t j = (i - 6) % na_;
-    if (j < static_cast<std::size_t>(2 * model_.cable.n())) return "element " + std::to_string(j / 2 + 1);
-    return "body";
-  }
+  std::string describe(std::size_t i) const override { return layout_.describe(i, model_); }
 
  private:
+  /// dy = f(y, t), uncounted, on the workspace (p_, pw_).
+  void rates(const StateVector& y, StateVector& dy, double t, const StepWindow& window) {
+    unpack(y, p_);
+    const double tl = window.law_time(t);
+    impose_tow(model_, tl, p_.r0, p_.v0, eval_ws_.course);
+    paper_dynamics(model_, p_, tl, pw_);
+    dy.resize(y.size());
+    set3(dy, 0, p_.v0);
+    set3(dy, 3, pw_.acc.a0);
+    Eigen::Map<Eigen::VectorXd>(&dy[layout_.angles.offset], na_) = p_.qd;
+    Eigen::Map<Eigen::VectorXd>(&dy[layout_.angle_rates.offset], na_) = pw_.qdd;
+    // The charts change only by project() (rechart).
+    std::fill(dy.begin() + static_cast<std::ptrdiff_t>(layout_.charts.offset), dy.end(), 0.0);
+  }
   void pack(const PaperState& p, StateVector& y) const {
     set3(y, 0, p.r0);
     set3(y, 3, p.v0);
-    Eigen::Map<Eigen::VectorXd>(&y[6], na_) = p.q;
-    Eigen::Map<Eigen::VectorXd>(&y[6 + na_], na_) = p.qd;
+    Eigen::Map<Eigen::VectorXd>(&y[layout_.angles.offset], na_) = p.q;
+    Eigen::Map<Eigen::VectorXd>(&y[layout_.angle_rates.offset], na_) = p.qd;
+    for (std::size_t k = 0; k < p.chart.size(); ++k) Eigen::Map<Mat3>{&y[layout_.chart(k)]} = p.chart[k];
+    if (!model_.bodies.empty()) Eigen::Map<Mat3>{&y[layout_.chart(p.chart.size())]} = p.body_chart;
   }
   void unpack(const StateVector& y, PaperState& p) const {
     p.r0 = CMap3(y.data());
     p.v0 = CMap3(&y[3]);
-    p.q = Eigen::Map<const Eigen::VectorXd>(&y[6], na_);
-    p.qd = Eigen::Map<const Eigen::VectorXd>(&y[6 + na_], na_);
+    p.q = Eigen::Map<const Eigen::VectorXd>(&y[layout_.angles.offset], na_);
+    p.qd = Eigen::Map<const Eigen::VectorXd>(&y[layout_.angle_rates.offset], na_);
+    p.chart.resize(layout_.elements);
+    for (std::size_t k = 0; k < p.chart.size(); ++k) p.chart[k] = Eigen::Map<const Mat3>(&y[layout_.chart(k)]);
+    if (!model_.bodies.empty()) p.body_chart = Eigen::Map<const Mat3>(&y[layout_.chart(p.chart.size())]);
   }
 
   const Model& model_;
-  PaperWorkspace pw_;
-  Workspace eval_ws_;
-  PaperState p_;
-  int na_ = 0;
+  StateLayout layout_;  // the flat state's blocks
+  int na_ = 0;          // angles [-]
+  // The workspace, storage only (derivative()'s results do not depend on it):
+  PaperWorkspace pw_;  // the paper's dense solve
+  Workspace eval_ws_;  // the recursion's, for outputs and tow jumps
+  PaperState p_;       // y's coordinates, unpacked
 };
 
 }  // namespace

@@ -120,14 +120,15 @@ void check_surface(const Model& model, const Sample& s, RunStats& stats) {
            s.bodies[b].pos.z());
 }
 
-/// Output sample of state y at time t into `out` (its storage reused);
-/// tracks the element length drift.
+/// Output sample of state y at time t into `out` (its storage reused; `s`:
+/// storage for y's physical state); tracks the element length drift.
 void sample_of(const Model& model, System& sys, const StateVector& y, double t, RunStats& stats, Sample& out,
-               std::string* err = nullptr) {
+               PhysicalState& s, std::string* err = nullptr) {
   const Workspace& ws = sys.evaluate(y, t);
   if (err) *err = check_rk4_step(model, ws, t, stats);
   check_stall(model, ws, t, stats);
-  make_sample(model, sys.physical_view(y), ws, t, out);
+  sys.physical_into(y, s);
+  make_sample(model, s, ws, t, out);
   check_surface(model, out, stats);
   for (std::size_t k = 0; k < model.cable.elements.size(); ++k) {
     const int b = ws.body_at[k + 1];
@@ -294,11 +295,12 @@ double rk4_step_limit(const Model& model, const Workspace& ws, double t, int* el
 
 namespace {
 
-/// Empty if y is sound; else what went wrong and where.
-std::string check_state(const Model& model, const System& sys, const StateVector& y) {
+/// Empty if y is sound; else what went wrong and where (`s`: storage for
+/// y's physical state).
+std::string check_state(const Model& model, const System& sys, const StateVector& y, PhysicalState& s) {
   for (std::size_t i = 0; i < y.size(); ++i)
     if (!std::isfinite(y[i])) return sys.describe(i) + ": state is not finite (NaN or infinity)";
-  const PhysicalState& s = sys.physical_view(y);
+  sys.physical_into(y, s);
   for (int k = 0; k < model.cable.n(); ++k)
     if (s.w[k].norm() > kMaxRate)
       return "element " + std::to_string(k + 1) + ": angular velocity diverged (" + std::to_string(s.w[k].norm()) +
@@ -328,19 +330,19 @@ bool winch_due(const Model& model, const System& sys, const StateVector& y) {
 }
 
 /// Advance y from t to `target` (an output time), by fixed RK4 steps or
-/// adaptive steps that land on `target`. Returns an error text or empty;
-/// returns early (t short of `target`) once `stopping` says so.
+/// adaptive steps that land on `target`; `s`: storage for the checks'
+/// physical state. Returns an error text or empty; returns early (t short
+/// of `target`) once `stopping` says so.
 template <class Stepper>
-std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVector& y, double& t, double target,
-                          RunStats& stats, bool& event, const StopCheck& stopping) {
+std::string advance_fixed(const Model& model, System& sys, PhysicalState& s, Stepper& rk, StateVector& y, double& t,
+                          double target, RunStats& stats, bool& event, const StopCheck& stopping) {
   while (t < target - 1e-12 * std::max(1.0, target) && !stopping(t)) {
     const double h = std::min(model.sim.time_step, target - t);
-    sys.set_window(t, t + h);
-    rk.do_step(std::ref(sys), y, t, h);
+    rk.do_step(sys.in_window({t, t + h}), y, t, h);
     t = (target - (t + h) < 1e-12 * std::max(1.0, target)) ? target : t + h;
     sys.project(y, t);
     ++stats.steps;
-    if (auto err = check_state(model, sys, y); !err.empty()) return err;
+    if (auto err = check_state(model, sys, y, s); !err.empty()) return err;
     if ((event = winch_due(model, sys, y))) return {};
     track_elastic(model, sys, y, t, stats);
   }
@@ -355,9 +357,9 @@ std::string advance_fixed(const Model& model, System& sys, Stepper& rk, StateVec
 /// way); `accepted(y, t)` runs after each accepted step (projection).
 /// Returns an error text or empty; returns early once `stopping` says so.
 template <class TryStep, class Accepted>
-std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step, Accepted&& accepted, StateVector& y,
-                             double& t, double land, double stop, double& h, RunStats& stats, bool& event,
-                             const StopCheck& stopping) {
+std::string advance_adaptive(const Model& model, System& sys, PhysicalState& s, TryStep&& try_step, Accepted&& accepted,
+                             StateVector& y, double& t, double land, double stop, double& h, RunStats& stats,
+                             bool& event, const StopCheck& stopping) {
   const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
   while (t < stop - 1e-12 * std::max(1.0, stop) && !stopping(t)) {
     const double h_try = std::min({h, model.sim.max_step, land - t});
@@ -379,7 +381,7 @@ std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step
     if (std::abs(stop - t) < 1e-12 * std::max(1.0, stop)) t = stop;
     accepted(y, t);
     ++stats.steps;
-    if (auto err = check_state(model, sys, y); !err.empty()) return err;
+    if (auto err = check_state(model, sys, y, s); !err.empty()) return err;
     if ((event = winch_due(model, sys, y))) return {};
     track_elastic(model, sys, y, t, stats);
   }
@@ -390,27 +392,27 @@ std::string advance_adaptive(const Model& model, System& sys, TryStep&& try_step
 /// law is evaluated inside each trial step's window; accepted steps are
 /// projected.
 template <class Controlled>
-std::string advance_odeint(const Model& model, System& sys, Controlled& ctrl, StateVector& y, double& t, double target,
-                           double& h, RunStats& stats, bool& event, const StopCheck& stopping) {
+std::string advance_odeint(const Model& model, System& sys, PhysicalState& s, Controlled& ctrl, StateVector& y,
+                           double& t, double target, double& h, RunStats& stats, bool& event,
+                           const StopCheck& stopping) {
   auto try_step = [&](StateVector& yy, double& tt, double& dt) {
-    sys.set_window(tt, tt + dt);
-    return ctrl.try_step(std::ref(sys), yy, tt, dt) != odeint::fail;  // tt, dt updated
+    return ctrl.try_step(sys.in_window({tt, tt + dt}), yy, tt, dt) != odeint::fail;  // tt, dt updated
   };
   auto accepted = [&](StateVector& yy, double tt) {
     sys.project(yy, tt);
     if constexpr (requires { ctrl.reset(); }) ctrl.reset();  // projection changed y: no stale FSAL derivative
   };
-  return advance_adaptive(model, sys, try_step, accepted, y, t, target, target, h, stats, event, stopping);
+  return advance_adaptive(model, sys, s, try_step, accepted, y, t, target, target, h, stats, event, stopping);
 }
 
 /// The same with Rosenbrock-W steps (error control on state and forces),
 /// which do not land on `stop` (an output time): it is sampled by dense output.
-std::string advance_rosenbrock(const Model& model, System& sys, RosenbrockW& ros, StateVector& y, double& t,
-                               double land, double stop, double& h, RunStats& stats, bool& event,
+std::string advance_rosenbrock(const Model& model, System& sys, PhysicalState& s, RosenbrockW& ros, StateVector& y,
+                               double& t, double land, double stop, double& h, RunStats& stats, bool& event,
                                const StopCheck& stopping) {
   auto try_step = [&](StateVector& yy, double& tt, double& dt) { return ros.try_step(yy, tt, dt); };
   auto accepted = [](StateVector&, double) {};
-  return advance_adaptive(model, sys, try_step, accepted, y, t, land, stop, h, stats, event, stopping);
+  return advance_adaptive(model, sys, s, try_step, accepted, y, t, land, stop, h, stats, event, stopping);
 }
 
 /// The largest error estimates so far, kept across winch events (which
@@ -479,13 +481,13 @@ class Steppers {
                       RunStats& stats, bool& event, const StopCheck& stopping) {
     switch (model_.sim.integrator) {
       case Integrator::RK4:
-        return advance_fixed(m, sys, rk4_, y, t, target, stats, event, stopping);
+        return advance_fixed(m, sys, checked_, rk4_, y, t, target, stats, event, stopping);
       case Integrator::DOPRI5:
-        return advance_odeint(m, sys, dopri_, y, t, target, h, stats, event, stopping);
+        return advance_odeint(m, sys, checked_, dopri_, y, t, target, h, stats, event, stopping);
       case Integrator::CashKarp54:
-        return advance_odeint(m, sys, cashkarp_, y, t, target, h, stats, event, stopping);
+        return advance_odeint(m, sys, checked_, cashkarp_, y, t, target, h, stats, event, stopping);
       case Integrator::Rosenbrock:
-        return advance_rosenbrock(m, sys, *ros_, y, t, land, target, h, stats, event, stopping);
+        return advance_rosenbrock(m, sys, checked_, *ros_, y, t, land, target, h, stats, event, stopping);
     }
     return "internal: unknown integrator";
   }
@@ -512,6 +514,7 @@ class Steppers {
   decltype(odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_cash_karp54<StateVector>())) cashkarp_ =
       odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_cash_karp54<StateVector>());
   std::unique_ptr<RosenbrockW> ros_;
+  PhysicalState checked_;  // the physical state of the last step checked (storage reused)
 };
 
 /// The run's current chain: the model given, or one derived from it by
@@ -599,9 +602,10 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   double t = 0;
   std::string check;  // a refusal from the rk4 stability check
   // One sample of the current chain at (state yy, time tt), its nodes with their identities.
-  Sample out;  // the sample being written (its storage reused)
+  Sample out;             // the sample being written (its storage reused)
+  PhysicalState sampled;  // its physical state (storage reused)
   auto sample = [&](const StateVector& yy, double tt) -> const Sample& {
-    sample_of(*chain.model, *chain.sys, yy, tt, stats, out, &check);
+    sample_of(*chain.model, *chain.sys, yy, tt, stats, out, sampled, &check);
     if (chain.node_id.empty()) {
       chain.node_id = out.node_id;
       chain.next_id = static_cast<long>(out.node_id.size());

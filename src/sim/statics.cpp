@@ -1072,7 +1072,7 @@ bool newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag
     y = sys->initial(s, 0.0);
     rhs.assign(y.size(), 0.0);
     sys->derivative(y, dy, 0.0);
-    sys->prepare_stage_solve(0.0);
+    sys->prepare_stage_solve(0.0, StepWindow{});
     // GMRES on J P z = -r, dx = P z (one cycle: the preconditioner leaves a
     // few directions to find, 4 to 5 products on the dragged cable).
     const double beta = r.norm();

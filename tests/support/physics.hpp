@@ -221,7 +221,7 @@ inline void integrate_rk4(System& sys, StateVector& y, double t0, double h, long
   boost::numeric::odeint::runge_kutta4<StateVector> rk;
   double t = t0;
   for (long i = 0; i < steps; ++i) {
-    rk.do_step(std::ref(sys), y, t, h);
+    rk.do_step(sys.in_window({}), y, t, h);
     t = t0 + (i + 1) * h;
     sys.project(y, t);
     if (each) each(y, t);
@@ -239,8 +239,7 @@ inline PhysicalState integrate_state(const Model& m, const PhysicalState& s, dou
   double t = 0;
   const long steps = std::lround(duration / h);
   for (long i = 0; i < steps; ++i) {
-    sys->set_window(t, t + h);
-    rk4.do_step(std::ref(*sys), y, t, h);
+    rk4.do_step(sys->in_window({t, t + h}), y, t, h);
     t += h;
     sys->project(y, t);
     if (each) each(sys->physical(y));

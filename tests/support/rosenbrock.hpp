@@ -36,15 +36,15 @@ inline void rk4_step(System& sys, StateVector& y, double t, double h, Rk4Scratch
   auto axpy = [&](const StateVector& k, double a) {
     for (std::size_t i = 0; i < N; ++i) w.yt[i] = y[i] + a * k[i];
   };
-  sys.set_window(t, t + h);
-  sys.derivative(y, w.k1, t);
+  const StepWindow window{t, t + h};
+  sys.derivative(y, w.k1, t, window);
   w.yt = y;
   axpy(w.k1, h / 2);
-  sys.derivative(w.yt, w.k2, t + h / 2);
+  sys.derivative(w.yt, w.k2, t + h / 2, window);
   axpy(w.k2, h / 2);
-  sys.derivative(w.yt, w.k3, t + h / 2);
+  sys.derivative(w.yt, w.k3, t + h / 2, window);
   axpy(w.k3, h);
-  sys.derivative(w.yt, w.k4, t + h);
+  sys.derivative(w.yt, w.k4, t + h, window);
   for (std::size_t i = 0; i < N; ++i) y[i] += h / 6 * (w.k1[i] + 2 * w.k2[i] + 2 * w.k3[i] + w.k4[i]);
   sys.project(y, t + h);
 }
@@ -89,9 +89,9 @@ inline void element_tangent_maps(const StateVector& y, int n, Eigen::MatrixXd& P
 }
 
 /// The dynamics' Jacobian in the reduced coordinates of P and Q (Q df/dy P)
-/// at (y, t), by central differences of step eps along P's columns.
-inline Eigen::MatrixXd reduced_jacobian(System& sys, const StateVector& y, double t, const Eigen::MatrixXd& P,
-                                        const Eigen::MatrixXd& Q, double eps) {
+/// at (y, t) in the step's window, by central differences of step eps along P's columns.
+inline Eigen::MatrixXd reduced_jacobian(System& sys, const StateVector& y, double t, const StepWindow& window,
+                                        const Eigen::MatrixXd& P, const Eigen::MatrixXd& Q, double eps) {
   const std::size_t N = y.size();
   Eigen::MatrixXd J(Q.rows(), P.cols());
   for (Eigen::Index j = 0; j < P.cols(); ++j) {
@@ -100,8 +100,8 @@ inline Eigen::MatrixXd reduced_jacobian(System& sys, const StateVector& y, doubl
       yp[i] += eps * P(static_cast<Eigen::Index>(i), j);
       ym[i] -= eps * P(static_cast<Eigen::Index>(i), j);
     }
-    sys.derivative(yp, fp, t);
-    sys.derivative(ym, fm, t);
+    sys.derivative(yp, fp, t, window);
+    sys.derivative(ym, fm, t, window);
     Eigen::VectorXd d(static_cast<Eigen::Index>(N));
     for (std::size_t i = 0; i < N; ++i) d[static_cast<Eigen::Index>(i)] = (fp[i] - fm[i]) / (2 * eps);
     J.col(j) = Q * d;

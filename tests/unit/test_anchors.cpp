@@ -1,9 +1,10 @@
 // Properties that MuJoCo's and Pinocchio's suites check and that every
 // evaluation here must have: determinism (in one process and across two),
-// evaluations that leave their inputs unchanged, a reused workspace that
-// gives what a fresh one gives, and the impulsive response to a tow-velocity
-// jump against the dense formula of docs/theory.md 6.1,
-// dq'_a = -M_aa^-1 M_a0 dv, from the paper formulation's mass matrix.
+// evaluations that leave their inputs unchanged, a derivative that depends
+// on its arguments only, a reused workspace that gives what a fresh one
+// gives, and the impulsive response to a tow-velocity jump against the
+// dense formula of docs/theory.md 6.1, dq'_a = -M_aa^-1 M_a0 dv, from the
+// paper formulation's mass matrix.
 //
 // States and results are compared through the flatten() helpers below, the
 // one place that lists their fields.
@@ -16,6 +17,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../support/cli.hpp"
@@ -24,6 +26,9 @@
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/paper.hpp"
 #include "towsim/integrators/system.hpp"
+#include "towsim/model/winch.hpp"
+#include "towsim/scenario/examples.hpp"
+#include "towsim/scenario/scenario.hpp"
 #include "towsim/sim/simulate.hpp"
 
 namespace towsim {
@@ -201,23 +206,136 @@ TEST_P(NoMutation, SystemEvaluationsLeaveTheStateVectorUnchanged) {
     const StateVector y = sys->initial(state_at(m, rng, 0.6), 0.6);
     const StateVector y0 = y;
     const auto s0 = flatten(sys->physical(y));
-    // The window of the step being taken (as simulate() sets it).
-    sys->set_window(0.5, 0.7);
+    // The window of the step being taken (as simulate() gives it).
+    const StepWindow window{0.5, 0.7};
     StateVector dy1, dy2;
-    sys->derivative(y, dy1, 0.6);
+    sys->derivative(y, dy1, 0.6, window);
     EXPECT_TRUE(same_bits(y, y0)) << testing::formulation_name(f) << ": derivative";
     EXPECT_TRUE(same_bits(flatten(sys->physical(y)), s0)) << testing::formulation_name(f) << ": derivative";
     sys->evaluate(y, 0.6);
     EXPECT_TRUE(same_bits(y, y0)) << testing::formulation_name(f) << ": evaluate";
     EXPECT_TRUE(same_bits(flatten(sys->physical(y)), s0)) << testing::formulation_name(f) << ": evaluate";
     // An evaluation leaves nothing behind that changes the next one.
-    sys->set_window(0.5, 0.7);
-    sys->derivative(y, dy2, 0.6);
+    sys->derivative(y, dy2, 0.6, window);
     EXPECT_TRUE(same_bits(dy1, dy2)) << testing::formulation_name(f);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Anchors, NoMutation, ::testing::Bool(), with_body_name);
+
+// --- derivative() is a function of its arguments --------------------------------
+
+/// A built-in example with --set overrides, compiled.
+Model example(const std::string& name, const std::vector<std::string>& sets = {}) {
+  const io::Example* e = io::find_example(name);
+  EXPECT_NE(e, nullptr) << name;
+  if (e == nullptr) return Model{};
+  io::LoadedScenario sc = io::load_scenario_text(e->yaml, name + ".yaml", name, "", sets);
+  EXPECT_TRUE(sc.ok()) << sc.diags.str();
+  return sc.ok() ? *sc.model : Model{};
+}
+
+/// Models with every kind of block in the flat state, the paper's and a
+/// worker thread; each with its name.
+std::vector<std::pair<std::string, Model>> block_models() {
+  std::vector<std::pair<std::string, Model>> v;
+  v.emplace_back("cable", anchor_model(false));
+  v.emplace_back("body", anchor_model(true));
+  v.emplace_back("paper, body", anchor_model(true, Formulation::Paper));
+  v.emplace_back("imposed winch", example("fish-depth-change"));
+  Model tension = example("fish-depth-change");
+  tension.winch.mode = Winch::Mode::Tension;
+  tension.winch.tension = 2e4, tension.winch.drum_inertia = 200, tension.winch.damping = 500;
+  v.emplace_back("tension winch", tension);
+  v.emplace_back("depth controllers", example("fish-depth-control"));
+  v.emplace_back("elastic", example("cable-tow", {"cable.axial_stiffness=1e7"}));
+  v.emplace_back("two bodies", example("two-part-tow"));
+  v.emplace_back("worker thread", example("paper-3d-turn", {"simulation.threads=2"}));
+  return v;
+}
+
+/// Every call of the System's interface once, at the state `y` [t = 2.2 s,
+/// window 2.0-2.5 s]: what may come between two evaluations of a run.
+void call_everything(System& sys, const StateVector& y) {
+  const StepWindow elsewhere{2.0, 2.5};
+  StateVector dy, k, x = y;
+  EvaluationForces side;
+  PhysicalState view;
+  sys.derivative(y, dy, 2.2, elsewhere);
+  if (sys.has_stage_solve()) {
+    sys.prepare_stage_solve(2.2, elsewhere);
+    sys.stage_solve(0.01, dy, k);
+    sys.derivative_time_shift(y, dy, 2.3, elsewhere);
+  }
+  sys.derivative_with_side_forces(y, dy, 2.2, y, 2.4, elsewhere, side);
+  sys.derivative(y, dy, 2.2);
+  (void)sys.evaluate(y, 2.2);
+  sys.physical_into(y, view);
+  sys.project(x, 2.2);
+  x = y;
+  (void)sys.apply_tow_jump(x, 1.0);
+}
+
+// MuJoCo's determinism check: derivative() twice with the same arguments,
+// every other call between at another state, time and window, gives the same
+// bits, and the same as a fresh System's.
+TEST(PureDerivative, SameArgumentsSameBitsWhateverCameBetween) {
+  for (const auto& [name, m] : block_models()) {
+    const auto sys = make_system(m), fresh = make_system(m);
+    std::mt19937 rng(17);
+    const StateVector y = sys->initial(state_at(m, rng, 0.6), 0.6);
+    const StateVector other = sys->initial(state_at(m, rng, 2.2), 2.2);
+    const StepWindow window{0.5, 0.7};
+    StateVector dy1, dy2, dy_fresh, shifted;
+    sys->derivative(y, dy1, 0.6, window);
+    call_everything(*sys, other);
+    sys->derivative(y, dy2, 0.6, window);
+    fresh->derivative(y, dy_fresh, 0.6, window);
+    EXPECT_TRUE(same_bits(dy1, dy2)) << name;
+    EXPECT_TRUE(same_bits(dy1, dy_fresh)) << name;
+    // The time shift (a cache of the Jacobian point's inertias) is the same function.
+    call_everything(*sys, other);
+    sys->derivative_time_shift(y, shifted, 0.6, window);
+    EXPECT_TRUE(same_bits(dy1, shifted)) << name << ": time shift";
+    // The window is an argument: another window, another law time.
+    sys->derivative(y, dy2, 0.6, StepWindow::after(0.6));
+    fresh->derivative(y, dy_fresh, 0.6, StepWindow::after(0.6));
+    EXPECT_TRUE(same_bits(dy2, dy_fresh)) << name << ": right limit";
+  }
+}
+
+// Evaluating for output changes nothing observable: the same outputs, row
+// names, physical states, projections and jumps as a fresh System's, and no
+// evaluation counted (derivative() counts one).
+TEST(PureDerivative, EvaluatingChangesNothingObservable) {
+  for (const auto& [name, m] : block_models()) {
+    const auto sys = make_system(m), fresh = make_system(m);
+    std::mt19937 rng(19);
+    const StateVector y = sys->initial(state_at(m, rng, 0.6), 0.6);
+    const StateVector other = sys->initial(state_at(m, rng, 2.2), 2.2);
+    const std::vector<double> out = flatten(sys->evaluate(y, 0.6));
+    call_everything(*sys, other);
+    EXPECT_TRUE(same_bits(flatten(sys->evaluate(y, 0.6)), out)) << name;
+    EXPECT_TRUE(same_bits(flatten(fresh->evaluate(y, 0.6)), out)) << name;
+    const long n = sys->rhs_evaluations;
+    (void)sys->evaluate(y, 0.6);
+    EXPECT_EQ(sys->rhs_evaluations, n) << name;
+    StateVector dy;
+    sys->derivative(y, dy, 0.6);
+    EXPECT_EQ(sys->rhs_evaluations, n + 1) << name;
+    PhysicalState view;
+    sys->physical_into(y, view);
+    EXPECT_TRUE(same_bits(flatten(view), flatten(fresh->physical(y)))) << name;
+    EXPECT_TRUE(same_bits(flatten(sys->physical(y)), flatten(fresh->physical(y)))) << name;
+    for (std::size_t i = 0; i < y.size(); ++i) EXPECT_EQ(sys->describe(i), fresh->describe(i)) << name;
+    StateVector a = y, b = y;
+    sys->project(a, 0.6), fresh->project(b, 0.6);
+    EXPECT_TRUE(same_bits(a, b)) << name << ": project";
+    a = y, b = y;
+    EXPECT_EQ(sys->apply_tow_jump(a, 1.0), fresh->apply_tow_jump(b, 1.0)) << name;
+    EXPECT_TRUE(same_bits(a, b)) << name << ": apply_tow_jump";
+  }
+}
 
 // --- a reused workspace gives what a fresh one gives ---------------------------
 
@@ -252,27 +370,27 @@ TEST_P(ReusedWorkspace, StateAThenBThenAEqualsFresh) {
                         std::vector<double>(pfresh.qdd.data(), pfresh.qdd.data() + pfresh.qdd.size())));
 }
 
-// The default System keeps its workspace between calls: A, B, A gives what a
-// fresh System gives for A. (The paper System keeps the charts of the last
-// initial() in itself, outside the state vector, so a B of its own cannot be
-// made without changing A's meaning; its workspace is covered above.)
-TEST_P(ReusedWorkspace, DefaultSystemAThenBThenAEqualsFresh) {
-  const Model m = anchor_model(GetParam());
-  std::mt19937 rng(5);
-  const auto used = make_system(m);
-  const StateVector ya = used->initial(state_at(m, rng, 0.6), 0.6);
-  const StateVector yb = used->initial(state_at(m, rng, 0.6), 0.6);
-  StateVector dy_used, dy_fresh, scratch;
-  used->set_window(0.5, 0.7);
-  used->derivative(ya, scratch, 0.6);
-  used->derivative(yb, scratch, 0.6);
-  used->derivative(ya, dy_used, 0.6);
-  const auto fresh = make_system(m);
-  fresh->set_window(0.5, 0.7);
-  fresh->derivative(ya, dy_fresh, 0.6);
-  EXPECT_TRUE(same_bits(dy_used, dy_fresh));
-  used->evaluate(yb, 0.6);
-  EXPECT_TRUE(same_bits(flatten(used->evaluate(ya, 0.6)), flatten(fresh->evaluate(ya, 0.6))));
+// A System keeps its workspace between calls: A, B, A gives what a fresh
+// System gives for A (the paper System's charts are in its state vector).
+TEST_P(ReusedWorkspace, SystemAThenBThenAEqualsFresh) {
+  for (Formulation f : {Formulation::Default, Formulation::Paper}) {
+    const Model m = anchor_model(GetParam(), f);
+    std::mt19937 rng(5);
+    const auto used = make_system(m);
+    const StateVector ya = used->initial(state_at(m, rng, 0.6), 0.6);
+    const StateVector yb = used->initial(state_at(m, rng, 0.6), 0.6);
+    StateVector dy_used, dy_fresh, scratch;
+    const StepWindow window{0.5, 0.7};
+    used->derivative(ya, scratch, 0.6, window);
+    used->derivative(yb, scratch, 0.6, window);
+    used->derivative(ya, dy_used, 0.6, window);
+    const auto fresh = make_system(m);
+    fresh->derivative(ya, dy_fresh, 0.6, window);
+    EXPECT_TRUE(same_bits(dy_used, dy_fresh)) << testing::formulation_name(f);
+    used->evaluate(yb, 0.6);
+    EXPECT_TRUE(same_bits(flatten(used->evaluate(ya, 0.6)), flatten(fresh->evaluate(ya, 0.6))))
+        << testing::formulation_name(f);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Anchors, ReusedWorkspace, ::testing::Bool(), with_body_name);

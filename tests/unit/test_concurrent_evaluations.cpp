@@ -109,7 +109,7 @@ class DecaySystem final : public System {
   std::string calls;
 
   StateVector initial(const PhysicalState& /*s*/, double /*t*/) override { return StateVector(3, 1.0); }
-  void derivative(const StateVector& y, StateVector& dy, double /*t*/) override {
+  void derivative(const StateVector& y, StateVector& dy, double /*t*/, const StepWindow& /*window*/) override {
     ++rhs_evaluations;
     dy.resize(y.size());
     for (std::size_t q = 0; q < y.size(); ++q) dy[q] = -y[q];
@@ -124,15 +124,16 @@ class DecaySystem final : public System {
     k.resize(r.size());
     for (std::size_t q = 0; q < r.size(); ++q) k[q] = r[q] / (1 + hg);  // J = -I exactly
   }
-  void start_side_forces(const StateVector& /*y_side*/, double /*t_side*/, EvaluationForces& /*side*/) override {
+  void start_side_forces(const StateVector& /*y_side*/, double /*t_side*/, const StepWindow& /*window*/,
+                         EvaluationForces& /*side*/) override {
     calls += 's';
     worker_.start(side_throws ? &throwing_job : &quiet_job, this);
   }
-  void finish_side_forces(const StateVector& y, StateVector& dy, double t) override {
+  void finish_side_forces(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override {
     calls += 'f';
     rhs_evaluations += 1;
     worker_.wait();  // the side's exception first, as serially
-    derivative(y, dy, t);
+    derivative(y, dy, t, window);
   }
   void cancel_side_forces() noexcept override {
     calls += 'c';
@@ -215,8 +216,8 @@ TEST(ConcurrentEvaluations, NonFiniteSideEvaluationMatchesSerial) {
   for (int pass = 0; pass < 2; ++pass) {                        // the worker's second job too
     StateVector dy1, dy2;
     EvaluationForces f1, f2;
-    serial->derivative_with_side_forces(y, dy1, 0.5, y_nan, 0.5, f1);
-    concurrent->derivative_with_side_forces(y, dy2, 0.5, y_nan, 0.5, f2);
+    serial->derivative_with_side_forces(y, dy1, 0.5, y_nan, 0.5, StepWindow{}, f1);
+    concurrent->derivative_with_side_forces(y, dy2, 0.5, y_nan, 0.5, StepWindow{}, f2);
     EXPECT_EQ(dy1, dy2);
     EXPECT_TRUE(std::isnan(f1.tow_force.norm()));
     EXPECT_TRUE(std::isnan(f2.tow_force.norm()));
@@ -258,12 +259,12 @@ TEST(ConcurrentEvaluations, CancelledSideEvaluationLeavesNoTrace) {
   EvaluationForces f1, f2;
   for (System* sys : {serial.get(), concurrent.get()}) {
     EvaluationForces dropped;
-    sys->start_side_forces(y_nan, 0.5, dropped);
+    sys->start_side_forces(y_nan, 0.5, StepWindow{}, dropped);
     sys->cancel_side_forces();
     EXPECT_EQ(sys->rhs_evaluations, 0);
   }
-  serial->derivative_with_side_forces(y, dy1, 0.5, y, 0.25, f1);
-  concurrent->derivative_with_side_forces(y, dy2, 0.5, y, 0.25, f2);
+  serial->derivative_with_side_forces(y, dy1, 0.5, y, 0.25, StepWindow{}, f1);
+  concurrent->derivative_with_side_forces(y, dy2, 0.5, y, 0.25, StepWindow{}, f2);
   EXPECT_EQ(dy1, dy2);
   EXPECT_EQ(f1.tow_force, f2.tow_force);
   EXPECT_EQ(f1.link_force, f2.link_force);

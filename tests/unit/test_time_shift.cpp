@@ -159,39 +159,37 @@ void expect_same(const StateVector& a, const StateVector& b, const std::string& 
 TEST(TimeShift, SystemTimeShiftEqualsTheFullDerivative) {
   std::mt19937 rng(12);
   constexpr double kH = 0.1;  // the step [s]
+  const StepWindow window{kT, kT + kH};
   for (const Case& c : cases()) {
     const auto sys = make_system(c.m), ref = make_system(c.m);
     const StateVector y = sys->initial(testing::random_state(c.m, rng), kT);
     const StateVector other = sys->initial(testing::random_state(c.m, rng), kT);
     StateVector f0, a, b;
     auto full = [&](const StateVector& x, double t) {
-      ref->set_window(kT, kT + kH);
-      ref->derivative(x, b, t);
+      ref->derivative(x, b, t, window);
       return b;
     };
     // A step's start: f0 and the Jacobian at y, then f_t's evaluation.
-    sys->set_window(kT, kT + kH);
-    sys->derivative(y, f0, kT);
-    sys->prepare_stage_solve(kT);
-    sys->derivative_time_shift(y, a, kT + kDt);
+    sys->derivative(y, f0, kT, window);
+    sys->prepare_stage_solve(kT, window);
+    sys->derivative_time_shift(y, a, kT + kDt, window);
     expect_same(a, full(y, kT + kDt), c.name);
     // Stage and output evaluations in between leave the Jacobian's state.
-    sys->derivative(other, f0, kT + 0.5 * kH);
+    sys->derivative(other, f0, kT + 0.5 * kH, window);
     (void)sys->evaluate(other, kT);
-    sys->set_window(kT, kT + kH);
-    sys->derivative_time_shift(y, a, kT + kDt);
+    sys->derivative_time_shift(y, a, kT + kDt, window);
     expect_same(a, full(y, kT + kDt), c.name + ", after other evaluations");
     // Another state than the Jacobian's: recognised, evaluated in full.
-    sys->derivative_time_shift(other, a, kT + kDt);
+    sys->derivative_time_shift(other, a, kT + kDt, window);
     expect_same(a, full(other, kT + kDt), c.name + ", another state");
     // Other directions only (the bodies' attitudes, rates, tow point kept).
     StateVector turned = y;
     std::copy(other.begin() + 6, other.begin() + 6 + 3 * c.m.cable.n(), turned.begin() + 6);
-    sys->derivative_time_shift(turned, a, kT + kDt);
+    sys->derivative_time_shift(turned, a, kT + kDt, window);
     expect_same(a, full(turned, kT + kDt), c.name + ", other directions");
     StateVector moved = y;
     moved[6] = std::nextafter(moved[6], 2.0);  // e_1 by one ulp
-    sys->derivative_time_shift(moved, a, kT + kDt);
+    sys->derivative_time_shift(moved, a, kT + kDt, window);
     expect_same(a, full(moved, kT + kDt), c.name + ", e_1 moved by one ulp");
   }
 }

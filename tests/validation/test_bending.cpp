@@ -311,9 +311,9 @@ TEST(BendingRosenbrock, StageSolveHasTheSpringsStiffModes) {
   StateVector y = sys->initial(s, 0.0), f;
   const std::size_t N = y.size();
   const double step = 0.1;  // [s]
-  sys->set_window(0.0, step);
-  sys->derivative(y, f, 0.0);
-  sys->prepare_stage_solve(0.0);
+  const StepWindow window{0.0, step};
+  sys->derivative(y, f, 0.0, window);
+  sys->prepare_stage_solve(0.0, window);
   const Eigen::MatrixXd W = testing::stage_W(*sys, N, 0.4358665215 * step);
   const int M = 4 * c.n;
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(N), M);
@@ -321,7 +321,7 @@ TEST(BendingRosenbrock, StageSolveHasTheSpringsStiffModes) {
   testing::element_tangent_maps(y, c.n, P, Q);
   // Central differences, step 1e-6 rad (rad/s): truncation and round-off
   // ~1e-9 relative, far below the bound.
-  const Eigen::MatrixXd J = testing::reduced_jacobian(*sys, y, 0.0, P, Q, 1e-6);
+  const Eigen::MatrixXd J = testing::reduced_jacobian(*sys, y, 0.0, window, P, Q, 1e-6);
   double lmax = 0, wmax = 0;
   const double worst = testing::stiff_mode_mismatch(J, Q * W * P, 12, lmax, wmax);
   std::printf("stiffest |lambda| J %.4e /s, W %.4e /s; max |(W - J) v| / |J v| over 12 modes %.3e\n", lmax, wmax,

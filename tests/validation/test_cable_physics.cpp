@@ -236,7 +236,7 @@ TEST_P(Rk4Order, TowedCableOnSmoothTrack) {
 // straddles a jump and a stage at the start of a step sees the right limit of
 // the tow acceleration, a stage at its end the left limit. The run loop lands
 // on tow_breakpoints() and the systems evaluate the law inside the step's
-// window (System::set_window). Before that fix both tests measured ratio 2.0
+// window (StepWindow). Before that fix both tests measured ratio 2.0
 // (order 1, err ~1.1e-3 m at h = 20 ms).
 TEST_P(Rk4Order, TowedCableOnRampStart) {
   // Ramp longer than the run: only the jump at t = 0.

@@ -368,8 +368,7 @@ TEST(ElasticWave, TowPointStartingUpSendsTheImpedanceStepAtTheWaveSpeed) {
   int plateau_n = 0;
   const double t_end = 1.5 * c.length / wave;  // before the reflection returns to the top
   while (t < t_end) {
-    sys->set_window(t, t + h);
-    rk4.do_step(std::ref(*sys), y, t, h);
+    rk4.do_step(sys->in_window({t, t + h}), y, t, h);
     t += h;
     sys->project(y, t);
     const PhysicalState p = sys->physical(y);

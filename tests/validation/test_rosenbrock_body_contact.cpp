@@ -99,7 +99,7 @@ Mismatch stage_matrix_mismatch(const Model& m, const Vec3& v, bool velocity_only
   const std::size_t N = y.size(), n = s0.e.size(), ob = 6 + 6 * n;
   StateVector f;
   sys->derivative(y, f, 0.0);
-  sys->prepare_stage_solve(0.0);
+  sys->prepare_stage_solve(0.0, StepWindow{});
   const Eigen::MatrixXd W = stage_W(*sys, N, 0.01);
   const auto Ni = static_cast<Eigen::Index>(N);
   auto at = [](std::size_t i) { return static_cast<Eigen::Index>(i); };

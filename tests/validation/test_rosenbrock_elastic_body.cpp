@@ -57,7 +57,7 @@ TEST(RosenbrockElasticBody, StageSolveIsOneWForEveryStep) {
     const StateVector y = sys->initial(initial_state(m), 0.0);
     StateVector f;
     sys->derivative(y, f, 0.0);
-    sys->prepare_stage_solve(0.0);
+    sys->prepare_stage_solve(0.0, StepWindow{});
     const std::size_t N = y.size();
     // hg of a 1 s step (the output interval) and of a 10 ms one.
     const Eigen::MatrixXd W1 = stage_W(*sys, N, 0.436), W2 = stage_W(*sys, N, 0.00436);

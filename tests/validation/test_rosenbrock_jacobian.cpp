@@ -62,9 +62,9 @@ TEST_P(RosenbrockJacobian, StageSolveMatchesFiniteDifferencesOnTheStiffModes) {
     t += h;
   }
   const double step = 0.1;  // a step of the adaptive run there [s]
-  sys->set_window(t, t + step);
-  sys->derivative(y, f, t);
-  sys->prepare_stage_solve(t);
+  const StepWindow window{t, t + step};
+  sys->derivative(y, f, t, window);
+  sys->prepare_stage_solve(t, window);
   const Eigen::MatrixXd W = stage_W(*sys, N, 0.4358665215 * step);
 
   const int n = c.n, M = 4 * n + 6;
@@ -88,7 +88,7 @@ TEST_P(RosenbrockJacobian, StageSolveMatchesFiniteDifferencesOnTheStiffModes) {
   }
   // Central differences, step 1e-6 rad (rad/s): truncation ~1e-12 relative,
   // round-off ~1e-10 relative: far below the bounds.
-  const Eigen::MatrixXd J = testing::reduced_jacobian(*sys, y, t, P, Q, 1e-6);
+  const Eigen::MatrixXd J = testing::reduced_jacobian(*sys, y, t, window, P, Q, 1e-6);
   const Eigen::MatrixXd Wr = Q * W * P;
 
   // The stiffest modes of J (the rocking of the top elements): W on them.

@@ -56,8 +56,7 @@ void fixed_steps(double h, SampleFn sample, StepFn step) {
 /// |F_R| of state y at time t, evaluated on `sys`.
 double tow_force_at(System& sys, const StateVector& y, double t) {
   StateVector dy;
-  sys.set_window(t, t);
-  sys.derivative(y, dy, t);
+  sys.derivative(y, dy, t, StepWindow{t, t});
   return sys.last_accelerations()->tow_force.norm();
 }
 

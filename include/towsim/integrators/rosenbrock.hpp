@@ -88,6 +88,7 @@ class RosenbrockW {
   void accept(StateVector& y, double& t, double& h, double t1, double err, double ferr, double fac);
 
   System& sys_;
+  StepWindow window_;  // the step being tried, [t, t + h]: every evaluation's and the Jacobian's
   double tol_, force_scale_;
   ForceEstimate force_estimate_;
   TimeDerivative time_derivative_;

@@ -2,14 +2,13 @@
 // derivative, and a projection after each accepted step (docs/theory.md §6).
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "towsim/dynamics/state.hpp"
+#include "towsim/integrators/step_window.hpp"
 
 namespace towsim {
 
@@ -23,13 +22,27 @@ struct EvaluationForces {
 
 /// One formulation's state space. Implementations: the default (unit vectors
 /// e_k, angular velocities, body quaternion) and the paper's (angles in charts).
+/// What derivative() and evaluate() return depends on their arguments only:
+/// the system keeps storage and caches (its workspace), never state; the
+/// step's window is an argument, events (tow jumps, winch splits) are the
+/// run loop's calls (docs/theory.md §6).
 class System {
  public:
   virtual ~System() = default;
   /// Flat state of a physical state at time t.
   virtual StateVector initial(const PhysicalState& s, double t) = 0;
-  /// dy/dt at (y, t). Counts evaluations.
-  virtual void derivative(const StateVector& y, StateVector& dy, double t) = 0;
+  /// dy/dt at (y, t), the time-dependent inputs taken inside the step's
+  /// window. Counted (rhs_evaluations).
+  virtual void derivative(const StateVector& y, StateVector& dy, double t, const StepWindow& window) = 0;
+  /// derivative() outside any step: the inputs at t itself.
+  void derivative(const StateVector& y, StateVector& dy, double t) { derivative(y, dy, t, StepWindow{}); }
+  /// derivative() in one step's window with odeint's call signature.
+  struct InWindow {
+    System* sys;
+    StepWindow window;
+    void operator()(const StateVector& y, StateVector& dy, double t) const { sys->derivative(y, dy, t, window); }
+  };
+  InWindow in_window(const StepWindow& window) { return {this, window}; }
   /// After an accepted step: renormalise unit vectors and quaternion, make
   /// angular velocities normal to their element, re-choose charts, and reset
   /// the tow point to its imposed motion. Keeps the physical state.
@@ -38,32 +51,31 @@ class System {
   /// the chain and body the impulsive response (tow_velocity_jump).
   /// Returns the jump's size [m/s] (0: nothing done).
   virtual double apply_tow_jump(StateVector& y, double t) = 0;
-  /// derivative(y, dy, t) when the last derivative() was at the same y and
-  /// another time (W's time column): a system may reuse what depends on y
-  /// alone. Bit-identical to derivative(); counts an evaluation.
-  virtual void derivative_time_shift(const StateVector& y, StateVector& dy, double t) { derivative(y, dy, t); }
+  /// derivative(y, dy, t, window) where y's rigid inertias may be those of
+  /// the Jacobian point (W's time column): a system may reuse what depends
+  /// on y alone when its cache provably holds it. Bit-identical to
+  /// derivative(); counted.
+  virtual void derivative_time_shift(const StateVector& y, StateVector& dy, double t, const StepWindow& window) {
+    derivative(y, dy, t, window);
+  }
   /// Physical state of y.
   virtual PhysicalState physical(const StateVector& y) const = 0;
-  /// physical(y) in storage the system keeps (no allocation once sized),
-  /// valid until the next call: for checks and outputs at every step.
-  virtual const PhysicalState& physical_view(const StateVector& y) const {
-    view_ = physical(y);
-    return view_;
-  }
-  /// Full evaluation for output at (y, t): kinematics, forces, joint forces.
+  /// physical(y) into the caller's `out` (no allocation once sized by an
+  /// earlier call): for checks and outputs at every step.
+  virtual void physical_into(const StateVector& y, PhysicalState& out) const { out = physical(y); }
+  /// Full evaluation for output at (y, t), the right limit at a breakpoint
+  /// (StepWindow::after: the state is already past it): kinematics, forces,
+  /// joint forces. No step's evaluation: not counted.
   virtual const Workspace& evaluate(const StateVector& y, double t) = 0;
   /// What state component i belongs to ("element 3", "body", "tow point").
   virtual std::string describe(std::size_t i) const = 0;
-  /// The step about to be taken spans [t0, t1]: the tow law is evaluated
-  /// strictly inside it, so a step ending on a breakpoint of the law sees the
-  /// piece before it and a step starting there the piece after it.
-  void set_window(double t0, double t1) { t0_ = t0, t1_ = t1; }
   /// Linearly implicit integrators (docs/theory.md §6.3). True when this
   /// system provides the O(n) stage solve below.
   virtual bool has_stage_solve() const { return false; }
-  /// Take the local Jacobian at the state and time of the last derivative()
-  /// call (the start of a step): used by every stage_solve until the next call.
-  virtual void prepare_stage_solve(double /*t*/) {}
+  /// Take the local Jacobian at the state of the last derivative() call (the
+  /// start of a step), at t in the step's window: used by every stage_solve
+  /// until the next call (the workspace's Jacobian cache).
+  virtual void prepare_stage_solve(double /*t*/, const StepWindow& /*window*/) {}
   /// Solve (I - hg J) k = r for the stage increment k, J the local Jacobian
   /// approximation of prepare_stage_solve; hg = h gamma [s]. O(n).
   virtual void stage_solve(double /*hg*/, const StateVector& /*r*/, StateVector& /*k*/) {}
@@ -76,7 +88,7 @@ class System {
   virtual std::size_t body_rate_row(std::size_t /*b*/) const { return kNoRow; }
   /// Forces of the last derivative() call (tow force, link forces), or null.
   virtual const Accelerations* last_accelerations() const { return nullptr; }
-  /// Two evaluations, two counted: f(y_side, t_side) for its forces only
+  /// Two evaluations in one window, two counted: f(y_side, t_side) for its forces only
   /// (into `side`, when last_accelerations() gives forces), and f(y, t) into
   /// dy as derivative(y, dy, t), the last one on this system's workspace
   /// (last_accelerations(), prepare_stage_solve read it). Here one after the
@@ -85,27 +97,28 @@ class System {
   /// at the same time: the same numbers (tests/unit/test_concurrent_evaluations.cpp).
   /// start_side_forces() then finish_side_forces().
   void derivative_with_side_forces(const StateVector& y, StateVector& dy, double t, const StateVector& y_side,
-                                   double t_side, EvaluationForces& side) {
-    start_side_forces(y_side, t_side, side);
-    finish_side_forces(y, dy, t);
+                                   double t_side, const StepWindow& window, EvaluationForces& side) {
+    start_side_forces(y_side, t_side, window, side);
+    finish_side_forces(y, dy, t, window);
   }
   /// derivative_with_side_forces() in two calls, for a side evaluation
   /// handed over before it is known to be needed (speculative: the step's
   /// error is not known yet). y_side and side stay untouched until the
   /// matching finish_side_forces() or cancel_side_forces(). Here it is only
   /// recorded; a system with a worker thread starts it on the worker.
-  virtual void start_side_forces(const StateVector& y_side, double t_side, EvaluationForces& side) {
-    pending_ = {&y_side, t_side, &side};
+  virtual void start_side_forces(const StateVector& y_side, double t_side, const StepWindow& window,
+                                 EvaluationForces& side) {
+    pending_ = {&y_side, t_side, window, &side};
   }
   /// The started side evaluation's end, then f(y, t) into dy: as
-  /// derivative_with_side_forces(y, dy, t, y_side, t_side, side), the same
-  /// evaluations in the same order, counted, exceptions the same (the side
-  /// one's first).
-  virtual void finish_side_forces(const StateVector& y, StateVector& dy, double t) {
-    derivative(*pending_.y, side_dy_, pending_.t);
+  /// derivative_with_side_forces(y, dy, t, y_side, t_side, window, side),
+  /// the same evaluations in the same order, counted, exceptions the same
+  /// (the side one's first).
+  virtual void finish_side_forces(const StateVector& y, StateVector& dy, double t, const StepWindow& window) {
+    derivative(*pending_.y, side_dy_, pending_.t, pending_.window);
     if (const Accelerations* acc = last_accelerations())
       pending_.out->tow_force = acc->tow_force, pending_.out->link_force = acc->link_force;
-    derivative(y, dy, t);
+    derivative(y, dy, t, window);
   }
   /// Drop the started side evaluation: as if never started (not counted,
   /// nothing thrown: what it threw is dropped; `side` may have been written).
@@ -116,28 +129,19 @@ class System {
   virtual void expect_side_evaluation() {}
   /// Threads this system evaluates on (1, or 2 with a worker thread) [-].
   virtual int threads() const { return 1; }
-  /// odeint's call signature.
-  void operator()(const StateVector& y, StateVector& dy, double t) { derivative(y, dy, t); }
 
-  long rhs_evaluations = 0;  // dynamics evaluations so far
+  /// Statistics: the derivative() evaluations so far (evaluate()'s are none) [-].
+  long rhs_evaluations = 0;
 
  protected:
-  /// Time at which to evaluate time-dependent inputs (tow law, deflections)
-  /// for a stage at t: t moved inside the step's window by a relative 1e-12.
-  double law_time(double t) const {
-    const double d = 1e-12 * std::max(1.0, std::abs(t));
-    if (t1_ - t0_ <= 2 * d) return t;
-    return std::clamp(t, t0_ + d, t1_ - d);
-  }
-  double t0_ = -1e300, t1_ = 1e300;  // window of the current step [s]
-  mutable PhysicalState view_;       // physical_view's storage
-  StateVector side_dy_;              // the serial side evaluation's discarded rates
+  StateVector side_dy_;  // the serial side evaluation's discarded rates (storage)
 
  private:
   /// The side evaluation started last (start_side_forces), serially.
   struct PendingSide {
     const StateVector* y = nullptr;
     double t = 0;  // [s]
+    StepWindow window;
     EvaluationForces* out = nullptr;
   };
   PendingSide pending_;
