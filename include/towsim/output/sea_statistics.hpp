@@ -49,7 +49,8 @@ SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>
 /// k = 1..N/2, averaged over `band` adjacent ones (resolution band * 2 pi /
 /// (N dt)): S_j = 2 mean_k I(omega_k), I = dt / (2 pi N) |sum_n (x_n - mean)
 /// e^{-i omega n dt}|^2. Sum_j S_j * band * 2 pi / (N dt) = variance when band
-/// divides N/2 (Parseval). Returns (omega_j, S_j) at the band centres.
+/// divides N/2 (Parseval). Returns (omega_j, S_j) at the band centres. The
+/// sums by FFT (towsim/output/dft.hpp): O(N log N) for any N.
 std::vector<std::pair<double, double>> spectral_density_estimate(const std::vector<double>& x, double dt, int band);
 
 /// Share of its peak below which an input spectrum is taken as negligible
