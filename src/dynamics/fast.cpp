@@ -245,7 +245,7 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
   auto elements = [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       const Element& el = current_element(model, ws, k);
-      element_loads(model, el, s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k]);
+      element_loads(model, el, s.e[k], ws.edot[k], ws.vG[k], ws.G[k], t, ws.F[k], ws.Mom[k], &ws.Uw[k]);
       ws.Mt[k] = element_mass(el, s.e[k]);
       ws.elastic[k].T = element_axial_force(els[k], s.length_of(model, k), s.length_rate_of(k));
     }

@@ -226,7 +226,7 @@ void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& b
 }
 
 void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG, const Vec3& xG,
-                            double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K) {
+                            double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K, const Vec3* water) {
   // Rocking stiffness: with the joint forces held, turning e by dtheta moves
   // the bottom joint by L dtheta x e and G by half that; the loads there
   // (tension -f_bottom.e, own loads F.e along e) resist it.
@@ -236,8 +236,11 @@ void element_local_jacobian(const Model& model, const Element& el, const Vec3& e
   const Fluid& fluid = model.fluid;
   if (fluid.rho == 0) return;
   // Drag damping -dF/du (u: velocity relative to the water at G; in still
-  // water the water's velocity is +0, u = vG, as element_loads).
-  const Vec3 u = fluid.has_current() || fluid.waves ? Vec3(vG - fluid.velocity(xG, t)) : vG;
+  // water the water's velocity is +0, u = vG, as element_loads; the water's
+  // velocity as the loads took it when given: the same value, no second wave sum).
+  const Vec3 u = !(fluid.has_current() || fluid.waves) ? vG
+                 : water                               ? Vec3(vG - *water)
+                                                       : Vec3(vG - fluid.velocity(xG, t));
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
   const double unn = un.norm();
@@ -306,7 +309,7 @@ void local_jacobian(const Model& model, const PhysicalState& s, const Workspace&
     const int bi = ws.body_at[k + 1];
     const Vec3& fb = bi >= 0 ? ws.acc.link_force[idx(bi)] : ws.acc.joint_force[k + 1];
     element_local_jacobian(model, current_element(model, ws, k), s.e[k], ws.vG[k], ws.G[k], t, ws.F[k], fb,
-                           jac.element_damping[k], jac.element_stiffness[k]);
+                           jac.element_damping[k], jac.element_stiffness[k], &ws.Uw[k]);
   }
   bending_local_stiffness(model, ws, jac.element_stiffness);  // the bending springs' own rotations
   for (auto& C : jac.joint_damping) C.setZero();

@@ -39,7 +39,7 @@ Workspace::Workspace(const Model& model) {
   // Every entry starts at zero: no evaluation ever reads an unset value.
   for (auto* v : {&P, &vP, &b, &Fa, &Fs, &bend}) v->assign(n + 1, Vec3::Zero());
   ls.assign(n + 1, 0.0);
-  for (auto* v : {&G, &vG, &edot, &F, &Mom, &c}) v->assign(n, Vec3::Zero());
+  for (auto* v : {&G, &vG, &edot, &F, &Mom, &Uw, &c}) v->assign(n, Vec3::Zero());
   L.assign(n, 0.0);
   Mt.assign(n, Mat3::Zero());
   Ma.assign(n + 1, Mat3::Zero());

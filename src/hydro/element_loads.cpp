@@ -9,19 +9,24 @@ namespace towsim {
 double smooth_sign(double x, double v_s) { return x / std::sqrt(x * x + v_s * v_s); }
 
 void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot, const Vec3& vG,
-                   const Vec3& xG, double t, Vec3& F, Vec3& M) {
+                   const Vec3& xG, double t, Vec3& F, Vec3& M, Vec3* water) {
   const Fluid& fluid = model.fluid;
   // Weight and buoyancy (apparent weight), along -z.
   F = Vec3(0, 0, -el.weight);
   M.setZero();
+  if (water) water->setZero();
   if (fluid.rho == 0) return;
 
   // Velocity relative to the water, split along and across the element (in
   // still water, no current nor waves, the water's velocity is +0: u = vG).
   // With waves, the water's velocity and accelerations from one sum over the harmonics.
   Vec3 uw = Vec3::Zero(), rate = Vec3::Zero(), aw = Vec3::Zero();
-  if (fluid.waves) fluid.flow(xG, vG, t, uw, rate, aw);
-  const Vec3 u = fluid.waves ? Vec3(vG - uw) : fluid.has_current() ? Vec3(vG - fluid.velocity(xG, t)) : vG;
+  if (fluid.waves)
+    fluid.flow(xG, vG, t, uw, rate, aw);
+  else if (fluid.has_current())
+    uw = fluid.velocity(xG, t);
+  const Vec3 u = fluid.waves || fluid.has_current() ? Vec3(vG - uw) : vG;
+  if (water) *water = uw;
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
 

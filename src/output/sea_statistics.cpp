@@ -10,6 +10,8 @@
 #include <sstream>
 #include <tuple>
 
+#include "towsim/output/dft.hpp"
+
 namespace towsim::io {
 
 SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>& x) {
@@ -55,7 +57,7 @@ SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>
     if (top >= 0) top = std::max(top, x[i] - s.mean);
   }
   s.peaks = static_cast<long>(peaks.size());
-  s.mpm = s.weibull_mpm = s.weibull_shape = s.weibull_scale = kNaN;
+  s.mpm = s.weibull_mpm = s.weibull_shape = s.weibull_scale = s.weibull_threshold = kNaN;
   if (n >= 2) {
     s.zero_crossing_period = (last - first) / static_cast<double>(n - 1);
     const double N = kMpmDuration / s.zero_crossing_period;
@@ -63,19 +65,30 @@ SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>
     std::vector<double> positive;
     for (double p : peaks)
       if (p > 0) positive.push_back(p);
-    if (static_cast<long>(positive.size()) >= kMinPeaks) {
-      std::tie(s.weibull_shape, s.weibull_scale) = weibull_fit(positive);
-      // Most probable largest of N independent Weibull peaks: scale (ln N)^(1/shape).
-      if (N > 1 && std::isfinite(s.weibull_shape))
-        s.weibull_mpm = s.mean + s.weibull_scale * std::pow(std::log(N), 1 / s.weibull_shape);
+    // The upper tail: the top kWeibullTail of the peaks, above the largest of the rest, u.
+    std::sort(positive.begin(), positive.end());
+    const auto np = static_cast<long>(positive.size());
+    const auto top = static_cast<long>(static_cast<double>(np) * kWeibullTail);
+    if (top >= kMinPeaks && top < np) {
+      const double u = positive[static_cast<std::size_t>(np - top - 1)];
+      const auto above = static_cast<double>(positive.end() - std::upper_bound(positive.begin(), positive.end(), u));
+      s.weibull_threshold = u;
+      std::tie(s.weibull_shape, s.weibull_scale) = weibull_fit(positive, u);
+      // Most probable largest of N peaks, a share p above u: P(Y > y) = p exp((u/scale)^b - (y/scale)^b) = 1 / N.
+      const double pN = above / static_cast<double>(np) * N, b = s.weibull_shape, sc = s.weibull_scale;
+      if (pN > 1 && std::isfinite(b)) s.weibull_mpm = s.mean + sc * std::pow(std::pow(u / sc, b) + std::log(pN), 1 / b);
     }
   }
   s.max_above_mpm = std::isfinite(s.mpm) && s.max > s.mpm;
   return s;
 }
 
-std::pair<double, double> weibull_fit(const std::vector<double>& y) {
+std::pair<double, double> weibull_fit(const std::vector<double>& all, double threshold) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const double u = std::max(threshold, 0.0);
+  std::vector<double> y;
+  for (double v : all)
+    if (v > u) y.push_back(v);
   if (y.size() < 2) return {kNaN, kNaN};
   const double n = static_cast<double>(y.size());
   // Scaled by the largest value (the likelihood equation is scale-free): no overflow of y^b.
@@ -84,14 +97,18 @@ std::pair<double, double> weibull_fit(const std::vector<double>& y) {
   double mean_ly = 0;
   for (std::size_t i = 0; i < y.size(); ++i) ly[i] = std::log(y[i] / ymax), mean_ly += ly[i] / n;
   if (!(mean_ly < 0)) return {kNaN, kNaN};  // all equal
-  // g(b) = sum y^b ln y / sum y^b - 1/b - mean ln y increases in b.
+  // The threshold's terms u^b and u^b ln u, scaled likewise (none for u = 0).
+  const double lu = u > 0 ? std::log(u / ymax) : 0.0;
+  auto ub = [&](double b) { return u > 0 ? std::exp(b * lu) : 0.0; };
+  // g(b) = sum (y^b ln y - u^b ln u) / sum (y^b - u^b) - 1/b - mean ln y increases in b.
   auto g = [&](double b) {
     double sw = 0, swl = 0;
     for (double l : ly) {
       const double w = std::exp(b * l);
       sw += w, swl += w * l;
     }
-    return swl / sw - 1 / b - mean_ly;
+    const double wu = ub(b);
+    return (swl - n * wu * lu) / (sw - n * wu) - 1 / b - mean_ly;
   };
   double lo = 0.05, hi = 50;
   if (g(lo) > 0 || g(hi) < 0) return {kNaN, kNaN};
@@ -102,7 +119,7 @@ std::pair<double, double> weibull_fit(const std::vector<double>& y) {
   const double b = 0.5 * (lo + hi);
   double mean_yb = 0;
   for (double l : ly) mean_yb += std::exp(b * l) / n;
-  return {b, ymax * std::pow(mean_yb, 1 / b)};
+  return {b, ymax * std::pow(mean_yb - ub(b), 1 / b)};
 }
 
 void SeaStatistics::add(const Model& model, const Sample& s) {
@@ -123,18 +140,18 @@ std::vector<std::pair<double, double>> spectral_density_estimate(const std::vect
   if (N < 4 || band < 1 || !(dt > 0)) return out;
   double mean = 0;
   for (double v : x) mean += v / static_cast<double>(N);
+  // The record's DFT at every Fourier frequency at once (O(N log N)).
+  std::vector<double> d(N);
+  for (std::size_t n = 0; n < N; ++n) d[n] = x[n] - mean;
+  const std::vector<std::complex<double>> X = dft(d);
   const double dw = 2 * std::numbers::pi / (static_cast<double>(N) * dt);
   const std::size_t K = N / 2, b = static_cast<std::size_t>(band);
   for (std::size_t k0 = 1; k0 + b - 1 <= K; k0 += b) {
     double sum = 0;
     for (std::size_t k = k0; k < k0 + b; ++k) {
-      // Direct DFT at omega_k by a rotating phasor (O(N) per frequency).
-      const std::complex<double> step = std::polar(1.0, -dw * static_cast<double>(k) * dt);
-      std::complex<double> z = 1, acc = 0;
-      for (double v : x) acc += (v - mean) * z, z *= step;
       // Two-sided I at +/- omega_k, folded: the Nyquist bin (k = N/2, N even) is not doubled.
       const double fold = (2 * k == N) ? 1.0 : 2.0;
-      sum += fold * dt / (2 * std::numbers::pi * static_cast<double>(N)) * std::norm(acc);
+      sum += fold * dt / (2 * std::numbers::pi * static_cast<double>(N)) * std::norm(X[k]);
     }
     out.emplace_back(dw * (static_cast<double>(k0) + 0.5 * static_cast<double>(b - 1)), sum / static_cast<double>(b));
   }
@@ -189,6 +206,7 @@ nlohmann::ordered_json SeaStatistics::json() const {
     j["skewness"] = num(s.skewness);
     j["kurtosis"] = num(s.kurtosis);
     j["peaks"] = s.peaks;
+    j["weibull_threshold"] = num(s.weibull_threshold);
     j["weibull_shape"] = num(s.weibull_shape);
     j["weibull_scale"] = num(s.weibull_scale);
     j["weibull_mpm"] = num(s.weibull_mpm);

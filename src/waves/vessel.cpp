@@ -6,7 +6,9 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <vector>
 
 #include "towsim/model/spline.hpp"
 #include "towsim/waves/vector_math.hpp"
@@ -48,6 +50,65 @@ void bracket(const std::vector<double>& xs, double x, std::size_t& i0, std::size
   i1 = static_cast<std::size_t>(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin());
   i0 = i1 - 1;
   w = (x - xs[i0]) / (xs[i1] - xs[i0]);
+}
+
+/// One variant per instruction set, chosen at start-up (GNU ifunc).
+#if defined(__x86_64__) && defined(__linux__) && (defined(__GNUC__) || defined(__clang__))
+#define TOWSIM_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
+#else
+#define TOWSIM_VECTOR_CLONES
+#endif
+
+/// A long-crested sea's RAO terms at one heading weight (a straight course
+/// keeps it), per dof j and harmonic i at index j nc + i: the amplitude
+/// sign (A0 (1 - w) + A1 w) [m/m or rad/m times the wave's amplitude], its step
+/// sign (A1 - A0) to the next heading, the lag step to it (0 at one heading)
+/// [rad], the lag's cos and sin [-]; for the RAO vessel `id`.
+struct RaoTerms {
+  std::uint64_t id = 0;
+  std::size_t h0 = 0, h1 = 0;
+  double w = 0;
+  std::vector<double> A, dA, dL, lc, ls;
+};
+
+/// The six motions x [m, rad], their rates v and accelerations a of the
+/// terms T over harmonics comps[0..nc) at time t [s], the origin at distance
+/// dx [m], speed dv [m/s] and acceleration da [m/s^2] along the waves, the
+/// heading weight's rate wd [1/s]: per harmonic and dof the terms of
+/// Vessel::motion, summed per dof in vecmath::kLanes lanes (this file is
+/// compiled without fused multiply-adds: the same bits in every variant).
+TOWSIM_VECTOR_CLONES void rao_sums(const RaoTerms& T, const WaveComponent* comps, std::size_t nc, double t, double dx,
+                                   double dv, double da, double wd, double* x, double* v, double* a) {
+  constexpr std::size_t kC = 32;  // harmonics per pass [-], a multiple of the lanes
+  static_assert(kC % vecmath::kLanes == 0);
+  // Phase [rad], its sin and cos, its rate [rad/s] and second rate [rad/s^2], the terms of x, v, a.
+  std::array<double, kC> th, sth, cth, thd, thdd, tx, tv, ta;
+  std::array<vecmath::Lanes, 6> X{}, V{}, A{};
+  for (std::size_t b = 0; b < nc; b += kC) {
+    const std::size_t m = std::min(kC, nc - b);
+    const WaveComponent* c = comps + b;
+    for (std::size_t l = 0; l < m; ++l) {
+      th[l] = c[l].omega * t - c[l].k * dx - c[l].phase;
+      thd[l] = c[l].omega - c[l].k * dv, thdd[l] = -c[l].k * da;
+    }
+    vecmath::sincos_n(m, th.data(), sth.data(), cth.data());
+    for (std::size_t j = 0; j < 6; ++j) {
+      const double *Aj = &T.A[j * nc + b], *dA = &T.dA[j * nc + b], *dL = &T.dL[j * nc + b];
+      const double *Lc = &T.lc[j * nc + b], *Ls = &T.ls[j * nc + b];
+      // cos(th - lag), sin(th - lag) by the angle sums.
+      for (std::size_t l = 0; l < m; ++l) {
+        const double Ad = wd * dA[l], phd = thd[l] - wd * dL[l];
+        const double cs = cth[l] * Lc[l] + sth[l] * Ls[l], sn = sth[l] * Lc[l] - cth[l] * Ls[l];
+        tx[l] = Aj[l] * cs;
+        tv[l] = Ad * cs - Aj[l] * sn * phd;
+        ta[l] = -2 * Ad * sn * phd - Aj[l] * (cs * phd * phd + sn * thdd[l]);
+      }
+      vecmath::accumulate(X[j], tx.data(), m), vecmath::accumulate(V[j], tv.data(), m);
+      vecmath::accumulate(A[j], ta.data(), m);
+    }
+  }
+  for (std::size_t j = 0; j < 6; ++j)
+    x[j] = vecmath::total(X[j]), v[j] = vecmath::total(V[j]), a[j] = vecmath::total(A[j]);
 }
 
 }  // namespace
@@ -183,44 +244,33 @@ VesselMotion Vessel::motion(const TowKinematics& origin, double t, bool with_ele
   };
   const Weights common = weights(d.x(), d.y());  // long-crested: one heading for all components
   const auto& comps = wf.components;
-  // Per harmonic and motion: the phase th - lag, its rate and the amplitudes;
-  // the sin and cos of the phases in one vectorised pass per chunk, summed in
-  // the order harmonic, then dof.
   constexpr std::size_t kChunk = 32, kTerms = kChunk * 6;  // harmonics, terms per pass [-]
   if (!wf.spread) {
     // Long-crested: one heading weight for every harmonic, so the lags' cos and
-    // sin come from this thread's table for it; cos(th - lag) and sin(th - lag)
-    // by the angle sums from one sin and cos of th per harmonic.
+    // sin come from this thread's table for it (rao_sums: one sin and cos per harmonic).
     const LagTable& L = lag_table(common.h0, common.h1, common.w);
-    std::array<double, kChunk> th, sth, cth;
-    for (std::size_t b = 0; b < comps.size(); b += kChunk) {
-      const std::size_t nc = std::min(kChunk, comps.size() - b);
-      for (std::size_t l = 0; l < nc; ++l) th[l] = comps[b + l].omega * t - comps[b + l].k * dx - comps[b + l].phase;
-      vecmath::sincos_n(nc, th.data(), sth.data(), cth.data());
-      for (std::size_t l = 0; l < nc; ++l) {
-        const std::size_t i = b + l;
-        const auto& c = comps[i];
-        const double thd = c.omega - c.k * dv, thdd = -c.k * da;
-        const double* A0 = &amp_[(i * nh + common.h0) * 6];
-        const double* A1 = &amp_[(i * nh + common.h1) * 6];
-        const double* D = &dlag_[(i * nh + common.h0) * 6];
-        const double w = common.w, wd = common.wd;
-        for (int j = 0; j < 6; ++j) {
-          const double A = common.sign[j] * ((1 - w) * A0[j] + w * A1[j]);
-          const double Ad = common.sign[j] * wd * (A1[j] - A0[j]);
-          if (A == 0 && Ad == 0) continue;
-          const double dL = common.h1 == common.h0 ? 0.0 : D[j];
-          const double phd = thd - wd * dL;
-          const std::size_t e = i * 6 + static_cast<std::size_t>(j);
-          const double cs = cth[l] * L.cos[e] + sth[l] * L.sin[e], sn = sth[l] * L.cos[e] - cth[l] * L.sin[e];
-          m.x[j] += A * cs;
-          m.v[j] += Ad * cs - A * sn * phd;
-          m.a[j] += -2 * Ad * sn * phd - A * (cs * phd * phd + sn * thdd);
+    // This thread's terms at the heading weight, for the last vessel and weight asked.
+    thread_local RaoTerms T;
+    const std::size_t nc = comps.size();
+    if (!(T.id == id_ && T.h0 == common.h0 && T.h1 == common.h1 && T.w == common.w)) {
+      for (auto* v : {&T.A, &T.dA, &T.dL, &T.lc, &T.ls}) v->resize(6 * nc);
+      for (std::size_t i = 0; i < nc; ++i)
+        for (std::size_t j = 0; j < 6; ++j) {
+          const double A0 = amp_[(i * nh + common.h0) * 6 + j], A1 = amp_[(i * nh + common.h1) * 6 + j];
+          const std::size_t k = j * nc + i;
+          T.A[k] = common.sign[j] * ((1 - common.w) * A0 + common.w * A1);
+          T.dA[k] = common.sign[j] * (A1 - A0);
+          T.dL[k] = common.h1 == common.h0 ? 0.0 : dlag_[(i * nh + common.h0) * 6 + j];
+          T.lc[k] = L.cos[i * 6 + j], T.ls[k] = L.sin[i * 6 + j];
         }
-      }
+      T.id = id_, T.h0 = common.h0, T.h1 = common.h1, T.w = common.w;
     }
+    rao_sums(T, comps.data(), nc, t, dx, dv, da, common.wd, m.x.data(), m.v.data(), m.a.data());
   }
 
+  // Short-crested: per harmonic and motion the phase th - lag, its rate and the
+  // amplitudes; the sin and cos of the phases in one vectorised pass per
+  // chunk, summed in the order harmonic, then dof.
   std::array<double, kTerms> ph, sn, cs, A, Ad, phd, thdd;
   std::array<int, kTerms> dof;
   for (std::size_t b = 0; wf.spread && b < comps.size(); b += kChunk) {

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 
+#include "towsim/waves/harmonic_sums.hpp"
 #include "towsim/waves/vector_math.hpp"
 
 namespace towsim {
@@ -66,11 +67,10 @@ void finish(WaveField& w) {
                    [](const WaveComponent& a, const WaveComponent& b) { return a.z_cut < b.z_cut; });
 }
 
-/// Work arrays of one vectorised pass over up to kChunk harmonics.
-constexpr std::size_t kChunk = 64;  // [-]: 9 arrays of 512 bytes on the stack
+/// Work arrays of one vectorised pass of the elevation over up to kChunk harmonics.
+constexpr std::size_t kChunk = 64;  // [-]: 3 arrays of 512 bytes on the stack
 struct Chunk {
-  std::array<double, kChunk> th, sn, cs, kz, ez;  // phase [rad], its sin and cos, k z and e^{kz} [-]
-  std::array<double, kChunk> uc, as, ws, ac;      // the terms a w C cos, a w^2 C sin, a w S sin, a w^2 S cos
+  std::array<double, kChunk> th, sn, cs;  // phase [rad], its sin and cos [-]
 };
 
 }  // namespace
@@ -191,56 +191,19 @@ void WaveField::kinematics(const Vec3& x, double t, Vec3* u, Vec3* a) const {
   const auto n = static_cast<std::size_t>(std::partition_point(components.begin(), components.end(),
                                                                [z](const WaveComponent& c) { return !(c.z_cut > z); }) -
                                           components.begin());
-  // Sums over the harmonics: U = sum a w C cos, W = sum a w S sin, AH = sum a w^2 C sin,
-  // AZ = sum a w^2 S cos (short-crested: U and AH as vectors along each d_i).
-  double U = 0, W = 0, AH = 0, AZ = 0;
-  Eigen::Vector2d Uv = Eigen::Vector2d::Zero(), Av = Eigen::Vector2d::Zero();
-  Chunk ch;
-  for (std::size_t b = 0; b < n; b += kChunk) {
-    const std::size_t m = std::min(kChunk, n - b);
-    const WaveComponent* c = &components[b];
-    // Phases and depth exponents, then their sin, cos and exp in vectorised passes.
-    for (std::size_t j = 0; j < m; ++j) {
-      const double si = spread ? c[j].dx * x.x() + c[j].dy * x.y() : s;
-      ch.th[j] = c[j].omega * t - c[j].k * si - c[j].phase;
-      ch.kz[j] = c[j].k * zc;
-    }
-    vecmath::sincos_n(m, ch.th.data(), ch.sn.data(), ch.cs.data());
-    vecmath::exp_n(m, ch.kz.data(), ch.ez.data());
-    // Depth factors C = cosh k(z+h) / sinh kh, S = sinh k(z+h) / sinh kh (deep: e^{kz}),
-    // as exponentials: (e^{kz} +- e^{-2kh} / e^{kz}) / (1 - e^{-2kh}); here kz <- C, ez <- S.
-    if (!deep)
-      for (std::size_t j = 0; j < m; ++j) {
-        const double e = c[j].e2kh / ch.ez[j], den = 1 - c[j].e2kh;
-        ch.kz[j] = (ch.ez[j] + e) / den;
-        ch.ez[j] = (ch.ez[j] - e) / den;
-      }
-    else
-      for (std::size_t j = 0; j < m; ++j) ch.kz[j] = ch.ez[j];
-    // The terms, then their sums in the harmonics' order.
-    for (std::size_t j = 0; j < m; ++j) {
-      const double aw = c[j].amplitude * c[j].omega, aw2 = aw * c[j].omega;
-      ch.uc[j] = aw * ch.kz[j] * ch.cs[j], ch.as[j] = aw2 * ch.kz[j] * ch.sn[j];
-      ch.ws[j] = aw * ch.ez[j] * ch.sn[j], ch.ac[j] = aw2 * ch.ez[j] * ch.cs[j];
-    }
-    if (spread)
-      for (std::size_t j = 0; j < m; ++j) {
-        Uv += ch.uc[j] * Eigen::Vector2d(c[j].dx, c[j].dy);
-        Av += ch.as[j] * Eigen::Vector2d(c[j].dx, c[j].dy);
-      }
-    else
-      for (std::size_t j = 0; j < m; ++j) U += ch.uc[j], AH += ch.as[j];
-    for (std::size_t j = 0; j < m; ++j) W += ch.ws[j], AZ += ch.ac[j];
-  }
+  // Sums over the harmonics (harmonic_sums.hpp): U, W, AH, AZ (short-crested: U and AH as vectors).
+  const HarmonicSums hs = harmonic_sums(components.data(), n, x.x(), x.y(), s, zc, t, deep, spread);
+  Eigen::Vector2d Uv(hs.Ux, hs.Uy), Av(hs.Ax, hs.Ay);
   double r, rd, rdd;
   ramp(t, r, rd, rdd);
   if (!spread)
-    Uv = U * Eigen::Vector2d(direction.x(), direction.y()), Av = AH * Eigen::Vector2d(direction.x(), direction.y());
+    Uv = hs.U * Eigen::Vector2d(direction.x(), direction.y()),
+    Av = hs.AH * Eigen::Vector2d(direction.x(), direction.y());
   // u = r (U d, -W); du/dt with the build-up's rate: d(r u)/dt = r' u + r du/dt.
-  if (u) *u = r * Vec3(Uv.x(), Uv.y(), -W);
+  if (u) *u = r * Vec3(Uv.x(), Uv.y(), -hs.W);
   if (a) {
     const Eigen::Vector2d h = -r * Av + rd * Uv;
-    *a = Vec3(h.x(), h.y(), -r * AZ - rd * W);
+    *a = Vec3(h.x(), h.y(), -r * hs.AZ - rd * hs.W);
   }
 }
 

@@ -1,10 +1,11 @@
 // Extreme-value statistics of summary.json's "statistics" (towsim::io::signal_stats,
 // weibull_fit) against analytic cases: a Gaussian record's moments, a
-// Weibull fit to Rayleigh values, the Rayleigh and Weibull most probable
+// Weibull fit to Rayleigh values and to their upper tail, the Rayleigh and Weibull most probable
 // maxima of a narrow-band Gaussian process, and the flag of a record whose
 // maximum exceeds its Rayleigh mpm.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -65,15 +66,52 @@ TEST(SeaExtremes, WeibullFitOfRayleighValuesHasShape2) {
   EXPECT_TRUE(std::isnan(towsim::io::weibull_fit({2.0, 2.0, 2.0}).first));
 }
 
+// The fit to the upper tail: Rayleigh values y = sigma sqrt(-2 ln U) above
+// their 2/3 quantile u, given y > u, are Weibull(2, sqrt(2) sigma) conditioned
+// on y > u, so the conditional fit recovers shape 2 and scale sqrt(2) sigma.
+// Its standard errors are larger than the plain fit's: over 40 seeds of
+// 60000 values (20000 above u) they were 0.036 (shape) and 1.4 % (scale):
+// tolerances 0.15 and 6 % (about 4 of them). A mixture whose bulk is not
+// Rayleigh (60 % of the values uniform on [0, 0.9], below u, 40 % Rayleigh
+// with sigma 3): fitted to every value the shape is far from 2 (0.83), fitted
+// to the top third it is the Rayleigh tail's (2.02 measured; same tolerances).
+TEST(SeaExtremes, TailFitOfRayleighPeaksHasShape2) {
+  std::mt19937_64 g(8);
+  const double sigma = 3.0, scale = std::sqrt(2.0) * sigma;
+  const std::size_t n = 60000;
+  std::vector<double> y(n), mix(n);
+  for (auto& v : y) v = sigma * std::sqrt(-2 * std::log(unit(g)));
+  for (auto& v : mix) v = unit(g) < 0.6 ? 0.9 * unit(g) : sigma * std::sqrt(-2 * std::log(unit(g)));
+  auto threshold = [&](std::vector<double> v) {  // the largest value not in the top third
+    std::sort(v.begin(), v.end());
+    return v[n - static_cast<std::size_t>(static_cast<double>(n) * towsim::io::kWeibullTail) - 1];
+  };
+  const auto [shape, sc] = towsim::io::weibull_fit(y, threshold(y));
+  const auto [shape_all, sc_all] = towsim::io::weibull_fit(mix);
+  const auto [shape_mix, sc_mix] = towsim::io::weibull_fit(mix, threshold(mix));
+  std::printf(
+      "[measured] tail fit, Rayleigh: shape %.4f (2), scale %.4f (%.4f); mixture: every value %.4f, top third "
+      "%.4f, scale %.4f\n",
+      shape, sc, scale, shape_all, shape_mix, sc_mix);
+  EXPECT_NEAR(shape, 2, 0.15);
+  EXPECT_NEAR(sc, scale, 0.06 * scale);
+  EXPECT_LT(shape_all, 1.2) << "the bulk pulls the plain fit away from 2";
+  EXPECT_NEAR(shape_mix, 2, 0.15);
+  EXPECT_NEAR(sc_mix, scale, 0.06 * scale);
+  // Above a threshold no value exceeds: no fit.
+  EXPECT_TRUE(std::isnan(towsim::io::weibull_fit(y, 1e9).first));
+}
+
 // A narrow-band Gaussian process (200 random-phase harmonics of equal
 // amplitude on [0.8, 1.2] rad/s, 20000 s at 0.2 s: ~3200 cycles, correlated
 // over ~2.5 cycles, so ~1300 independent peaks): its cycle maxima are close
-// to Rayleigh, so the Weibull fit has shape ~2 (standard error
-// 0.78 * 2 / sqrt(1300) = 0.04; measured 1.88: a band 0.4 wide has cycle
-// maxima a little below Rayleigh's; tolerance 0.15) and its 3-hour mpm
-// equals the Rayleigh one to that (the excess over the mean moves by
-// ln(ln N) / shape^2 ~ 0.5 times the shape's relative error, 3 % for 0.12,
-// plus the scale's ~1 %; measured 5.2 %: tolerance 8 %).
+// to Rayleigh, so the Weibull fit to the top third has shape ~2 (about 430
+// independent peaks above u; the tail fit's shape error at 1000 independent
+// tail values was 0.145 over 40 seeds, so ~0.22 here; measured 2.27;
+// tolerance 0.5) and its 3-hour mpm, extrapolated from u (~1.5 std above the
+// mean) to ~3.9 std, equals the Rayleigh one to a few % (the fitted shape and
+// scale err together, so the mpm varies less than either; measured 1.6 %:
+// tolerance 8 %, as for the fit to every peak).
 TEST(SeaExtremes, NarrowBandProcessWeibullMpmIsTheRayleighOne) {
   std::mt19937_64 g(7);
   const int n = 200;
@@ -90,7 +128,7 @@ TEST(SeaExtremes, NarrowBandProcessWeibullMpmIsTheRayleighOne) {
   std::printf("[measured] narrow band: %ld peaks, shape %.4f, mpm %.4f, weibull_mpm %.4f\n", s.peaks, s.weibull_shape,
               s.mpm, s.weibull_mpm);
   EXPECT_GT(s.peaks, 3000);
-  EXPECT_NEAR(s.weibull_shape, 2, 0.15);
+  EXPECT_NEAR(s.weibull_shape, 2, 0.5);
   EXPECT_NEAR(s.weibull_mpm - s.mean, s.mpm - s.mean, 0.08 * (s.mpm - s.mean));
 }
 

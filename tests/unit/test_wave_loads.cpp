@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "../support/models.hpp"
+#include "towsim/dynamics/implicit.hpp"
 #include "towsim/hydro/loads.hpp"
 #include "towsim/waves/waves.hpp"
 
@@ -116,6 +117,40 @@ TEST(WaveLoads, NeutralAttachmentFollowsTheWater) {
   const Vec3 aw = m.fluid.acceleration(P, t);
   EXPECT_LE((ws.Fa[2] - ws.Ma[2] * aw).norm(), 1e-12 * (ws.Ma[2] * aw).norm());
   EXPECT_GT(aw.norm(), 1e-3);
+}
+
+// The water's velocity an element's loads took (element_loads' `water`) is
+// the fluid's velocity at G, bit for bit (one wave sum gives the velocity
+// whether or not the acceleration is asked too), and the Jacobian's drag
+// damping from it equals the one that sums the waves again: exactly, in
+// waves, in a current with waves, in a current alone and in still water.
+TEST(WaveLoads, JacobianTakesTheWaterVelocityTheLoadsTook) {
+  towsim::testing::CableSpec c;
+  c.n = 1, c.length = 5;
+  for (int kind = 0; kind < 4; ++kind) {
+    Model m = towsim::testing::cable_model(c);
+    if (kind <= 1) m.fluid.waves = sea();
+    if (kind >= 1 && kind <= 2) {
+      m.fluid.current_depth = {0, 50, 200};
+      m.fluid.current_velocity = {Vec3(0.5, 0.1, 0), Vec3(0.3, 0.2, 0), Vec3(0.1, 0, 0)};
+    }
+    const Element& el = m.cable.elements[0];
+    const Vec3 e = Vec3(0.3, -0.2, -1).normalized(), vG(1.9, 0.3, -0.2), fb(10, -5, -800);
+    for (const Vec3& xG : {Vec3(1, 2, -3), Vec3(-10, 4, -60)})
+      for (double t : {7.1, 55.5}) {
+        Vec3 F, M, water;
+        element_loads(m, el, e, Vec3(0.01, 0.02, 0), vG, xG, t, F, M, &water);
+        const Vec3 expect = kind == 3 ? Vec3::Zero() : m.fluid.velocity(xG, t);
+        for (int i = 0; i < 3; ++i) EXPECT_EQ(water[i], expect[i]) << "kind " << kind << ", t = " << t;
+        Mat3 C0, C1;
+        double K0, K1;
+        element_local_jacobian(m, el, e, vG, xG, t, F, fb, C0, K0);
+        element_local_jacobian(m, el, e, vG, xG, t, F, fb, C1, K1, &water);
+        EXPECT_TRUE(C0 == C1) << "kind " << kind << ", t = " << t;
+        EXPECT_EQ(K0, K1);
+        EXPECT_GT(C0.norm(), 0);
+      }
+  }
 }
 
 }  // namespace

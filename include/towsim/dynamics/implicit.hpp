@@ -37,9 +37,11 @@ struct LocalJacobian {
 
 /// Per-part hook, element: drag damping at G and rocking stiffness, from the
 /// loads of the last evaluation. F: the element's loads at G [N]; f_bottom:
-/// the force through its bottom joint onto the part below [N, R_g].
+/// the force through its bottom joint onto the part below [N, R_g]; `water`:
+/// the water's velocity at G as those loads took it (else computed) [m/s, R_g].
 void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG, const Vec3& xG,
-                            double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K);
+                            double t, const Vec3& F, const Vec3& f_bottom, Mat3& C, double& K,
+                            const Vec3* water = nullptr);
 
 /// Derivatives of a body's loads (body_loads, F_b and M_b about O_t, R_g):
 /// damping D = -d(F_b; M_b)/d(v_O; omega_B) (6x6) and stiffness about O_t

@@ -128,6 +128,7 @@ struct Workspace {
   Vec3 v_top = Vec3::Zero();  // [m/s, R_g]
   // Loads on each element at G_k, added-mass acceleration terms excluded
   std::vector<Vec3> F, Mom;  // force [N] and moment about G_k [N m], R_g
+  std::vector<Vec3> Uw;      // the water's velocity at G_k (current and waves) those loads took [m/s, R_g]
   std::vector<Mat3> Mt;      // translational inertia m I + ma (I - ee^T) [kg]
   // Bending springs (bending_loads; zero without bending stiffness), at P_k
   // (index k = 0..n): the moment the joint's spring exerts on the element

@@ -16,9 +16,10 @@ double smooth_sign(double x, double v_s);
 /// ideal-fluid added mass (incl. the Munk moment). The acceleration terms of
 /// the added mass are NOT included: they belong to the mass matrix Mt, Ia.
 /// e: unit axis, edot = de/dt, vG: velocity of G, xG: position of G [m, R_g],
-/// t: time [s]. Outputs: F [N, R_g] and moment about G, M [N m, R_g].
+/// t: time [s]. Outputs: F [N, R_g] and moment about G, M [N m, R_g]; with
+/// `water`, the water's velocity at G the loads took (+0 in still water) [m/s, R_g].
 void element_loads(const Model& model, const Element& el, const Vec3& e, const Vec3& edot, const Vec3& vG,
-                   const Vec3& xG, double t, Vec3& F, Vec3& M);
+                   const Vec3& xG, double t, Vec3& F, Vec3& M, Vec3* water = nullptr);
 
 /// Translational inertia of an element at G: m I + ma (I - ee^T) [kg].
 /// Inline, coefficient by coefficient (called per element per evaluation;
