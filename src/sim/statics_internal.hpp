@@ -2,6 +2,7 @@
 // the libraries' interface (include/towsim/ is).
 #pragma once
 
+#include "statics/plan.hpp"  // the driver's plan (statics::statics_plan)
 #include "towsim/sim/statics.hpp"
 
 namespace towsim {

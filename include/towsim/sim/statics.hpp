@@ -70,11 +70,14 @@ Vec3 final_tow_velocity(const Tow& tow);
 
 /// Equilibrium of the model's cable and body when the tow point moves at the
 /// constant velocity V (in the model's current): zero accelerations in the
-/// same equations the dynamics use. Sweeps from the body up, each part
-/// balanced given the force from below (O(n) each; repeated while a current
-/// profile moves the loads), then, for small problems the sweeps leave
-/// unconverged, Levenberg-Marquardt on all angles. The tow point sits at
-/// tow.start. `stop_flag`, when non-null and set, ends the solve early
+/// same equations the dynamics use. A short driver: a model with an active
+/// winch is solved without it, the Newton problem's elements are rigid, and
+/// the start decides the plan of strategies (docs/theory.md §7 "Strategies
+/// and the driver"): the O(n) sweeps from the body up, then Newton on all
+/// angles (Levenberg-Marquardt for small problems, Newton-Krylov for large
+/// coupled ones); with cable on the seabed dynamic relaxation first (laid
+/// along the bottom) or when the sweeps fail; elastic elements stretched
+/// on the rigid solution. The tow point sits at tow.start. `stop_flag`, when non-null and set, ends the solve early
 /// (result.interrupted, not converged).
 StaticsResult solve_statics(const Model& model, const Vec3& V, const volatile int* stop_flag = nullptr);
 
