@@ -139,6 +139,16 @@ ImplicitWorkspace::Child& stage_node(const TreeModel& tree, const TreeWorkspace&
   return top.body < 0 ? p.end : p.body_children[idx(top.body)][idx(ws.slot[i])];
 }
 
+/// A line's top term into its node: summed at a junction (every line below
+/// it), set at a body's point (one line each).
+template <class T>
+void into_node(const LineTop& top, const T& x, T& node) {
+  if (top.body < 0)
+    node += x;
+  else
+    node = x;
+}
+
 }  // namespace
 
 void tree_implicit_factor(const TreeModel& tree, const TreeState& s, const TreeWorkspace& ws, double hg,
@@ -148,11 +158,7 @@ void tree_implicit_factor(const TreeModel& tree, const TreeState& s, const TreeW
   for (std::size_t i = tree.lines.size(); i-- > 0;) {
     implicit_factor(tree.lines[i], s[i], ws.lines[i], hg, iw.lines[i]);
     if (tree.tops[i].line < 0) continue;
-    ImplicitWorkspace::Child& node = stage_node(tree, ws, i, iw);
-    if (tree.tops[i].body < 0)
-      node.K += iw.lines[i].K[0];
-    else
-      node.K = iw.lines[i].K[0];
+    into_node(tree.tops[i], iw.lines[i].K[0], stage_node(tree, ws, i, iw).K);
   }
 }
 
@@ -176,11 +182,7 @@ void tree_stage_solve(const TreeModel& tree, const TreeState& s, const TreeWorks
   for (std::size_t i = nl; i-- > 0;) {
     stage::bias(tree.lines[i], s[i], ws.lines[i], iw.lines[i]);
     if (tree.tops[i].line < 0) continue;
-    ImplicitWorkspace::Child& node = stage_node(tree, ws, i, iw);
-    if (tree.tops[i].body < 0)
-      node.b += iw.lines[i].b[0];
-    else
-      node.b = iw.lines[i].b[0];
+    into_node(tree.tops[i], iw.lines[i].b[0], stage_node(tree, ws, i, iw).b);
   }
   // Increments down the tree: a line's top increment is its node's.
   for (std::size_t i = 0; i < nl; ++i) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <random>
+#include <utility>
 
 #include "../support/kkt_reference.hpp"
 #include "../support/models.hpp"
@@ -60,6 +61,21 @@ TreeModel branched_tree() {
                LineTop{1, -1, Vec3::Zero()},
                LineTop{}};
   return tree;
+}
+
+/// A chain of 7 elements with a sphere at its end and an attachment at joint
+/// 4, and the same chain as a tree: cut at joint 4 into two lines joined by
+/// a junction (the attachment at the upper line's end).
+std::pair<Model, TreeModel> cut_chain() {
+  Model chain = line(7, 70, 1.5, 0.019);
+  testing::add_sphere_body(chain, 8.0, 0.12);
+  chain.cable.attachments.push_back({4, 40.0, 12.0, 0.002, 0.04, 3.0});
+  chain.tow.pieces.push_back(testing::ramp_piece(Vec3(1, 0.2, 0), 2.0, 15.0));
+  Model upper = line(4, 40, 1.5, 0.019), lower = line(3, 30, 1.5, 0.019);
+  upper.cable.attachments.push_back({4, 40.0, 12.0, 0.002, 0.04, 3.0});
+  testing::add_sphere_body(lower, 8.0, 0.12);
+  upper.tow = chain.tow;
+  return {chain, TreeModel{{upper, lower}, {LineTop{}, LineTop{0, -1, Vec3::Zero()}}}};
 }
 
 /// A random state of each line; the roots on their tow law at t; elastic
@@ -248,21 +264,13 @@ TEST(TreeReference, LinesFromTheVesselAloneAreTheirChainsBitForBit) {
 // chain's to round-off. Tolerance 1e-12 relative: the same operations,
 // summed in another order at the junction only.
 TEST(TreeReference, ChainCutAtAJunctionIsTheSameChain) {
-  Model chain = line(7, 70, 1.5, 0.019);
-  testing::add_sphere_body(chain, 8.0, 0.12);
-  chain.cable.attachments.push_back({4, 40.0, 12.0, 0.002, 0.04, 3.0});
-  chain.tow.pieces.push_back(testing::ramp_piece(Vec3(1, 0.2, 0), 2.0, 15.0));
-  Model upper = line(4, 40, 1.5, 0.019), lower = line(3, 30, 1.5, 0.019);
-  upper.cable.attachments.push_back({4, 40.0, 12.0, 0.002, 0.04, 3.0});
-  testing::add_sphere_body(lower, 8.0, 0.12);
-  upper.tow = chain.tow;
-  TreeModel tree{{upper, lower}, {LineTop{}, LineTop{0, -1, Vec3::Zero()}}};
+  const auto [chain, tree] = cut_chain();
   std::mt19937 rng(5);
   PhysicalState s = testing::random_state(chain, rng);
   const TowKinematics k = tow_kinematics(chain.tow, 3.0);
   s.r0 = k.pos, s.v0 = k.vel;
   TreeState ts(2);
-  ts[0] = PhysicalState::hanging(upper), ts[1] = PhysicalState::hanging(lower);
+  ts[0] = PhysicalState::hanging(tree.lines[0]), ts[1] = PhysicalState::hanging(tree.lines[1]);
   ts[0].r0 = s.r0, ts[0].v0 = s.v0;
   for (std::size_t i = 0; i < 7; ++i) {
     PhysicalState& p = i < 4 ? ts[0] : ts[1];
@@ -348,15 +356,7 @@ TEST(TreeStageSolve, InlineBodyAsATreeIsTheSameChain) {
 // The chain cut at a junction (the attachment at the cut), in the stage
 // solve as in the forward dynamics (ChainCutAtAJunctionIsTheSameChain).
 TEST(TreeStageSolve, ChainCutAtAJunctionIsTheSameChain) {
-  Model chain = line(7, 70, 1.5, 0.019);
-  testing::add_sphere_body(chain, 8.0, 0.12);
-  chain.cable.attachments.push_back({4, 40.0, 12.0, 0.002, 0.04, 3.0});
-  chain.tow.pieces.push_back(testing::ramp_piece(Vec3(1, 0.2, 0), 2.0, 15.0));
-  Model upper = line(4, 40, 1.5, 0.019), lower = line(3, 30, 1.5, 0.019);
-  upper.cable.attachments.push_back({4, 40.0, 12.0, 0.002, 0.04, 3.0});
-  testing::add_sphere_body(lower, 8.0, 0.12);
-  upper.tow = chain.tow;
-  const TreeModel tree{{upper, lower}, {LineTop{}, LineTop{0, -1, Vec3::Zero()}}};
+  const auto [chain, tree] = cut_chain();
   std::mt19937 rng(6);
   PhysicalState s = testing::random_state(chain, rng);
   const TowKinematics k = tow_kinematics(chain.tow, 3.0);
