@@ -165,7 +165,7 @@ struct AcceleratePass {
     BodyNode::accelerate(body, ws.body[b], ws.K[j], ws.b[j], b, a, acc);
     acc.joint_force[j] = body.inline_body ? acc.lower_link_force[b] : acc.link_force[b];
   }
-  void joint(std::size_t j) { joint_force[j] = Ks[j] * a + bs[j]; }
+  void joint(std::size_t j) const { joint_force[j] = Ks[j] * a + bs[j]; }
 };
 
 }  // namespace
