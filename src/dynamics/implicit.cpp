@@ -450,8 +450,7 @@ struct FactorPass {
     iw.K[k] += ws.Ma[k] + joint_terms(k);
   }
   void paid_out_elastic(std::size_t k, bool body) { elastic(k, body); }
-  void rigid(std::size_t k, bool body) {
-    const Element& el = current_element(model, ws, k);
+  void rigid_element(const Element& el, std::size_t k, bool body) {
     const double L = el.length;
     const Mat3 Mt = Mts[k] + hg * Cs[k];
     const Mat3& Kk = below(k, body);
@@ -470,7 +469,8 @@ struct FactorPass {
     // Ma (+0 without joint terms) and the joint terms only with attachments or a seabed.
     if (joints) Ks[k] += ws.Ma[k], Ks[k] += joint_terms(k);
   }
-  void paid_out(std::size_t k, bool body) { rigid(k, body); }
+  void rigid(std::size_t k, bool body) { rigid_element(model.cable.elements[k], k, body); }
+  void paid_out(std::size_t k, bool body) { rigid_element(ws.top, k, body); }  // the winch's top at its current length
   void joint(std::size_t) {}
 };
 
@@ -532,11 +532,11 @@ struct LoadPass {
     iw.dvP[0] = dv;
     iw.dxP[0] = dx;
   }
-  void rigid(std::size_t k) {
-    const double L = k == 0 && ws.winch ? ws.top.length : model.cable.elements[k].length;  // current_element
+  void rigid_element(std::size_t k, double L) {
     RigidElement::load(es[k], L, rdw[k], rrot[k], Cs[k], Kr[k], hg, dv, dx, Fs[k], Moms[k]);
   }
-  void paid_out(std::size_t k) { rigid(k); }
+  void rigid(std::size_t k) { rigid_element(k, model.cable.elements[k].length); }
+  void paid_out(std::size_t k) { rigid_element(k, ws.top.length); }  // the winch's top at its current length
   void elastic(std::size_t k) {
     const double dl = k < r.dl.size() ? r.dl[k] : 0.0, dlr = k < r.dlr.size() ? r.dlr[k] : 0.0;
     const double pL = k == 0 ? r.top_dL : 0.0, pLr = k == 0 ? r.top_dLr : 0.0;  // the winch's paid-out part
@@ -595,15 +595,15 @@ struct BiasPass {
     ElasticElement::stage_bias(iw.EAinv[k], iw.EG[k], iw.F[k], iw.Fd[k], below(k, body), Fa(k), iw.Er[k], iw.b[k]);
   }
   void paid_out_elastic(std::size_t k, bool body) { elastic(k, body); }
-  void rigid(std::size_t k, bool body) {
-    const double L = k == 0 && ws.winch ? ws.top.length : model.cable.elements[k].length;  // current_element
+  void rigid_element(std::size_t k, double L, bool body) {
     if (kCoupled && coupled[k])  // coupled by a bending spring (out of line: the common step stays lean)
       parts::coupled_element_bias(k, L, body, below(k, body), joints, iw);
     else
       RigidElement::stage_bias(es[k], L, Fs[k], Moms[k], Ts[k], Hs[k], Phis[k], THs[k], below(k, body), Fa(k), bs[k],
                                Tr0s[k], qs[k]);
   }
-  void paid_out(std::size_t k, bool body) { rigid(k, body); }
+  void rigid(std::size_t k, bool body) { rigid_element(k, model.cable.elements[k].length, body); }
+  void paid_out(std::size_t k, bool body) { rigid_element(k, ws.top.length, body); }
   void joint(std::size_t) {}
 };
 
@@ -643,15 +643,15 @@ struct IncrementPass {
                                      iw.zl[k]);
   }
   void paid_out_elastic(std::size_t k) { elastic(k); }
-  void rigid(std::size_t k) {
+  void rigid_element(std::size_t k, double L) {
     zls[k] = 0;
-    const double L = k == 0 && ws.winch ? ws.top.length : model.cable.elements[k].length;  // current_element
     if (kCoupled && coupled[k])  // coupled by a bending spring (out of line)
       a += parts::coupled_element_acceleration(k, L, a, iw);
     else
       RigidElement::stage_accelerate(qs[k], THs[k], es[k], L, a, alphas[k]);
   }
-  void paid_out(std::size_t k) { rigid(k); }
+  void rigid(std::size_t k) { rigid_element(k, model.cable.elements[k].length); }
+  void paid_out(std::size_t k) { rigid_element(k, ws.top.length); }
   void body(std::size_t b, std::size_t) { BodyNode::stage_accelerate(model.bodies[b], ws.body[b], b, a, iw); }
   void joint(std::size_t) {}
 };

@@ -36,6 +36,22 @@ inline ElementKind element_kind(const Model& model, const Workspace& ws, std::si
 /// Body index as a size_t.
 inline std::size_t body_index(int i) { return static_cast<std::size_t>(i); }
 
+/// Element k's step of a pass, by its kind: visitor.rigid, .elastic,
+/// .paid_out or .paid_out_elastic with (k, args...).
+template <class Visitor, class... Args>
+void element_step(ElementKind kind, Visitor& visitor, std::size_t k, Args... args) {
+  switch (kind) {
+    case ElementKind::Rigid:
+      return visitor.rigid(k, args...);
+    case ElementKind::Elastic:
+      return visitor.elastic(k, args...);
+    case ElementKind::PaidOut:
+      return visitor.paid_out(k, args...);
+    case ElementKind::PaidOutElastic:
+      return visitor.paid_out_elastic(k, args...);
+  }
+}
+
 /// Up the chain: visitor.end(n) at the cable's end; then for each element k
 /// from the bottom, what hangs at its bottom joint (visitor.body(b, k + 1)
 /// for a body there, which takes in the part below it), the element's own
@@ -49,20 +65,7 @@ void up(const Model& model, const Workspace& ws, Visitor& visitor) {
   for (std::size_t k = n; k-- > 0;) {
     const int bi = body_at[k + 1];
     if (bi >= 0) visitor.body(body_index(bi), k + 1);
-    switch (element_kind(model, ws, k)) {
-      case ElementKind::Rigid:
-        visitor.rigid(k, bi >= 0);
-        break;
-      case ElementKind::Elastic:
-        visitor.elastic(k, bi >= 0);
-        break;
-      case ElementKind::PaidOut:
-        visitor.paid_out(k, bi >= 0);
-        break;
-      case ElementKind::PaidOutElastic:
-        visitor.paid_out_elastic(k, bi >= 0);
-        break;
-    }
+    element_step(element_kind(model, ws, k), visitor, k, bi >= 0);
     visitor.joint(k);
   }
 }
@@ -77,20 +80,7 @@ void down(const Model& model, const Workspace& ws, Visitor& visitor) {
   const int* body_at = ws.body_at.data();
   visitor.top();
   for (std::size_t k = 0; k < n; ++k) {
-    switch (element_kind(model, ws, k)) {
-      case ElementKind::Rigid:
-        visitor.rigid(k);
-        break;
-      case ElementKind::Elastic:
-        visitor.elastic(k);
-        break;
-      case ElementKind::PaidOut:
-        visitor.paid_out(k);
-        break;
-      case ElementKind::PaidOutElastic:
-        visitor.paid_out_elastic(k);
-        break;
-    }
+    element_step(element_kind(model, ws, k), visitor, k);
     const int bi = body_at[k + 1];
     if (bi >= 0)
       visitor.body(body_index(bi), k + 1);
