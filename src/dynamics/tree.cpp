@@ -18,6 +18,7 @@ inline std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 /// node a cable end or a body of that line, no winch below the vessel.
 void check_tree(const TreeModel& tree) {
   if (tree.tops.size() != tree.lines.size()) throw std::logic_error("towsim: tree: one top per line");
+  if (!tree.loops.empty()) throw std::logic_error("towsim: tree: loops are not solved by the tree's sweep");
   for (std::size_t i = 0; i < tree.lines.size(); ++i) {
     const LineTop& top = tree.tops[i];
     if (top.line < 0) continue;

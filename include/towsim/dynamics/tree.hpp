@@ -17,23 +17,9 @@
 
 #include "towsim/dynamics/implicit.hpp"
 #include "towsim/dynamics/state.hpp"
+#include "towsim/model/network.hpp"
 
 namespace towsim {
-
-/// Where a line's top hangs.
-struct LineTop {
-  int line = -1;              // the line above (an index before this one), -1 = the vessel (a root)
-  int body = -1;              // that line's body whose point it hangs from, -1 = its cable end (a junction)
-  Vec3 point = Vec3::Zero();  // the body's point, body axes [m]
-};
-
-/// The compiled tree: lines in an order where each comes after the line it
-/// hangs from. Root lines move with their tow law (Model::tow); the others'
-/// tow laws are unused. A line below the vessel has no winch.
-struct TreeModel {
-  std::vector<Model> lines;
-  std::vector<LineTop> tops;  // one per line
-};
 
 /// Each line's physical state (a child line's r0, v0 are its node's, computed: unused).
 using TreeState = std::vector<PhysicalState>;
