@@ -14,6 +14,8 @@
 #include "towsim/integrators/state_layout.hpp"
 #include "towsim/integrators/worker.hpp"
 
+#include "chain_rows.hpp"
+
 namespace towsim {
 
 namespace {
@@ -95,57 +97,28 @@ struct DefaultWorkspace {
 class DefaultSystem final : public System {
  public:
   explicit DefaultSystem(const Model& m)
-      : model_(m),
-        layout_(StateLayout::default_of(m)),
-        shape_(PhysicalState::hanging(m)),
-        work_(m, shape_),
-        threads_(evaluation_threads(m)) {
+      : model_(m), rows_(m), layout_(rows_.layout()), work_(m, rows_.shape()), threads_(evaluation_threads(m)) {
     n_ = m.cable.n();
-    winch_ = layout_.winch.size > 0;
-    elastic_top_ = elastic_winch(m);
-    lengths_ = layout_.lengths.size > 0;
-    // Length control: l_1 = L(t) - (the fixed elements below + cable drawn in by removals).
-    fixed_length_ = m.winch.length_offset;
-    for (int k = 1; k < n_; ++k) fixed_length_ += m.cable.elements[static_cast<std::size_t>(k)].length;
+    winch_ = rows_.winch();
+    elastic_top_ = rows_.elastic_top();
+    fixed_length_ = rows_.fixed_length();
   }
 
   StateVector initial(const PhysicalState& s, double) override {
     StateVector y(layout_.size);
-    set3(y, 0, s.r0);
-    set3(y, 3, s.v0);
-    for (int k = 0; k < n_; ++k) {
-      set3(y, layout_.direction(k), s.e[k]);
-      set3(y, layout_.rate(k), s.w[k]);
-    }
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-      const std::size_t o = layout_.body(b);
-      const Quat& q = s.bodies[b].q;
-      y[o] = q.w(), y[o + 1] = q.x(), y[o + 2] = q.y(), y[o + 3] = q.z();
-      set3(y, o + 4, s.bodies[b].w);
-    }
-    if (elastic_top_)
-      y[layout_.winch.offset] = s.top_unstretched, y[layout_.winch.offset + 1] = s.top_unstretched_rate;
-    else if (winch_)
-      y[layout_.winch.offset] = element_length(model_, s, 0), y[layout_.winch.offset + 1] = element_length_rate(s, 0);
-    if (lengths_) {
-      for (int k = 0; k < n_; ++k) {
-        y[layout_.length(k)] = s.length_of(model_, k);
-        y[layout_.length_rate(k)] = s.length_rate_of(k);
-      }
-    }
-    pack_controls(s, y);
+    rows_.pack(s, y.data());
     return y;
   }
 
   PhysicalState physical(const StateVector& y) const override {
-    PhysicalState s = shape_;
-    unpack(y, s);
+    PhysicalState s = rows_.shape();
+    rows_.unpack(y.data(), s);
     return s;
   }
 
   void physical_into(const StateVector& y, PhysicalState& out) const override {
-    out = shape_;  // as physical(y), into storage of the same sizes
-    unpack(y, out);
+    out = rows_.shape();  // as physical(y), into storage of the same sizes
+    rows_.unpack(y.data(), out);
   }
 
   void derivative(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override {
@@ -227,15 +200,7 @@ class DefaultSystem final : public System {
       set3(y, 0, k.pos);
       set3(y, 3, k.vel);
     }
-    for (int k = 0; k < n_; ++k) {
-      Map3 e(&y[layout_.direction(k)]), w(&y[layout_.rate(k)]);
-      e.normalize();
-      w -= w.dot(e) * e;
-    }
-    for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
-      Eigen::Map<Eigen::Vector4d> q(&y[layout_.body(b)]);
-      q.normalize();
-    }
+    rows_.normalise(y.data());
     if (!winch_) return;
     if (model_.winch.mode == Winch::Mode::Imposed) {
       // A step ending on a breakpoint ends on the piece before it (the
@@ -318,78 +283,10 @@ class DefaultSystem final : public System {
   }
 
   void stage_solve(double hg, const StateVector& r, StateVector& k) override {
-    // Velocity rows: (M + hg C + hg^2 K) z = -(hg C + hg^2 K) r_v - hg K rot(r_x), k_v = r_v + z.
-    work_.rhs.dv0 = CMap3(&r[3]);
-    work_.rhs.dx0 = CMap3(r.data());
-    for (int i = 0; i < n_; ++i) {
-      work_.rhs.dw[i] = CMap3(&r[layout_.rate(i)]);
-      work_.rhs.rot[i] = work_.js.e[i].cross(CMap3(&r[layout_.direction(i)]));
-    }
-    for (std::size_t b = 0; b < work_.js.bodies.size(); ++b) {
-      const std::size_t o = layout_.body(b);
-      work_.rhs.dwb[b] = CMap3(&r[o + 4]);
-      // dq = 1/2 (0, rot) q  =>  rot = 2 vec(dq q^-1).
-      work_.rhs.rotb[b] = 2 * (Quat(r[o], r[o + 1], r[o + 2], r[o + 3]) * work_.js.bodies[b].q.conjugate()).vec();
-    }
-    // Lengths' rows (elastic elements; a winch's top length: below).
-    if (lengths_) {
-      for (int i = 0; i < n_; ++i) {
-        const bool el = is_elastic(model_.cable.elements[static_cast<std::size_t>(i)]);
-        work_.rhs.dl[i] = el ? r[layout_.length(i)] : 0.0;
-        work_.rhs.dlr[i] = el ? r[layout_.length_rate(i)] : 0.0;
-      }
-    }
-    // A tension-controlled winch's rows (l_1, l_1'): the drum in the stage solve.
-    // (Over an elastic top element the winch sets its unstretched L_1, which
-    // moves no joint: W = I on those rows.)
-    const bool drum = winch_ && model_.winch.mode == Winch::Mode::Tension && !elastic_top_;
-    work_.rhs.winch_dl = drum ? r[layout_.winch.offset] : 0.0;
-    work_.rhs.winch_dlr = drum ? r[layout_.winch.offset + 1] : 0.0;
-    if (elastic_top_) {
-      // The top element's spring and damper see L_1, L_1' (their rows stay explicit: W = I there).
-      const double lam = work_.js.length[0] / work_.js.top_unstretched;
-      work_.rhs.top_dL = lam * r[layout_.winch.offset];
-      work_.rhs.top_dLr = lam * r[layout_.winch.offset + 1];
-    }
+    rows_.stage_rhs(r.data(), work_.js, work_.rhs);
     implicit_stage_solve(model_, work_.js, work_.jws, hg, work_.rhs, work_.iw);
-    // Rows without local terms keep k = r (W = I there: still a W-method);
-    // the tow point's and the elements' rows (the first layout_.bodies.offset) are
-    // all written below, so only the rest is copied.
     k.resize(r.size());
-    std::copy(r.begin() + static_cast<std::ptrdiff_t>(layout_.bodies.offset), r.end(),
-              k.begin() + static_cast<std::ptrdiff_t>(layout_.bodies.offset));
-    // Position rows: k_x = r_x + hg B k_v (B: velocities -> position rates at the step's start).
-    const Vec3 kv0 = CMap3(&r[3]) + work_.iw.a0;
-    set3(k, 3, kv0);
-    set3(k, 0, CMap3(r.data()) + hg * kv0);
-    for (int i = 0; i < n_; ++i) {
-      const Vec3 kw = work_.rhs.dw[i] + work_.iw.alpha[i];
-      set3(k, layout_.rate(i), kw);
-      set3(k, layout_.direction(i), CMap3(&r[layout_.direction(i)]) + hg * kw.cross(work_.js.e[i]));
-    }
-    if (lengths_) {
-      // k_l' = r_l' + z_l, k_l = r_l + hg k_l' (elastic elements; z_l = 0 else).
-      for (int i = 0; i < n_; ++i) {
-        if (!is_elastic(model_.cable.elements[static_cast<std::size_t>(i)])) continue;
-        const std::size_t l = layout_.length(i), lr = layout_.length_rate(i);
-        const double klr = r[lr] + work_.iw.zl[i];
-        k[lr] = klr;
-        k[l] = r[l] + hg * klr;
-      }
-    }
-    if (drum && model_.tow.mode == Tow::Mode::Motion) {
-      // k_l' = r_l' + z_l, k_l = r_l + hg k_l' (Force mode: W = I there).
-      k[layout_.winch.offset + 1] = r[layout_.winch.offset + 1] + work_.iw.z_winch;
-      k[layout_.winch.offset] = r[layout_.winch.offset] + hg * k[layout_.winch.offset + 1];
-    }
-    for (std::size_t b = 0; b < work_.js.bodies.size(); ++b) {
-      const std::size_t o = layout_.body(b);
-      const Vec3 kw = work_.rhs.dwb[b] + work_.iw.alpha_b[b];
-      set3(k, o + 4, kw);
-      const Quat dq = Quat(0, kw.x(), kw.y(), kw.z()) * work_.js.bodies[b].q;
-      k[o] = r[o] + 0.5 * hg * dq.w(), k[o + 1] = r[o + 1] + 0.5 * hg * dq.x();
-      k[o + 2] = r[o + 2] + 0.5 * hg * dq.y(), k[o + 3] = r[o + 3] + 0.5 * hg * dq.z();
-    }
+    rows_.stage_result(r.data(), work_.js, work_.rhs, work_.iw, hg, k.data());
   }
 
   const Accelerations* last_accelerations() const override { return &work_.ws.acc; }
@@ -399,7 +296,7 @@ class DefaultSystem final : public System {
  private:
   /// work_.jws holds the rigid elements' inertias of s's state (after unpack).
   bool inertias_in_jws(const PhysicalState& s) const {
-    if (!work_.jac_from_s || winch_ || lengths_) return false;
+    if (!work_.jac_from_s || winch_ || rows_.lengths()) return false;
     // Bitwise (-0 and NaN included): the inertias were computed from these bits.
     const auto same = [](const auto& a, const auto& b) {
       for (Eigen::Index i = 0; i < a.size(); ++i)
@@ -412,69 +309,20 @@ class DefaultSystem final : public System {
       if (!same(s.bodies[b].q.coeffs(), work_.js.bodies[b].q.coeffs())) return false;
     return true;
   }
-  void unpack(const StateVector& y, PhysicalState& s) const {
-    s.r0 = CMap3(y.data());
-    s.v0 = CMap3(&y[3]);
-    for (int k = 0; k < n_; ++k) {
-      s.e[k] = CMap3(&y[layout_.direction(k)]);
-      s.w[k] = CMap3(&y[layout_.rate(k)]);
-    }
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-      const std::size_t o = layout_.body(b);
-      s.bodies[b].q = Quat(y[o], y[o + 1], y[o + 2], y[o + 3]).normalized();
-      s.bodies[b].w = CMap3(&y[o + 4]);
-    }
-    if (elastic_top_)
-      s.top_unstretched = y[layout_.winch.offset], s.top_unstretched_rate = y[layout_.winch.offset + 1];
-    else if (winch_)
-      s.length[0] = y[layout_.winch.offset], s.length_rate[0] = y[layout_.winch.offset + 1];
-    if (lengths_) {
-      for (int k = 0; k < n_; ++k) {
-        s.length[k] = y[layout_.length(k)];
-        s.length_rate[k] = y[layout_.length_rate(k)];
-      }
-    }
-    unpack_controls(y, s);
-  }
   /// dy = f(y, t) evaluated on (s, ws): derivative()'s work, on the main
   /// workspace or the worker's. Reads the model and the step's window only.
   void rates(const StateVector& y, StateVector& dy, double t, const StepWindow& window, PhysicalState& s, Workspace& ws,
              bool time_shift = false, Fork* fork = nullptr) const {
-    unpack(y, s);
+    rows_.unpack(y.data(), s);
     const double tl = window.law_time(t);
     impose_tow(model_, tl, s.r0, s.v0, ws.course);
-    impose_winch(tl, s);
+    rows_.impose_winch(tl, s);
     if (time_shift && inertias_in_jws(s))
       forward_dynamics_time_shift(model_, s, tl, work_.jws, ws, fork);
     else
       forward_dynamics(model_, s, tl, ws, fork);
     dy.resize(layout_.size);
-    if (elastic_top_)
-      dy[layout_.winch.offset] = s.top_unstretched_rate, dy[layout_.winch.offset + 1] = ws.acc.top_length_acc;
-    else if (winch_)
-      dy[layout_.winch.offset] = s.length_rate[0], dy[layout_.winch.offset + 1] = ws.acc.top_length_acc;
-    // de/dt = w x e, dw/dt = alpha; dq/dt = 1/2 (0, w_body) q.
-    set3(dy, 0, s.v0);
-    set3(dy, 3, ws.acc.a0);
-    for (int k = 0; k < n_; ++k) {
-      set3(dy, layout_.direction(k), s.w[k].cross(s.e[k]));
-      set3(dy, layout_.rate(k), ws.acc.alpha[k]);
-    }
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-      const std::size_t o = layout_.body(b);
-      const BodyState& bs = s.bodies[b];
-      const Quat dq = Quat(0, bs.w.x(), bs.w.y(), bs.w.z()) * bs.q;
-      dy[o] = 0.5 * dq.w(), dy[o + 1] = 0.5 * dq.x(), dy[o + 2] = 0.5 * dq.y(), dy[o + 3] = 0.5 * dq.z();
-      set3(dy, o + 4, ws.acc.alpha_b[b]);
-    }
-    // dl/dt = l', dl'/dt = l''.
-    if (lengths_) {
-      for (int k = 0; k < n_; ++k) {
-        dy[layout_.length(k)] = s.length_rate[k];
-        dy[layout_.length_rate(k)] = ws.acc.length_acc[k];
-      }
-    }
-    control_rates(dy, s, ws);
+    rows_.rates(s, ws, dy.data());
   }
   /// The worker's job: the side evaluation on its own state and workspace.
   static void side_job(void* self) {
@@ -484,52 +332,11 @@ class DefaultSystem final : public System {
     side.out->tow_force = side.ws.acc.tow_force;
     side.out->link_force = side.ws.acc.link_force;
   }
-  /// Length control: the top element's length and rate at t from the schedule.
-  void impose_winch(double t, PhysicalState& s) const {
-    // Over an elastic top element L_1 stays the state's (integrated exactly
-    // from the schedule's L_1'', reset to it after every step): the
-    // Rosenbrock-W stage solve sees the spring's dependence on it.
-    if (!winch_ || model_.winch.mode != Winch::Mode::Imposed || elastic_top_) return;
-    const WinchKinematics k = winch_kinematics(model_.winch, t);
-    s.length[0] = k.length - fixed_length_;
-    s.length_rate[0] = k.rate;
-  }
-  // ---- Depth controllers (docs/theory.md "Depth control"): [I, delta] each.
-  void pack_controls(const PhysicalState& s, StateVector& y) const {
-    std::size_t i = 0;
-    for (const BodyState& bs : s.bodies)
-      for (const ControlState& c : bs.controls)
-        y[layout_.control(i)] = c.integral, y[layout_.control(i++) + 1] = c.deflection;
-  }
-  void unpack_controls(const StateVector& y, PhysicalState& s) const {
-    std::size_t i = 0;
-    for (BodyState& bs : s.bodies)
-      for (ControlState& c : bs.controls)
-        c.integral = y[layout_.control(i)], c.deflection = y[layout_.control(i++) + 1];
-  }
-  /// dI/dt and d delta/dt from the depth of each controlled body (ws and s of this evaluation).
-  void control_rates(StateVector& dy, const PhysicalState& s, const Workspace& ws) const {
-    std::size_t i = 0;
-    for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
-      const BodyWork& bw = ws.body[b];
-      std::size_t c = 0;
-      for (const LiftingSurface& ls : model_.bodies[b].surfaces) {
-        if (!ls.depth_control) continue;
-        const ControlRates r = depth_control_rates(*ls.depth_control, s.bodies[b].controls[c++], -bw.O.z(), -bw.vO.z());
-        dy[layout_.control(i)] = r.dintegral, dy[layout_.control(i++) + 1] = r.ddeflection;
-      }
-    }
-  }
-  // ---- end of depth controllers
-
   const Model& model_;
-  StateLayout layout_;  // the flat state's blocks
-  // The chain's shape: sizes, and what the state does not carry (the
-  // model's lengths of the elements without a length in the state).
-  PhysicalState shape_;
+  ChainRows rows_;                // the chain's rows: packing, rates, stage right-hand side and result
+  const StateLayout& layout_;     // the flat state's blocks (rows_')
   DefaultWorkspace work_;  // storage and caches: derivative()'s results do not depend on it
   int n_ = 0;
-  bool lengths_ = false;      // the state carries element lengths and rates
   bool winch_ = false;        // the state carries the winch's l_1, l_1'
   bool elastic_top_ = false;  // ... as L_1, L_1' of an elastic top element (l_1, l_1' among the lengths)
   double fixed_length_ = 0;   // deployed length but l_1 [m]
@@ -563,7 +370,7 @@ class DefaultSystem final : public System {
   }
   /// The side evaluation's storage and worker, made at first use.
   SideEvaluation& side_evaluation() {
-    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, shape_);
+    if (!side_) side_ = std::make_unique<SideEvaluation>(model_, rows_.shape());
     return *side_;
   }
   int threads_ = 1;                       // evaluation_threads(model_) [-]

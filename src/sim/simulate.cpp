@@ -2,7 +2,6 @@
 #include "towsim/sim/simulate.hpp"
 
 #include <algorithm>
-#include <boost/numeric/odeint.hpp>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -17,9 +16,10 @@
 #include "towsim/sim/winch_events.hpp"
 #include "towsim/waves/vessel.hpp"
 
+#include "run_loop.hpp"
+
 namespace towsim {
 
-namespace odeint = boost::numeric::odeint;
 
 namespace {
 
@@ -320,108 +320,6 @@ std::string check_state(const Model& model, const System& sys, const StateVector
   return {};
 }
 
-/// Before each step at time t [s]: true to stop now. It also reports the
-/// progress t / duration, where the Python module polls Ctrl-C.
-using StopCheck = std::function<bool(double)>;
-
-/// True when the winch needs an event (split or removal) after this step.
-bool winch_due(const Model& model, const System& sys, const StateVector& y) {
-  return model.winch.active() && winch_event(model, sys.physical(y)) != WinchEvent::None;
-}
-
-/// Advance y from t to `target` (an output time), by fixed RK4 steps or
-/// adaptive steps that land on `target`; `s`: storage for the checks'
-/// physical state. Returns an error text or empty; returns early (t short
-/// of `target`) once `stopping` says so.
-template <class Stepper>
-std::string advance_fixed(const Model& model, System& sys, PhysicalState& s, Stepper& rk, StateVector& y, double& t,
-                          double target, RunStats& stats, bool& event, const StopCheck& stopping) {
-  while (t < target - 1e-12 * std::max(1.0, target) && !stopping(t)) {
-    const double h = std::min(model.sim.time_step, target - t);
-    rk.do_step(sys.in_window({t, t + h}), y, t, h);
-    t = (target - (t + h) < 1e-12 * std::max(1.0, target)) ? target : t + h;
-    sys.project(y, t);
-    ++stats.steps;
-    if (auto err = check_state(model, sys, y, s); !err.empty()) return err;
-    if ((event = winch_due(model, sys, y))) return {};
-    track_elastic(model, sys, y, t, stats);
-  }
-  return {};
-}
-
-/// Advance y by adaptive steps until t reaches `stop`, never stepping past
-/// `land` (>= stop: a breakpoint or the run's end, landed exactly). With
-/// land == stop every step lands on stop; with land > stop (dense output)
-/// the last step may pass stop. `try_step(y, t, dt)` attempts a step (true:
-/// accepted, t and y advanced; dt the proposal for the next step either
-/// way); `accepted(y, t)` runs after each accepted step (projection).
-/// Returns an error text or empty; returns early once `stopping` says so.
-template <class TryStep, class Accepted>
-std::string advance_adaptive(const Model& model, System& sys, PhysicalState& s, TryStep&& try_step, Accepted&& accepted,
-                             StateVector& y, double& t, double land, double stop, double& h, RunStats& stats,
-                             bool& event, const StopCheck& stopping) {
-  const double h_min = 1e-12 * std::max(1.0, model.sim.duration);
-  while (t < stop - 1e-12 * std::max(1.0, stop) && !stopping(t)) {
-    const double h_try = std::min({h, model.sim.max_step, land - t});
-    double dt = h_try;
-    if (!try_step(y, t, dt)) {
-      ++stats.rejected_steps;
-      h = dt;
-      if (h < h_min) {
-        std::ostringstream os;
-        os << "step size collapsed below " << h_min << " s (tolerance " << model.sim.tolerance << " cannot be met)";
-        return os.str();
-      }
-      continue;
-    }
-    // Keep the controller's proposal unless this step was shortened to land.
-    if (h_try >= h || dt > h) h = dt;
-    // A step ending on `land` or `stop` to round-off ends there.
-    if (std::abs(land - t) < 1e-12 * std::max(1.0, land)) t = land;
-    if (std::abs(stop - t) < 1e-12 * std::max(1.0, stop)) t = stop;
-    accepted(y, t);
-    ++stats.steps;
-    if (auto err = check_state(model, sys, y, s); !err.empty()) return err;
-    if ((event = winch_due(model, sys, y))) return {};
-    track_elastic(model, sys, y, t, stats);
-  }
-  return {};
-}
-
-/// The same with an odeint controlled stepper (dopri5, Cash-Karp): the tow
-/// law is evaluated inside each trial step's window; accepted steps are
-/// projected.
-template <class Controlled>
-std::string advance_odeint(const Model& model, System& sys, PhysicalState& s, Controlled& ctrl, StateVector& y,
-                           double& t, double target, double& h, RunStats& stats, bool& event,
-                           const StopCheck& stopping) {
-  auto try_step = [&](StateVector& yy, double& tt, double& dt) {
-    return ctrl.try_step(sys.in_window({tt, tt + dt}), yy, tt, dt) != odeint::fail;  // tt, dt updated
-  };
-  auto accepted = [&](StateVector& yy, double tt) {
-    sys.project(yy, tt);
-    if constexpr (requires { ctrl.reset(); }) ctrl.reset();  // projection changed y: no stale FSAL derivative
-  };
-  return advance_adaptive(model, sys, s, try_step, accepted, y, t, target, target, h, stats, event, stopping);
-}
-
-/// The same with Rosenbrock-W steps (error control on state and forces),
-/// which do not land on `stop` (an output time): it is sampled by dense output.
-std::string advance_rosenbrock(const Model& model, System& sys, PhysicalState& s, RosenbrockW& ros, StateVector& y,
-                               double& t, double land, double stop, double& h, RunStats& stats, bool& event,
-                               const StopCheck& stopping) {
-  auto try_step = [&](StateVector& yy, double& tt, double& dt) { return ros.try_step(yy, tt, dt); };
-  auto accepted = [](StateVector&, double) {};
-  return advance_adaptive(model, sys, s, try_step, accepted, y, t, land, stop, h, stats, event, stopping);
-}
-
-/// The largest error estimates so far, kept across winch events (which
-/// start a new stepper).
-void keep_ros_errors(const RosenbrockW& ros, RunStats& stats) {
-  stats.error_estimate = std::max(stats.error_estimate, ros.max_error);
-  stats.force_error_estimate = std::max(stats.force_error_estimate, ros.max_force_error);
-}
-
 /// Absolute force scale of the force error norm: the chain's apparent weight [N].
 double force_scale(const Model& model) {
   double w = 0;
@@ -431,91 +329,6 @@ double force_scale(const Model& model) {
     w += std::abs(a.mass - model.fluid.rho * a.volume) * model.fluid.g;
   return std::max(w, 1.0);
 }
-
-/// The run's time stepper (simulation.integrator), built in one place: at
-/// the start and again for the chain that a winch event makes (the state
-/// changes size; Rosenbrock-W holds its system). rk4 and the odeint
-/// controlled steppers size themselves on first use.
-class Steppers {
- public:
-  explicit Steppers(const Model& model) : model_(model) {}
-
-  /// Fresh steppers for `chain_model` and its system; a Rosenbrock-W
-  /// stepper's largest errors so far go into stats first. `check` gets the
-  /// refusal of an integrator that the system cannot serve.
-  void reset(const Model& chain_model, System& sys, RunStats& stats, std::string& check) {
-    const double tol = model_.sim.tolerance;
-    rk4_ = odeint::runge_kutta4<StateVector>();
-    dopri_ = odeint::make_controlled(tol, tol, odeint::runge_kutta_dopri5<StateVector>());
-    cashkarp_ = odeint::make_controlled(tol, tol, odeint::runge_kutta_cash_karp54<StateVector>());
-    if (ros_) keep_ros_errors(*ros_, stats);
-    if (model_.sim.integrator != Integrator::Rosenbrock) return;
-    if (!sys.has_stage_solve())
-      check = "rosenbrock needs formulation: default (its stage solves use the O(n) recursion)";
-    // W's time column (f_t): not with a winch. f_t is right there (fixed
-    // steps: more accurate, order 3), but on fish-depth-change it does not
-    // pay (docs/performance.md "W's time column", "With a winch"): in the
-    // schedule's speed ramps the steps grow up to 2x and the fish's attitude
-    // error, ~tol per step and of one sign, adds up (link tension 2.8x less
-    // accurate); between them max_step binds, f_t only costs (6 % more
-    // evaluations). More evaluations for equal accuracy at every tolerance.
-    // Without a winch: by a difference on every other step, extrapolated
-    // between (6-8 % fewer evaluations, docs/performance.md "W's time
-    // column extrapolated").
-    const auto td = model_.winch.active() ? RosenbrockW::TimeDerivative::None
-                                          : RosenbrockW::TimeDerivative::Extrapolated;
-    ros_ = std::make_unique<RosenbrockW>(sys, tol, force_scale(chain_model), RosenbrockW::ForceEstimate::Embedded, td);
-    // In a sea state the error varies from step to step with the waves: the PI
-    // controller (the plain one rejected 28 % of sea-state-tow's steps).
-    if (has_sea(model_)) ros_->set_step_control(RosenbrockW::StepControl::PI);
-  }
-
-  /// Rosenbrock-W steps pass output times (dense output) and land only on
-  /// breakpoints and the run's end; the others land on every output time.
-  bool dense() const { return model_.sim.integrator == Integrator::Rosenbrock; }
-
-  /// Advance y from t towards `target` (an output time or a breakpoint),
-  /// landing on `land` (dense output; else `target`): see advance_fixed and
-  /// advance_adaptive.
-  std::string advance(const Model& m, System& sys, StateVector& y, double& t, double land, double target, double& h,
-                      RunStats& stats, bool& event, const StopCheck& stopping) {
-    switch (model_.sim.integrator) {
-      case Integrator::RK4:
-        return advance_fixed(m, sys, checked_, rk4_, y, t, target, stats, event, stopping);
-      case Integrator::DOPRI5:
-        return advance_odeint(m, sys, checked_, dopri_, y, t, target, h, stats, event, stopping);
-      case Integrator::CashKarp54:
-        return advance_odeint(m, sys, checked_, cashkarp_, y, t, target, h, stats, event, stopping);
-      case Integrator::Rosenbrock:
-        return advance_rosenbrock(m, sys, checked_, *ros_, y, t, land, target, h, stats, event, stopping);
-    }
-    return "internal: unknown integrator";
-  }
-
-  /// At a breakpoint of the tow law: its acceleration (and maybe y) jumps.
-  void invalidate() {
-    if (ros_) ros_->invalidate();
-  }
-
-  /// The state at `time`, passed by the last step (dense output): false when
-  /// the stepper has none.
-  bool dense_output(double time, StateVector& y) const { return ros_ && ros_->dense_output(time, y); }
-
-  /// At the run's end: the largest error estimates into stats.
-  void finish(RunStats& stats) const {
-    if (ros_) keep_ros_errors(*ros_, stats);
-  }
-
- private:
-  const Model& model_;  // the run's settings (simulation, winch)
-  odeint::runge_kutta4<StateVector> rk4_;
-  decltype(odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_dopri5<StateVector>())) dopri_ =
-      odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_dopri5<StateVector>());
-  decltype(odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_cash_karp54<StateVector>())) cashkarp_ =
-      odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_cash_karp54<StateVector>());
-  std::unique_ptr<RosenbrockW> ros_;
-  PhysicalState checked_;  // the physical state of the last step checked (storage reused)
-};
 
 /// The run's current chain: the model given, or one derived from it by
 /// winch events (one element more or less in the top section), with its
@@ -562,6 +375,52 @@ void winch_event_at(Chain& c, StateVector& y, double t, RunStats& stats) {
   y = c.sys->initial(s2, t);
 }
 
+/// The chain's rig for the run loop (src/sim/run_loop.hpp): its system,
+/// checks, winch events and samples with stable node identities.
+struct ChainRig {
+  ChainRig(const Model& m, OutputSink& sink) : model(m), sink(sink) {
+    chain.model = &m;
+    chain.sys = make_system(m);
+  }
+  const Model& model;  // the run's settings (the chain's own model changes at winch events)
+  OutputSink& sink;
+  Chain chain;
+  std::string refusal;    // a refusal from the rk4 stability check
+  PhysicalState checked;  // the physical state of the last step checked (storage reused)
+  Sample out;             // the sample being written (its storage reused)
+  PhysicalState sampled;  // its physical state (storage reused)
+
+  const Simulation& sim() const { return model.sim; }
+  bool winch() const { return model.winch.active(); }
+  bool sea() const { return has_sea(model); }
+  double force_scale() const { return towsim::force_scale(*chain.model); }
+  std::vector<double> breakpoints() const {
+    std::vector<double> breaks = tow_breakpoints(model.tow);
+    for (double b : winch_breakpoints(model.winch)) breaks.push_back(b);
+    return breaks;
+  }
+  System& sys() { return *chain.sys; }
+  std::string check(const System& sys, const StateVector& y) { return check_state(*chain.model, sys, y, checked); }
+  bool event_due(const System& sys, const StateVector& y) const {
+    return chain.model->winch.active() && winch_event(*chain.model, sys.physical(y)) != WinchEvent::None;
+  }
+  void track(const System& sys, const StateVector& y, double t, RunStats& stats) const {
+    track_elastic(*chain.model, sys, y, t, stats);
+  }
+  void event(StateVector& y, double t, RunStats& stats) { winch_event_at(chain, y, t, stats); }
+  /// One sample of the current chain at (y, t), its nodes with their identities.
+  void write(const StateVector& y, double t, RunStats& stats) {
+    sample_of(*chain.model, *chain.sys, y, t, stats, out, sampled, &refusal);
+    if (chain.node_id.empty()) {
+      chain.node_id = out.node_id;
+      chain.next_id = static_cast<long>(out.node_id.size());
+    }
+    out.node_id = chain.node_id;
+    sink.write(out);
+  }
+  void flush() { sink.flush(); }
+};
+
 }  // namespace
 
 RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progress, const volatile int* stop_flag) {
@@ -593,121 +452,13 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   } else {
     s0 = initial_state(model);
   }
-  Chain chain;
-  chain.model = &model;
-  chain.sys = make_system(model);
-  StateVector y = chain.sys->initial(s0, 0.0);
-  if (model.initial.kind != Initial::Kind::Steady) chain.sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
-  chain.sys->project(y, 0.0);
-  double t = 0;
-  std::string check;  // a refusal from the rk4 stability check
-  // One sample of the current chain at (state yy, time tt), its nodes with their identities.
-  Sample out;             // the sample being written (its storage reused)
-  PhysicalState sampled;  // its physical state (storage reused)
-  auto sample = [&](const StateVector& yy, double tt) -> const Sample& {
-    sample_of(*chain.model, *chain.sys, yy, tt, stats, out, sampled, &check);
-    if (chain.node_id.empty()) {
-      chain.node_id = out.node_id;
-      chain.next_id = static_cast<long>(out.node_id.size());
-    }
-    out.node_id = chain.node_id;
-    return out;
-  };
-  sink.write(sample(y, t));
-  track_elastic(model, *chain.sys, y, t, stats);
-
-  Steppers steppers(model);
-  steppers.reset(*chain.model, *chain.sys, stats, check);
-  double h = model.sim.time_step;
-  const double T = model.sim.duration, dT = model.sim.output_interval;
-  const long n_out = static_cast<long>(std::ceil(T / dT - 1e-9));
-  std::vector<double> breaks = tow_breakpoints(model.tow);
-  for (double b : winch_breakpoints(model.winch)) breaks.push_back(b);
-  std::sort(breaks.begin(), breaks.end());
-  auto next_break = breaks.begin();
-  // Rosenbrock steps pass output times (dense output) and land only on
-  // breakpoints and the run's end; a winch event after a step that passed
-  // output times waits until they are written from the old chain.
-  const bool dense = steppers.dense();
-  bool pending_event = false;
-  StateVector y_out;   // dense output state
-  double written = t;  // time of the last sample written [s]
-  const StopCheck stopping = [&](double tt) {
-    if (progress) progress(tt / T);
-    return stop_flag != nullptr && *stop_flag != 0;
-  };
-  for (long k = 1; k <= n_out && check.empty(); ++k) {
-    if (stop_flag && *stop_flag) {
-      // Stopped at the last sample on disk (a dense-output step may have passed it).
-      stats.status = "interrupted";
-      stats.message = "interrupted by signal at t = " + std::to_string(written) + " s";
-      break;
-    }
-    const double out_time = std::min(T, static_cast<double>(k) * dT);
-    std::string err;
-    // Land on every breakpoint of the tow law up to the output time; where
-    // the tow velocity jumps, give the chain its impulsive response.
-    while (err.empty()) {
-      const double eps = 1e-12 * std::max(1.0, t);
-      if (pending_event) {
-        if (t > out_time + 1e-12 * std::max(1.0, out_time)) break;  // write this output first
-        pending_event = false;
-        winch_event_at(chain, y, t, stats);
-        steppers.reset(*chain.model, *chain.sys, stats, check);
-      }
-      while (next_break != breaks.end() && *next_break < t - eps) ++next_break;
-      const bool at_break = next_break != breaks.end() && std::abs(*next_break - t) <= eps;
-      if (at_break) {
-        chain.sys->apply_tow_jump(y, t);
-        steppers.invalidate();
-        ++next_break;
-      }
-      if (t >= out_time - 1e-12 * std::max(1.0, out_time)) break;
-      const double target = (next_break != breaks.end() && *next_break < out_time) ? *next_break : out_time;
-      // Dense output: land on the next breakpoint or the run's end only.
-      const double land = dense ? (next_break != breaks.end() ? std::min(*next_break, T) : T) : target;
-      bool event = false;
-      err = steppers.advance(*chain.model, *chain.sys, y, t, land, target, h, stats, event, stopping);
-      // The state changes size: new chain, fresh steppers (sized on first
-      // use), at the top of this loop once the outputs passed are written.
-      if (event && err.empty()) pending_event = true;
-      if (stop_flag && *stop_flag) break;  // checked after every step: a stop between outputs is prompt
-    }
-    if (!err.empty()) {
-      std::ostringstream os;
-      os << "numerical failure at t = " << t << " s: " << err;
-      stats.status = "failed";
-      stats.message = os.str();
-      break;
-    }
-    if (stop_flag && *stop_flag && t < out_time - 1e-12 * std::max(1.0, out_time)) {
-      stats.status = "interrupted";  // between output times: the last sample on disk is the end
-      stats.message = "interrupted by signal at t = " + std::to_string(written) + " s";
-      break;
-    }
-    if (std::abs(t - out_time) <= 1e-12 * std::max(1.0, out_time)) {
-      sink.write(sample(y, out_time));  // a step ended here (to round-off)
-    } else if (steppers.dense_output(out_time, y_out)) {
-      sink.write(sample(y_out, out_time));  // the step passed out_time
-    } else {
-      stats.status = "failed";
-      stats.message = "internal: no state at output time " + std::to_string(out_time) + " s";
-      break;
-    }
-    written = out_time;
-    if (progress) progress(out_time / T);
-  }
-  if (!check.empty() && stats.status == "ok") {
-    stats.status = "failed";
-    stats.message = check;
-  }
-  steppers.finish(stats);
-  stats.end_time = stats.status == "interrupted" ? written : t;
-  stats.slack.finish(t);
-  stats.rhs_evaluations += chain.sys->rhs_evaluations;
-  stats.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  sink.flush();
-  return stats;
+  ChainRig rig(model, sink);
+  StateVector y = rig.chain.sys->initial(s0, 0.0);
+  if (model.initial.kind != Initial::Kind::Steady) rig.chain.sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
+  rig.chain.sys->project(y, 0.0);
+  rig.write(y, 0.0, stats);
+  rig.track(*rig.chain.sys, y, 0.0, stats);
+  return run::run_loop(rig, y, std::move(stats), wall0, progress, stop_flag);
 }
 
 }  // namespace towsim
