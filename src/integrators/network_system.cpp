@@ -1,0 +1,203 @@
+// A network of lines as one flat-state system (towsim/integrators/network_system.hpp).
+#include "towsim/integrators/network_system.hpp"
+
+#include <stdexcept>
+
+#include "chain_rows.hpp"
+#include "towsim/dynamics/dynamics.hpp"
+#include "towsim/integrators/state_layout.hpp"
+
+namespace towsim {
+
+namespace {
+
+using CMap3 = Eigen::Map<const Vec3>;
+
+void set3(double* y, const Vec3& v) { y[0] = v.x(), y[1] = v.y(), y[2] = v.z(); }
+
+/// Jump of line m's imposed tow velocity at t: v(t+) - v(t-) [m/s] (zero in Force mode).
+Vec3 tow_jump_of(const Model& m, double t) {
+  if (m.tow.mode != Tow::Mode::Motion) return Vec3::Zero();
+  const double d = 1e-9 * std::max(1.0, std::abs(t));
+  return tow_kinematics(m.tow, t + d).vel - tow_kinematics(m.tow, t - d).vel;
+}
+
+/// The state sizes of every line (their shapes).
+TreeState shapes(const std::vector<std::unique_ptr<ChainRows>>& rows) {
+  TreeState s;
+  for (const auto& r : rows) s.push_back(r->shape());
+  return s;
+}
+
+}  // namespace
+
+NetworkSystem::NetworkSystem(const Network& net)
+    : net_(net), tree_(net.tree), ws_(net.tree), jws_(net.tree), iw_(net.tree, ws_) {
+  for (const Model& m : tree_.lines) {
+    if (m.winch.active()) throw std::invalid_argument("towsim: network: a line with a winch is not run yet");
+    offset_.push_back(size_);
+    rows_.push_back(std::make_unique<ChainRows>(m));
+    size_ += rows_.back()->size();
+  }
+  s_ = shapes(rows_);
+  js_ = s_;
+  rhs_.resize(tree_.lines.size());
+  for (std::size_t i = 0; i < rhs_.size(); ++i) {
+    const std::size_t n = s_[i].e.size(), nb = s_[i].bodies.size();
+    rhs_[i].dw.assign(n, Vec3::Zero()), rhs_[i].rot.assign(n, Vec3::Zero());
+    rhs_[i].dwb.assign(nb, Vec3::Zero()), rhs_[i].rotb.assign(nb, Vec3::Zero());
+    rhs_[i].dl.assign(n, 0.0), rhs_[i].dlr.assign(n, 0.0);
+  }
+  course_.resize(tree_.lines.size());
+}
+
+NetworkSystem::~NetworkSystem() = default;
+
+StateVector NetworkSystem::initial(const PhysicalState&, double) {
+  throw std::logic_error("towsim: network: the initial state is a tree's (initial_tree)");
+}
+
+StateVector NetworkSystem::initial_tree(const TreeState& s) const {
+  if (s.size() != rows_.size()) throw std::logic_error("towsim: network: one state per line");
+  StateVector y(size_);
+  for (std::size_t i = 0; i < rows_.size(); ++i) rows_[i]->pack(s[i], y.data() + offset_[i]);
+  return y;
+}
+
+void NetworkSystem::tree_state_into(const StateVector& y, TreeState& out) const {
+  if (out.size() != rows_.size()) out = shapes(rows_);
+  for (std::size_t i = 0; i < rows_.size(); ++i) rows_[i]->unpack(y.data() + offset_[i], out[i]);
+}
+
+void NetworkSystem::rates(const StateVector& y, StateVector& dy, double t, const StepWindow& window) {
+  // Each line's state; the roots' tops at their imposed motion.
+  tree_state_into(y, s_);
+  const double tl = window.law_time(t);
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    const Model& m = tree_.lines[i];
+    if (tree_.tops[i].line >= 0 || m.tow.mode != Tow::Mode::Motion) continue;
+    const TowKinematics k = tow_kinematics(m.tow, tl, ws_.lines[i].course);
+    s_[i].r0 = k.pos, s_[i].v0 = k.vel;
+  }
+  // The tree's one sweep; a line below a node has its node's top joint.
+  tree_forward_dynamics(tree_, s_, tl, ws_);
+  dy.resize(size_);
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    if (tree_.tops[i].line >= 0) s_[i].r0 = ws_.top[i], s_[i].v0 = ws_.top_velocity[i];
+    rows_[i]->rates(s_[i], ws_.lines[i], dy.data() + offset_[i]);
+  }
+  gather_forces();
+}
+
+void NetworkSystem::gather_forces() {
+  forces_.tow_force = ws_.lines.front().acc.tow_force;
+  forces_.link_force.clear();
+  for (std::size_t i = 1; i < ws_.lines.size(); ++i) forces_.link_force.push_back(ws_.lines[i].acc.tow_force);
+  for (const Workspace& w : ws_.lines)
+    forces_.link_force.insert(forces_.link_force.end(), w.acc.link_force.begin(), w.acc.link_force.end());
+}
+
+void NetworkSystem::derivative(const StateVector& y, StateVector& dy, double t, const StepWindow& window) {
+  ++rhs_evaluations;
+  rates(y, dy, t, window);
+}
+
+void NetworkSystem::project(StateVector& y, double t) {
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    double* yi = y.data() + offset_[i];
+    const Model& m = tree_.lines[i];
+    if (tree_.tops[i].line < 0 && m.tow.mode == Tow::Mode::Motion) {
+      const TowKinematics k = tow_kinematics(m.tow, t, course_[i]);
+      set3(yi, k.pos);
+      set3(yi + 3, k.vel);
+    }
+    rows_[i]->normalise(yi);
+  }
+}
+
+double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
+  // Each root line's jump; none: nothing to do.
+  std::vector<Vec3> dv(rows_.size(), Vec3::Zero());
+  double size = 0;
+  for (std::size_t i = 0; i < rows_.size(); ++i)
+    if (tree_.tops[i].line < 0) dv[i] = tow_jump_of(tree_.lines[i], t), size = std::max(size, dv[i].norm());
+  if (size == 0) return 0;
+  for (std::size_t i = 0; i < rows_.size(); ++i)
+    if (tree_.tops[i].line >= 0)
+      throw std::runtime_error("the tow velocity jumps at t = " + std::to_string(t) +
+                               " s (the start of a heave or a track, or a tow at speed at t = 0): a network with "
+                               "lines below a junction or body takes a tow law whose velocity is continuous");
+  // Lines joined only through the vessel: each line's own impulsive response.
+  tree_state_into(y, s_);
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    const Model& m = tree_.lines[i];
+    PhysicalState& s = s_[i];
+    Workspace& ws = ws_.lines[i];
+    tow_velocity_jump(m, s, dv[i], ws);
+    for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
+    for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws.acc.length_acc[k];
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws.acc.alpha_b[b];
+    if (m.tow.mode == Tow::Mode::Motion) {
+      const double d = 1e-9 * std::max(1.0, std::abs(t));
+      s.r0 = tow_kinematics(m.tow, t).pos;
+      s.v0 = tow_kinematics(m.tow, t + d).vel;
+    }
+    rows_[i]->pack(s, y.data() + offset_[i]);
+  }
+  return size;
+}
+
+PhysicalState NetworkSystem::physical(const StateVector& y) const {
+  PhysicalState s = rows_.front()->shape();
+  rows_.front()->unpack(y.data(), s);
+  return s;
+}
+
+const TreeWorkspace& NetworkSystem::evaluate_tree(const StateVector& y, double t) {
+  StateVector dy;
+  rates(y, dy, t, StepWindow::after(t));
+  return ws_;
+}
+
+const Workspace& NetworkSystem::evaluate(const StateVector& y, double t) { return evaluate_tree(y, t).lines.front(); }
+
+std::string NetworkSystem::describe(std::size_t i) const {
+  std::size_t line = 0;
+  while (line + 1 < offset_.size() && offset_[line + 1] <= i) ++line;
+  return "line " + net_.line_names[line] + ": " +
+         rows_[line]->layout().describe(i - offset_[line], tree_.lines[line]);
+}
+
+void NetworkSystem::prepare_stage_solve(double t, const StepWindow& window) {
+  // The evaluation at the step's start is the Jacobian point (swapped, not copied).
+  std::swap(jws_, ws_);
+  std::swap(js_, s_);
+  tree_local_jacobian(tree_, js_, jws_, window.law_time(t), iw_);
+  for (ImplicitWorkspace& w : iw_.lines) w.hg = -1;  // a new Jacobian: factorise again
+}
+
+void NetworkSystem::stage_solve(double hg, const StateVector& r, StateVector& k) {
+  for (std::size_t i = 0; i < rows_.size(); ++i) rows_[i]->stage_rhs(r.data() + offset_[i], js_[i], rhs_[i]);
+  tree_stage_solve(tree_, js_, jws_, hg, rhs_, iw_);
+  k.resize(r.size());
+  for (std::size_t i = 0; i < rows_.size(); ++i)
+    rows_[i]->stage_result(r.data() + offset_[i], js_[i], rhs_[i], iw_.lines[i], hg, k.data() + offset_[i]);
+}
+
+TreeState network_initial_state(const Network& net) {
+  const TreeModel& tree = net.tree;
+  TreeState s;
+  for (const Model& m : tree.lines) {
+    if (m.initial.kind == Initial::Kind::Steady)
+      throw std::invalid_argument("towsim: network: initial: steady is not available for networks yet");
+    s.push_back(initial_state(m));
+  }
+  // A line below a node starts at its node: the tree's kinematics give it.
+  TreeWorkspace ws(tree);
+  tree_forward_dynamics(tree, s, 0.0, ws);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (tree.tops[i].line >= 0) s[i].r0 = ws.top[i], s[i].v0.setZero();
+  return s;
+}
+
+}  // namespace towsim
