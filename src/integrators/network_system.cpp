@@ -1,6 +1,7 @@
 // A network of lines as one flat-state system (towsim/integrators/network_system.hpp).
 #include "towsim/integrators/network_system.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "chain_rows.hpp"
@@ -115,6 +116,17 @@ void NetworkSystem::project(StateVector& y, double t) {
   }
 }
 
+double NetworkSystem::tow_jump(double t) const {
+  double size = 0;
+  for (std::size_t i = 0; i < rows_.size(); ++i)
+    if (tree_.tops[i].line < 0) size = std::max(size, tow_jump_of(tree_.lines[i], t).norm());
+  return size;
+}
+
+bool NetworkSystem::has_nodes() const {
+  return std::any_of(tree_.tops.begin(), tree_.tops.end(), [](const LineTop& top) { return top.line >= 0; });
+}
+
 double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
   // Each root line's jump; none: nothing to do.
   std::vector<Vec3> dv(rows_.size(), Vec3::Zero());
@@ -122,9 +134,8 @@ double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
   for (std::size_t i = 0; i < rows_.size(); ++i)
     if (tree_.tops[i].line < 0) dv[i] = tow_jump_of(tree_.lines[i], t), size = std::max(size, dv[i].norm());
   if (size == 0) return 0;
-  for (std::size_t i = 0; i < rows_.size(); ++i)
-    if (tree_.tops[i].line >= 0)
-      throw std::runtime_error("the tow velocity jumps at t = " + std::to_string(t) +
+  if (has_nodes())
+    throw std::runtime_error("the tow velocity jumps at t = " + std::to_string(t) +
                                " s (the start of a heave or a track, or a tow at speed at t = 0): a network with "
                                "lines below a junction or body takes a tow law whose velocity is continuous");
   // Lines joined only through the vessel: each line's own impulsive response.

@@ -39,6 +39,11 @@ class NetworkSystem final : public System {
   std::size_t offset(std::size_t line) const { return offset_[line]; }
   const Network& network() const { return net_; }
 
+  /// Largest jump of a root line's imposed tow velocity at t [m/s].
+  double tow_jump(double t) const;
+  /// True when a line hangs below a junction or body (not only from the vessel).
+  bool has_nodes() const;
+
   /// Not a chain: throws std::logic_error (initial_tree is the network's).
   StateVector initial(const PhysicalState& s, double t) override;
   void derivative(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override;

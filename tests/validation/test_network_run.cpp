@@ -1,0 +1,197 @@
+// Runs of networks of lines (towsim/sim/simulate_network.hpp) against
+// independent results: each line's own single-line run, the statics of a
+// tree at rest, and energy conservation of a swinging tree in vacuum.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "../support/models.hpp"
+#include "../support/physics.hpp"
+#include "towsim/sim/simulate_network.hpp"
+
+namespace towsim {
+namespace {
+
+using testing::body_energy;
+using testing::cable_energy;
+using testing::cable_model;
+using testing::CableSpec;
+using testing::Energy;
+
+/// A network of the given lines and tops, named l0, l1, ...
+Network network_of(std::vector<Model> lines, std::vector<LineTop> tops) {
+  Network net;
+  net.name = "net";
+  net.tree.lines = std::move(lines);
+  net.tree.tops = std::move(tops);
+  for (std::size_t i = 0; i < net.tree.lines.size(); ++i) net.line_names.push_back("l" + std::to_string(i));
+  return net;
+}
+
+/// Fixed-step rk4 settings for a run of `duration` [s] at step h [s].
+void rk4(Model& m, double duration, double h) {
+  m.sim.integrator = Integrator::RK4;
+  m.sim.time_step = h;
+  m.sim.duration = duration;
+  m.sim.output_interval = 0.5;
+}
+
+/// Largest |a - b| over the samples' nodes, relative to the largest |a| [-].
+double node_difference(const std::vector<Sample>& a, const std::vector<NetworkSample>& b, std::size_t line) {
+  double diff = 0, scale = 0;
+  for (std::size_t j = 0; j < a.size(); ++j)
+    for (std::size_t k = 0; k < a[j].node_pos.size(); ++k) {
+      diff = std::max(diff, (a[j].node_pos[k] - b[j].lines[line].node_pos[k]).norm());
+      scale = std::max(scale, a[j].node_pos[k].norm());
+    }
+  return diff / scale;
+}
+
+double force_difference(const std::vector<Sample>& a, const std::vector<NetworkSample>& b, std::size_t line) {
+  double diff = 0, scale = 0;
+  for (std::size_t j = 0; j < a.size(); ++j) {
+    diff = std::max(diff, (a[j].tow_force - b[j].lines[line].tow_force).norm());
+    scale = std::max(scale, a[j].tow_force.norm());
+  }
+  return diff / scale;
+}
+
+// Two lines that touch only through the prescribed vessel: the network's
+// run gives each line's own run. Fixed-step rk4 acts row by row on the
+// flat state, so the same arithmetic gives the same bits; the tolerance
+// (1e-13 of the largest value) only allows for round-off in another order.
+TEST(NetworkRun, LinesJoinedOnlyThroughTheVesselGiveTheirSingleLineRuns) {
+  Model a = testing::paper52_turn(10, 30);
+  Model b = cable_model(testing::paper52_cable(6, 20, 0.01));
+  b.tow = a.tow;
+  rk4(a, 30, 0.01);
+  rk4(b, 30, 0.01);
+  const std::vector<Sample> ra = testing::run(a), rb = testing::run(b);
+  const Network net = network_of({a, b}, {LineTop{}, LineTop{}});
+  NetworkMemorySink sink;
+  const RunStats st = simulate_network(net, sink);
+  ASSERT_EQ(st.status, "ok") << st.message;
+  ASSERT_EQ(sink.samples.size(), ra.size());
+  constexpr double kRoundOff = 1e-13;  // relative: the same operations per line
+  std::printf("[measured] rk4: nodes %.2e, %.2e, tow force %.2e, %.2e of their peaks\n",
+              node_difference(ra, sink.samples, 0), node_difference(rb, sink.samples, 1),
+              force_difference(ra, sink.samples, 0), force_difference(rb, sink.samples, 1));
+  EXPECT_LE(node_difference(ra, sink.samples, 0), kRoundOff);
+  EXPECT_LE(node_difference(rb, sink.samples, 1), kRoundOff);
+  EXPECT_LE(force_difference(ra, sink.samples, 0), kRoundOff);
+  EXPECT_LE(force_difference(rb, sink.samples, 1), kRoundOff);
+  // Rosenbrock-W controls one step for both lines: each within its tolerance of its own run.
+  for (Model* m : {&a, &b}) m->sim.integrator = Integrator::Rosenbrock, m->sim.tolerance = 1e-7;
+  const std::vector<Sample> qa = testing::run(a), qb = testing::run(b);
+  const Network net2 = network_of({a, b}, {LineTop{}, LineTop{}});
+  NetworkMemorySink sink2;
+  ASSERT_EQ(simulate_network(net2, sink2).status, "ok");
+  std::printf("[measured] rosenbrock 1e-7: tow force %.2e, %.2e of their peaks\n",
+              force_difference(qa, sink2.samples, 0), force_difference(qb, sink2.samples, 1));
+  constexpr double kTolerance = 1e-5;  // a hundred times the tolerance: both runs' errors against the exact one
+  EXPECT_LE(force_difference(qa, sink2.samples, 0), kTolerance);
+  EXPECT_LE(force_difference(qb, sink2.samples, 1), kTolerance);
+}
+
+/// A tree of every kind of node: a root line to a junction (a 2 kg point
+/// mass), a free line and a line to a sphere below the junction, and a
+/// free line hanging from a point of the sphere. rho: the water's density.
+Network every_node_tree(double rho) {
+  CableSpec c;
+  c.mass_per_length = 1.2;
+  c.n = 5, c.length = 10;
+  Model root = cable_model(c, rho);
+  Attachment junction;
+  junction.joint = root.cable.n(), junction.at = c.length, junction.mass = 2.0, junction.volume = 5e-4;
+  root.cable.attachments.push_back(junction);
+  c.n = 4, c.length = 6;
+  Model free_line = cable_model(c, rho);
+  c.n = 3, c.length = 5;
+  Model body_line = cable_model(c, rho);
+  testing::add_sphere_body(body_line, 20.0, 0.1);
+  c.n = 2, c.length = 3;
+  Model tail = cable_model(c, rho);
+  return network_of({root, free_line, body_line, tail},
+                    {LineTop{}, LineTop{0, -1, Vec3::Zero()}, LineTop{0, -1, Vec3::Zero()}, LineTop{2, 0, Vec3(0, 0, -0.1)}});
+}
+
+/// Apparent weight of everything in the network [N].
+double apparent_weight(const Network& net) {
+  double w = 0;
+  for (const Model& m : net.tree.lines) {
+    for (const Element& el : m.cable.elements) w += el.weight;
+    for (const Attachment& a : m.cable.attachments) w += (a.mass - m.fluid.rho * a.volume) * m.fluid.g;
+    for (const Body& b : m.bodies) w += (b.mass - m.fluid.rho * b.displaced_volume) * m.fluid.g;
+  }
+  return w;
+}
+
+// At rest, hanging: the vessel carries the whole tree's apparent weight
+// and nothing moves. The hanging start is the equilibrium, so the
+// tolerances are round-off of the sums (1e-10 relative) and of 10 s of
+// steps from it (1e-9 m).
+TEST(NetworkRun, ATreeAtRestHangsInEquilibrium) {
+  Network net = every_node_tree(1025);
+  for (Model& m : net.tree.lines) rk4(m, 10, 0.01);
+  NetworkMemorySink sink;
+  const RunStats st = simulate_network(net, sink);
+  ASSERT_EQ(st.status, "ok") << st.message;
+  const double W = apparent_weight(net);
+  for (const NetworkSample& s : sink.samples) {
+    EXPECT_NEAR(s.lines[0].tow_force.z(), W, 1e-10 * W) << "t = " << s.t;
+    for (std::size_t i = 0; i < s.lines.size(); ++i)
+      for (std::size_t k = 0; k < s.lines[i].node_pos.size(); ++k)
+        EXPECT_LE((s.lines[i].node_pos[k] - sink.samples.front().lines[i].node_pos[k]).norm(), 1e-9);
+  }
+  // Each line's top is its node: the junction and the sphere's point.
+  const NetworkSample& s = sink.samples.back();
+  EXPECT_LE((s.lines[1].node_pos.front() - s.lines[0].node_pos.back()).norm(), 1e-12);
+  EXPECT_LE((s.lines[2].node_pos.front() - s.lines[0].node_pos.back()).norm(), 1e-12);
+}
+
+/// Total energy of the network's sample in vacuum [J]: the lines, the
+/// junction (an attachment at a line's end) and the bodies.
+double energy(const Network& net, const NetworkSample& s) {
+  double E = 0;
+  for (std::size_t i = 0; i < net.tree.lines.size(); ++i) {
+    const Model& m = net.tree.lines[i];
+    E += cable_energy(m, s.lines[i]).total();
+    for (const Attachment& a : m.cable.attachments) {
+      const std::size_t k = static_cast<std::size_t>(a.joint);
+      E += 0.5 * a.mass * s.lines[i].node_vel[k].squaredNorm() + a.mass * m.fluid.g * s.lines[i].node_pos[k].z();
+    }
+    if (!m.bodies.empty()) E += body_energy(m, s.lines[i]).total();
+  }
+  return E;
+}
+
+// Without fluid, a tree released from a tilted start swings with its
+// energy conserved: a check of the tree's coupling at the nodes (a wrong
+// node force does work). rk4 at 1 ms conserves it to 2e-10 of the energy
+// swing here; the tolerance 1e-6 of the potential energy change is a
+// thousand times that.
+TEST(NetworkRun, ASwingingTreeInVacuumConservesEnergy) {
+  Network net = every_node_tree(0.0);
+  for (Model& m : net.tree.lines) {
+    rk4(m, 4, 0.001);
+    m.initial.kind = Initial::Kind::Direction;
+    m.initial.direction = Vec3(1, 0.3, -1).normalized();
+  }
+  NetworkMemorySink sink;
+  const RunStats st = simulate_network(net, sink);
+  ASSERT_EQ(st.status, "ok") << st.message;
+  const double E0 = energy(net, sink.samples.front());
+  double swing = 0, drift = 0;
+  for (const NetworkSample& s : sink.samples) {
+    double kinetic = 0;
+    for (std::size_t i = 0; i < net.tree.lines.size(); ++i) kinetic += cable_energy(net.tree.lines[i], s.lines[i]).kinetic;
+    swing = std::max(swing, kinetic);
+    drift = std::max(drift, std::abs(energy(net, s) - E0));
+  }
+  std::printf("[measured] energy drift %.2e J over a kinetic energy of up to %.3g J\n", drift, swing);
+  ASSERT_GT(swing, 10.0);  // it does swing [J]
+  EXPECT_LE(drift, 1e-6 * swing);
+}
+
+}  // namespace
+}  // namespace towsim
