@@ -20,9 +20,7 @@
 #include "towsim/version.hpp"
 
 namespace towsim::io {
-namespace {
 
-/// JSON for an extreme: {value, time}, null values when never set.
 nlohmann::ordered_json json_of(const Extreme& e) {
   nlohmann::ordered_json j;
   j["value"] = std::isnan(e.value) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(tidy(e.value));
@@ -30,10 +28,11 @@ nlohmann::ordered_json json_of(const Extreme& e) {
   return j;
 }
 
-/// A finite number as JSON, anything else as null.
 nlohmann::ordered_json num(double v) {
   return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
 }
+
+namespace {
 
 /// v rounded to two significant digits.
 double two_digits(double v) {
@@ -703,10 +702,7 @@ void RunWriter::flush() {
   last_write_ = std::chrono::steady_clock::now();
 }
 
-nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,
-                                    const RunStats& stats, const RunRecord& record, bool write_nodes) {
-  const Model& model = record.model();
-  const Extremes& ex = record.extremes();
+nlohmann::ordered_json run_json(const std::string& model_name, const RunStats& stats) {
   nlohmann::ordered_json j;
   j["model"] = model_name;
   j["version"] = kVersion;  // of the program that wrote the file
@@ -734,6 +730,14 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
   // rk4: smallest estimated stability limit of the step over the samples [s].
   j["rk4_stability_limit"] = stats.rk4_step_limit > 0 ? num(stats.rk4_step_limit) : nlohmann::ordered_json(nullptr);
   j["warnings"] = stats.warnings;
+  return j;
+}
+
+nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, const std::string& model_name,
+                                    const RunStats& stats, const RunRecord& record, bool write_nodes) {
+  const Model& model = record.model();
+  const Extremes& ex = record.extremes();
+  nlohmann::ordered_json j = run_json(model_name, stats);
   j["samples"] = record.samples();
   j["files"] = {{"timeseries", "timeseries.csv"},
                 {"nodes", write_nodes ? nlohmann::ordered_json("nodes.csv") : nlohmann::ordered_json(nullptr)}};

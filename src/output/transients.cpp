@@ -11,11 +11,6 @@ namespace towsim::io {
 
 namespace {
 
-/// A finite number as JSON, anything else as null.
-nlohmann::ordered_json num(double v) {
-  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
-}
-
 /// {value, time}: nulls when never set.
 nlohmann::ordered_json extreme(double v, double t) {
   return {{"value", num(v)}, {"time", std::isnan(v) ? nlohmann::ordered_json(nullptr) : num(t)}};

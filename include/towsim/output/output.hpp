@@ -228,6 +228,14 @@ class RunWriter : public RunRecord {
   std::vector<double> values_;
 };
 
+/// JSON for an extreme: {value, time} as written, nulls when never set.
+nlohmann::ordered_json json_of(const Extreme& e);
+/// A finite number as JSON, anything else as null.
+nlohmann::ordered_json num(double v);
+/// summary.json's run part: model name, version, status and message, end
+/// time, cost (steps, evaluations, wall time), error estimates, warnings.
+nlohmann::ordered_json run_json(const std::string& model_name, const RunStats& stats);
+
 /// summary.json content: model name, RunStats, extremes, `phases` (the
 /// manoeuvre phases and their transient figures), `final` (the last row by
 /// column name), the scenario echo.
