@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "towsim/model/network.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/scenario/scenario.hpp"
 #include "towsim/sim/simulate.hpp"
@@ -58,6 +59,11 @@ LoadedScenario load_input(const InputOptions& in);
 /// summary.json into the output directory. Invalid input writes nothing.
 /// `stop_flag` (may be null) interrupts the run when set. Returns an ExitStatus.
 int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, const volatile int* stop_flag = nullptr);
+
+/// `towsim run` on a network (the scenario's `lines:`): as run_command,
+/// with the network's files (docs/scenario.md "Networks").
+int run_network(const LoadedScenario& sc, const Network& net, const RunOptions& opts, std::ostream& out,
+                std::ostream& err, const volatile int* stop_flag);
 
 /// `towsim statics`: the steady-tow equilibrium at the tow law's final
 /// velocity; prints tow force, end and body depth, link force, element
