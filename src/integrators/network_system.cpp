@@ -134,6 +134,10 @@ double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
   for (std::size_t i = 0; i < rows_.size(); ++i)
     if (tree_.tops[i].line < 0) dv[i] = tow_jump_of(tree_.lines[i], t), size = std::max(size, dv[i].norm());
   if (size == 0) return 0;
+  // A tree's impulsive response is not computed: below kRoundOffJump the
+  // jump is the difference quotient's round-off at a change of acceleration
+  // (a ramp's end) and is left out; above it, refused.
+  if (has_nodes() && size <= NetworkSystem::kRoundOffJump) return 0;
   if (has_nodes())
     throw std::runtime_error("the tow velocity jumps at t = " + std::to_string(t) +
                                " s (the start of a heave or a track, or a tow at speed at t = 0): a network with "

@@ -77,7 +77,7 @@ RunStats simulate_network(const Network& net, NetworkSink& sink, const ProgressF
     // The tree's impulsive response is not computed: a jump of the tow velocity is refused before the run.
     if (rig.system.has_nodes())
       for (double b : rig.breakpoints())
-        if (b <= settings.sim.duration && rig.system.tow_jump(b) > 0)
+        if (b <= settings.sim.duration && rig.system.tow_jump(b) > NetworkSystem::kRoundOffJump)
           throw std::runtime_error("the tow velocity jumps at t = " + std::to_string(b) +
                                    " s (the start of a heave or a track): a network with lines below a junction or "
                                    "body takes a tow law whose velocity is continuous");

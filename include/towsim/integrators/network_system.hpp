@@ -39,6 +39,9 @@ class NetworkSystem final : public System {
   std::size_t offset(std::size_t line) const { return offset_[line]; }
   const Network& network() const { return net_; }
 
+  /// A jump of the tow velocity at most this is round-off of its difference
+  /// quotient at a change of acceleration (a ramp's end) [m/s].
+  static constexpr double kRoundOffJump = 1e-6;
   /// Largest jump of a root line's imposed tow velocity at t [m/s].
   double tow_jump(double t) const;
   /// True when a line hangs below a junction or body (not only from the vessel).
@@ -51,8 +54,9 @@ class NetworkSystem final : public System {
   /// quaternions renormalised.
   void project(StateVector& y, double t) override;
   /// The tow velocity's jump at t as each root line's impulsive response.
-  /// Throws std::runtime_error when it jumps on a tree with lines below a
-  /// node (the tree's impulse is not computed yet).
+  /// On a tree with lines below a node (whose impulse is not computed yet)
+  /// a jump of at most kRoundOffJump is left out, a larger one throws
+  /// std::runtime_error.
   double apply_tow_jump(StateVector& y, double t) override;
   /// Line 0's physical state (physical_into likewise).
   PhysicalState physical(const StateVector& y) const override;
