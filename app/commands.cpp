@@ -169,6 +169,12 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     err << sc.diags.str();
     return kExitInvalid;
   }
+  // NETWORK RUN DISPATCH: `towsim run` of a network (*sc.network) plugs in
+  // here; until then it is refused like the other commands refuse it.
+  if (sc.is_network()) {
+    err << network_refusal(sc, "towsim run")->str() << "\n";
+    return kExitInvalid;
+  }
   const Model& model = *sc.model;
   std::error_code ec;
   std::filesystem::create_directories(opts.out_dir, ec);
@@ -249,7 +255,10 @@ int check_command(const InputOptions& in, std::ostream& out, std::ostream& err) 
     err << sc.diags.str();
     return kExitInvalid;
   }
-  describe_model(*sc.model, out);
+  if (sc.is_network())
+    describe_network(sc, out);
+  else
+    describe_model(*sc.model, out);
   return kExitOk;
 }
 

@@ -114,4 +114,10 @@ int examples_command(const std::string& name, std::ostream& out, std::ostream& e
 /// count advised (steady solves: their cost grows with the element count).
 void describe_model(const Model& model, std::ostream& out, bool accuracy = true);
 
+/// Print a compiled network (sc.network): its lines (ends, lengths, elements,
+/// tow points or nodes), junctions and loops, the settings common to the
+/// lines once, and each line's derived quantities as describe_model prints
+/// a chain's.
+void describe_network(const LoadedScenario& sc, std::ostream& out);
+
 }  // namespace towsim::io

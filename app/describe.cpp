@@ -7,7 +7,9 @@
 #include "commands.hpp"
 #include "describe_sea.hpp"
 #include "towsim/dynamics/elastic.hpp"
+#include "towsim/scenario/spec.hpp"
 #include "towsim/sim/discretisation.hpp"
+#include "towsim/waves/vessel.hpp"
 
 namespace towsim::io {
 namespace {
@@ -128,12 +130,12 @@ void describe_cable(const Cable& c, std::ostream& out) {
              " m^2, added mass " + fmt_num(a.added_mass) + " kg");
 }
 
-void describe_body(const Body& b, const Cable& c, const Fluid& f, std::ostream& out) {
+void describe_body(const Body& b, const Cable& c, const Fluid& f, std::ostream& out, bool named = false) {
   const double weight = (b.mass - f.rho * b.displaced_volume) * f.g;
   if (b.inline_body)
     out << "in-line body " << b.name << ": at joint " << b.joint << " (" << fmt_num(arc_length(c, b.joint)) << " m)\n";
   else
-    out << "body\n";
+    out << (named ? "body " + b.name + ": at the line's end" : std::string("body")) << "\n";
   line(out, "mass", fmt_num(b.mass) + " kg");
   line(out, "displaced volume", fmt_num(b.displaced_volume) + " m^3");
   line(out, "apparent weight in water", fmt_num(weight) + " N (" + sinks(weight, b.mass * f.g) + ")");
@@ -280,6 +282,64 @@ void describe_model(const Model& m, std::ostream& out, bool accuracy) {
   describe_winch(m.winch, out);
   describe_run(m, out);
   if (accuracy) describe_accuracy(m, out);
+}
+
+void describe_network(const LoadedScenario& sc, std::ostream& out) {
+  const Network& net = *sc.network;
+  const TreeModel& tree = net.tree;
+  const Model& first = net.settings();
+  const std::size_t nl = tree.lines.size();
+  out << "scenario " << net.name << ": valid (a network of " << count(nl, "line") << ", "
+      << count(net.junctions.size(), "junction") << ", " << count(tree.loops.size(), "loop") << ")\n";
+  describe_fluid(first.fluid, out);
+  describe_seabed(first, out);
+  describe_tow(first.tow, out);
+  Model sea = first;  // the waves (once); the tow points are the lines'
+  sea.tow.vessel.reset();
+  describe_sea(sea, out);
+  const VesselSpec& vs = sc.spec.vessel;
+  const bool moving = vs.present && (vs.raos_given || vs.motions_given);
+  out << "vessel\n";
+  line(out, "motion",
+       !moving         ? std::string("none (the tow points move with the tow law, turned to its course)")
+       : vs.raos_given ? std::string("RAOs at the encounter frequency")
+                       : std::string("measured record (cubic spline)"));
+  for (const NamedPointSpec& tp : vs.tow_points)
+    line(out, "tow point " + tp.name.value,
+         vec(tp.point.value) + " m (vessel axes, from the " + (moving ? "RAO origin" : "tow law's point") + ")");
+  // The tree: each line's ends and where its top hangs.
+  const auto node_text = [&](int line_index, int body, const Vec3& point) {
+    const Model& m = tree.lines[static_cast<std::size_t>(line_index)];
+    const std::string& name = net.line_names[static_cast<std::size_t>(line_index)];
+    if (body < 0) return "the end of line " + name;
+    return "body " + m.bodies[static_cast<std::size_t>(body)].name + " of line " + name + " at " + vec(point) + " m";
+  };
+  out << "network\n";
+  for (std::size_t t = 0; t < nl; ++t) {
+    const Model& m = tree.lines[t];
+    const LineTop& top = tree.tops[t];
+    std::string where = top.line < 0 ? "tow point " + net.tow_point[t] + " " +
+                                           vec(m.tow.vessel ? m.tow.vessel->sheave() : Vec3::Zero()) + " m"
+                                     : "hangs from " + node_text(top.line, top.body, top.point);
+    line(out, "line " + net.line_names[t],
+         net.line_from[t] + " -> " + net.line_to[t] + ": " + fmt_num(m.cable.total_length()) + " m in " +
+             std::to_string(m.cable.n()) + " elements; " + where);
+  }
+  for (const NetworkJunction& j : net.junctions)
+    line(out, "junction " + j.name, "the end of line " + net.line_names[static_cast<std::size_t>(j.line)]);
+  for (const LoopJoint& l : tree.loops)
+    line(out, "loop",
+         "the end of line " + net.line_names[static_cast<std::size_t>(l.line)] + " joined to " +
+             node_text(l.node_line, l.body, l.point));
+  // Each line as a chain.
+  for (std::size_t t = 0; t < nl; ++t) {
+    const Model& m = tree.lines[t];
+    out << "line " << net.line_names[t] << ": " << net.line_from[t] << " -> " << net.line_to[t] << "\n";
+    describe_cable(m.cable, out);
+    for (const Body& b : m.bodies) describe_body(b, m.cable, m.fluid, out, true);
+    describe_winch(m.winch, out);
+  }
+  describe_run(first, out);
 }
 
 }  // namespace towsim::io

@@ -84,6 +84,7 @@ void print_statics(const Model& model, const StaticsResult& r, const Sample& s, 
 }  // namespace
 
 std::optional<Diagnostic> statics_refusal(const LoadedScenario& sc) {
+  if (auto refusal = network_refusal(sc, "towsim statics")) return refusal;
   if (sc.model->tow.mode == Tow::Mode::Motion) return std::nullopt;
   const Where& w = sc.spec.tow.mode.where;
   return Diagnostic{w.loc, w.path, "statics needs mode: motion (the steady speed comes from the tow law; got force)"};
@@ -167,12 +168,12 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
     err << sc.diags.str();
     return kExitInvalid;
   }
-  const Model& model = *sc.model;
   if (const auto refusal = statics_refusal(sc)) {
     // A rule between the command and the scenario, in the scenario's error format.
     err << refusal->str() << "\n";
     return kExitInvalid;
   }
+  const Model& model = *sc.model;
   // --target-depth: the deployed length for that depth, and the statics there.
   std::optional<Model> deployed;
   std::optional<TargetDepthResult> target;

@@ -182,9 +182,9 @@ std::vector<Figure> summary_figures(const nlohmann::ordered_json& s) {
 CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag,
                     const ProgressFn& progress) {
   CaseResult res;
-  if (!sc.ok()) {
+  if (!sc.ok() || sc.is_network()) {
     res.status = "invalid";
-    res.message = sc.diags.str();
+    res.message = sc.ok() ? network_refusal(sc, "towsim sweep")->str() : sc.diags.str();
     while (!res.message.empty() && res.message.back() == '\n') res.message.pop_back();
     return res;
   }
@@ -604,6 +604,10 @@ bool check_sweep(const std::string& file, std::ostream& err, CheckedSweep& c, st
         moved.error(from_set ? locs.common[static_cast<std::size_t>(e.loc.line) - 1] : e.loc, e.path, e.message);
     }
     err << moved.str();
+    return false;
+  }
+  if (const auto refusal = network_refusal(base, "towsim sweep")) {
+    err << refusal->str() << "\n";
     return false;
   }
   Diagnostics case_errors;

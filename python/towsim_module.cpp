@@ -130,6 +130,10 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
     out["errors"] = text(sc.diags.str());
     return out;
   }
+  if (const auto refusal = network_refusal(sc, "towsim.run")) {
+    out["errors"] = text(refusal->str() + "\n");
+    return out;
+  }
   const Model& model = *sc.model;
   ArraySink sink(model, model.sim.write_nodes);
   volatile int stop = 0;
@@ -177,6 +181,10 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
   const LoadedScenario sc = load(kind, source, label, sets);
   if (!sc.ok()) {
     out["errors"] = text(sc.diags.str());
+    return out;
+  }
+  if (const auto refusal = network_refusal(sc, "towsim.statics")) {
+    out["errors"] = text(refusal->str() + "\n");
     return out;
   }
   const Model& model = *sc.model;

@@ -275,14 +275,22 @@ ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diag
   MapReader env(r.get("environment"), "environment", d);
   parse_environment(env, s.environment, d);
   env.finish();
-  MapReader cable(r.get("cable", true), "cable", d);
-  parse_cable(cable, s.cable, d);
-  cable.finish();
-  const YNode* body_node = r.get("body");
-  MapReader body(body_node, "body", d);
-  s.body.present = body.present();
-  if (s.body.present) parse_body(body, s.body, d);
-  body.finish();
+  // A network (lines:) instead of cable: and body:.
+  s.network = root.find("lines") != nullptr;
+  if (s.network) {
+    r.get("cable");
+    r.get("body");
+  } else {
+    MapReader cable(r.get("cable", true), "cable", d);
+    parse_cable(cable, s.cable, d);
+    cable.finish();
+    const YNode* body_node = r.get("body");
+    MapReader body(body_node, "body", d);
+    s.body.present = body.present();
+    if (s.body.present) parse_body(body, s.body, d);
+    body.finish();
+  }
+  parse_network(r, root, s, d);
   MapReader tow(r.get("tow"), "tow", d);
   parse_tow(tow, s.tow, base_dir, d);
   tow.finish();
@@ -297,6 +305,7 @@ ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diag
   MapReader vessel(r.get("vessel"), "vessel", d);
   s.vessel.present = vessel.present();
   if (s.vessel.present) parse_vessel(vessel, s.vessel, base_dir, d);
+  if (s.vessel.present) parse_tow_points(vessel, r.get("vessel"), s, d);
   vessel.finish();
   MapReader winch(r.get("winch"), "winch", d);
   s.winch.present = winch.present();

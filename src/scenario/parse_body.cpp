@@ -85,13 +85,13 @@ void parse_thruster(MapReader& r, ThrusterSpec& th, Diagnostics& d) {
 
 }  // namespace
 
-void parse_body(MapReader& r, BodySpec& b, Diagnostics& d) {
+void parse_body(MapReader& r, BodySpec& b, Diagnostics& d, bool link_required) {
   b.where = r.where();
   r.read("name", b.name);
   r.read("mass", b.mass, true);
   r.read("inertia", b.inertia, true);
   r.read("center_of_gravity", b.center_of_gravity);
-  r.read("link_point", b.link_point, true);
+  r.read("link_point", b.link_point, link_required);
   r.read("lower_link_point", b.lower_link_point);
   r.read("volume", b.volume);
   r.read("center_of_buoyancy", b.center_of_buoyancy);

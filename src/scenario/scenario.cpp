@@ -11,13 +11,24 @@
 namespace towsim::io {
 namespace {
 
+/// Compile a chain or a network, as the spec is.
+void compile_any(const ScenarioSpec& spec, Diagnostics& d, LoadedScenario* into = nullptr) {
+  if (spec.is_network()) {
+    auto net = compile_network(spec, d);
+    if (into != nullptr && d.ok()) into->network = std::move(net);
+    return;
+  }
+  auto model = compile(spec, d);
+  if (into != nullptr && d.ok()) into->model = std::move(model);
+}
+
 /// The errors of `tree` with the overrides `only` (ranks from 1, as given) applied, as text.
 std::set<std::string> errors_with(YNode tree, const std::string& base_dir, const std::vector<std::string>& sets,
                                   const std::vector<std::size_t>& only) {
   Diagnostics d;
   for (std::size_t i : only) apply_set(tree, sets[i], static_cast<int>(i) + 1, d);
   const ScenarioSpec spec = parse_scenario(tree, base_dir, d);
-  static_cast<void>(compile(spec, d));
+  compile_any(spec, d);
   std::set<std::string> out;
   for (const auto& e : d.list()) out.insert(e.str());
   return out;
@@ -66,15 +77,19 @@ void finish_loading(LoadedScenario& s, const std::string& name, const std::strin
   if (!loaded) return;
   s.spec = parse_scenario(s.tree, base_dir, s.diags);
   if (s.spec.name.empty()) s.spec.name = name;
-  auto model = compile(s.spec, s.diags);
-  if (s.diags.ok()) {
-    s.model = std::move(model);
-  } else if (!sets.empty()) {
+  compile_any(s.spec, s.diags, &s);
+  if (!s.diags.ok() && !sets.empty()) {
     s.diags = blame_overrides(s.diags, plain, base_dir, sets);
   }
 }
 
 }  // namespace
+
+std::optional<Diagnostic> network_refusal(const LoadedScenario& s, const std::string& command) {
+  if (!s.is_network()) return std::nullopt;
+  return Diagnostic{s.spec.lines_where.loc, "lines",
+                    "networks are run by towsim run and towsim check (" + command + " does not take them yet)"};
+}
 
 LoadedScenario load_scenario_file(const std::string& path, const std::vector<std::string>& sets) {
   LoadedScenario s;

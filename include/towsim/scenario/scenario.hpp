@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "towsim/model/model.hpp"
+#include "towsim/model/network.hpp"
 #include "towsim/scenario/diagnostics.hpp"
 #include "towsim/scenario/spec.hpp"
 #include "towsim/scenario/yaml_tree.hpp"
@@ -14,14 +15,22 @@ namespace towsim::io {
 
 /// A scenario read, overridden, checked and (when valid) compiled.
 struct LoadedScenario {
-  YNode tree;                  // the YAML after the --set overrides
-  ScenarioSpec spec;           // as read
-  std::optional<Model> model;  // present when there is no error
-  Diagnostics diags;           // every error found
+  YNode tree;                      // the YAML after the --set overrides
+  ScenarioSpec spec;               // as read
+  std::optional<Model> model;      // a single chain, present when there is no error
+  std::optional<Network> network;  // a network (`lines:`), present when there is no error
+  Diagnostics diags;               // every error found
 
-  /// True when the scenario is valid and compiled.
-  bool ok() const { return model.has_value() && diags.ok(); }
+  /// True when the scenario is valid and compiled (a chain or a network).
+  bool ok() const { return (model.has_value() || network.has_value()) && diags.ok(); }
+  /// True for a network scenario (`lines:`): `model` is empty then.
+  bool is_network() const { return spec.is_network(); }
 };
+
+/// The refusal of a network by a command that takes single chains only: the
+/// error "FILE:LINE:COL: lines: networks are run by towsim run and towsim
+/// check (COMMAND does not take them yet)"; nullopt for a single chain.
+std::optional<Diagnostic> network_refusal(const LoadedScenario& s, const std::string& command);
 
 /// Load a scenario file: parse it, apply the `--set KEY=VALUE` overrides in
 /// order, read and check it, compile it. Relative track files are read from

@@ -295,6 +295,12 @@ struct RaoRowSpec {
   Where where;
 };
 
+/// A named point: a tow point of the vessel, a hull point of a body.
+struct NamedPointSpec {
+  Field<std::string> name;  // its key [-]
+  Field<Vec3> point;        // vessel or body axes [m]
+};
+
 /// vessel: RAOs (file or inline rows) or a measured motion record, and the sheave.
 struct VesselSpec {
   bool present = false;
@@ -307,6 +313,11 @@ struct VesselSpec {
   bool motions_given = false;
   Where motions_where;
   std::vector<RowSpec> motions;  // rows {t [s], surge, sway, heave [m], roll, pitch, yaw [deg]}
+  // vessel.tow_points (networks): named sheaves [m, vessel axes from the RAO
+  // origin; without a vessel motion, from the tow law's point].
+  bool tow_points_given = false;
+  Where tow_points_where;
+  std::vector<NamedPointSpec> tow_points;
 };
 
 /// winch: pay-out and haul-in at the tow point (docs/scenario.md "winch").
@@ -331,6 +342,34 @@ struct WinchSpec {
   Field<double> remove_at{0.1};     // remove below this many element lengths [-]
 };
 
+/// bodies item (networks): a body with every key of body: and named hull points.
+struct NetworkBodySpec {
+  BodySpec body;  // body.name required, body.link_point optional (a line's `to` sets it)
+  bool points_given = false;
+  Where points_where;
+  std::vector<NamedPointSpec> points;  // body axes [m]
+};
+
+/// junctions item (networks): a point mass where lines meet.
+struct JunctionSpec {
+  Where where;
+  Field<std::string> name;        // [-]
+  Field<double> mass{0.0};        // in air [kg]
+  Field<double> volume{0.0};      // displaced volume [m^3]
+  Field<double> drag_area{0.0};   // Cd A [m^2]
+  Field<double> added_mass{0.0};  // isotropic [kg]
+};
+
+/// lines item (networks): a cable from its top end to its bottom end.
+struct LineSpec {
+  Where where;
+  Field<std::string> name;  // [-]
+  Field<std::string> from;  // vessel.<tow point> | <junction> | <body>.<point>
+  Field<std::string> to;    // <junction> | <body>.<point> | free
+  CableSpec cable;          // every key of cable:
+  WinchSpec winch;          // lines.<i>.winch (present: a winch at the line's top)
+};
+
 /// A whole scenario as written.
 struct ScenarioSpec {
   std::string name;         // `name:` key, else the file stem or example name
@@ -346,6 +385,17 @@ struct ScenarioSpec {
   SimulationSpec simulation;
   WavesSpec waves;
   VesselSpec vessel;
+  // A network (`lines:` given, instead of cable: and body:).
+  bool network = false;
+  Where lines_where;
+  std::vector<LineSpec> lines;
+  Where bodies_where;
+  std::vector<NetworkBodySpec> bodies;
+  Where junctions_where;
+  std::vector<JunctionSpec> junctions;
+
+  /// True for a network (`lines:`), compiled by compile_network.
+  bool is_network() const { return network; }
 };
 
 }  // namespace towsim::io
