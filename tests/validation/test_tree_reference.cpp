@@ -75,7 +75,7 @@ std::pair<Model, TreeModel> cut_chain() {
   upper.cable.attachments.push_back({4, 40.0, 12.0, 0.002, 0.04, 3.0});
   testing::add_sphere_body(lower, 8.0, 0.12);
   upper.tow = chain.tow;
-  return {chain, TreeModel{{upper, lower}, {LineTop{}, LineTop{0, -1, Vec3::Zero()}}}};
+  return {chain, TreeModel{{upper, lower}, {LineTop{}, LineTop{0, -1, Vec3::Zero()}}, {}}};
 }
 
 /// A random state of each line; the roots on their tow law at t; elastic
@@ -160,7 +160,7 @@ std::array<double, 4> chain_against_tree(const Model& chain, const PhysicalState
   const double hg = 0.05;
   ImplicitWorkspace ic(chain);
   local_jacobian(chain, s, wc, t, ic.jac);
-  TreeModel one{{chain}, {LineTop{}}};
+  TreeModel one{{chain}, {LineTop{}}, {}};
   const StageRhs rc = random_rhs(one, rng)[0];
   implicit_stage_solve(chain, s, wc, hg, rc, ic);
   TreeImplicitWorkspace it(tree, wt);
@@ -342,7 +342,7 @@ TEST(TreeStageSolve, InlineBodyAsATreeIsTheSameChain) {
   upper.bodies[0].joint = -1;
   lower.cable.elements.erase(lower.cable.elements.begin(), lower.cable.elements.begin() + 5);
   lower.bodies.erase(lower.bodies.begin());
-  const TreeModel tree{{upper, lower}, {LineTop{}, LineTop{0, 0, chain.bodies[0].lower_link_point}}};
+  const TreeModel tree{{upper, lower}, {LineTop{}, LineTop{0, 0, chain.bodies[0].lower_link_point}}, {}};
   std::mt19937 rng(21);
   PhysicalState s = testing::random_state(chain, rng);
   const TowKinematics k = tow_kinematics(chain.tow, 3.0);
