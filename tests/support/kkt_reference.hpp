@@ -23,7 +23,7 @@ namespace towsim::testing {
 /// one force per joint, one spin multiplier per rigid element (alpha . e =
 /// 0) and, with a tension-controlled winch (line 0 only), the pay-out
 /// acceleration. Lines hanging from a node are joined to it by one more
-/// ball joint each.
+/// ball joint each, and each loop's cable end to its node by one more.
 class KktReference {
  public:
   /// A chain: its top joint moves at a0 [m/s^2] (the tow law's acceleration at t).
@@ -35,7 +35,19 @@ class KktReference {
   /// per line (read for the roots only).
   KktReference(const TreeModel& tree, const TreeState& s, const TreeWorkspace& ws, const std::vector<Vec3>& a0,
                double t)
-      : KktReference(pointers(tree.lines), tree.tops, pointers(s), pointers(ws.lines), a0, t, &ws.slot) {}
+      : KktReference(pointers(tree.lines), tree.tops, pointers(s), pointers(ws.lines), a0, t, &ws.slot, &tree.loops,
+                     &ws.loop_slot) {}
+
+  /// A tree's stage system (tree_stage_solve at hg, iw after it: its loads
+  /// pass's right-hand side as the loads): the same parts and joints at zero
+  /// velocity with the stage's inertias M + hg C + hg^2 K, the roots held
+  /// (tow mode motion, no winch, no seabed). Unknowns: the increments z;
+  /// the joints' multipliers are impulses [N s].
+  KktReference(const TreeModel& tree, const TreeState& s, const TreeWorkspace& ws, const TreeImplicitWorkspace& iw,
+               double hg)
+      : KktReference(pointers(tree.lines), tree.tops, pointers(s), pointers(ws.lines),
+                     std::vector<Vec3>(tree.lines.size(), Vec3::Zero()), 0.0, &ws.slot, &tree.loops, &ws.loop_slot,
+                     Stage{pointers(iw.lines), hg}) {}
 
   Vec3 alpha(std::size_t k, std::size_t line = 0) const { return alpha_[line][k]; }
   double length_acc(std::size_t k, std::size_t line = 0) const { return length_acc_[line][k]; }
@@ -44,12 +56,18 @@ class KktReference {
   double pay_acc() const { return pay_acc_; }
   /// Force through a joint on the part below it (by the joint's index in order).
   Vec3 force(std::size_t j) const { return lambda_.segment<3>(static_cast<Eigen::Index>(3 * j)); }
+  /// Loop j's force: its node's on its line's cable end [N].
+  Vec3 loop_force(std::size_t j) const { return force(loop_joint_[j]); }
   // Per line: the joint below each cable joint k (k = 0..n) giving f_k
   // (kNone at a free end with nothing below it: f_n = 0), and per body its links.
   std::vector<std::vector<std::size_t>> joint_of_node, upper_link, lower_link;
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 
  private:
+  struct Stage {
+    std::vector<const ImplicitWorkspace*> iw;  // empty: the forward dynamics
+    double hg;                                 // [s]
+  };
   template <class T>
   static std::vector<const T*> pointers(const std::vector<T>& v) {
     std::vector<const T*> p;
@@ -57,8 +75,15 @@ class KktReference {
     return p;
   }
   KktReference(std::vector<const Model*> m, std::vector<LineTop> tops, std::vector<const PhysicalState*> s,
-               std::vector<const Workspace*> ws, std::vector<Vec3> a0, double t, const std::vector<int>* slot = nullptr)
-      : m_(std::move(m)), tops_(std::move(tops)), s_(std::move(s)), ws_(std::move(ws)), a0_(std::move(a0)) {
+               std::vector<const Workspace*> ws, std::vector<Vec3> a0, double t, const std::vector<int>* slot = nullptr,
+               const std::vector<LoopJoint>* loops = nullptr, const std::vector<int>* loop_slot = nullptr,
+               Stage stage = {})
+      : m_(std::move(m)),
+        tops_(std::move(tops)),
+        s_(std::move(s)),
+        ws_(std::move(ws)),
+        a0_(std::move(a0)),
+        stage_(std::move(stage)) {
     const std::size_t nl = m_.size();
     el_.resize(nl), body_.resize(nl), att_.resize(nl), end_point_.resize(nl);
     joint_of_node.resize(nl), upper_link.resize(nl), lower_link.resize(nl);
@@ -72,6 +97,18 @@ class KktReference {
     }
     winch_setup(t);
     for (std::size_t l = 0; l < nl; ++l) build_joints(l, slot);
+    // Loops: the node's point above, the loop line's cable end below.
+    for (std::size_t j = 0; loops != nullptr && j < loops->size(); ++j) {
+      const LoopJoint& lp = (*loops)[j];
+      const auto nl_j = static_cast<std::size_t>(lp.node_line);
+      Point node = end_point_[nl_j];
+      if (lp.body >= 0) {
+        const auto b = static_cast<std::size_t>(lp.body);
+        node = body_point(nl_j, b, ws_[nl_j]->body[b].children[static_cast<std::size_t>((*loop_slot)[j])].r);
+      }
+      loop_joint_.push_back(joints_.size());
+      link(node, end_point_[static_cast<std::size_t>(lp.line)]);
+    }
     solve();
   }
 
@@ -98,10 +135,12 @@ class KktReference {
     if (elastic(l, k)) return {el_[l][k], 6, Vec3::Zero(), Vec3::Zero(), 0.5 * side};
     const double L = s_[l]->length_of(*m_[l], k);  // current length [m]
     const Vec3 r = side * 0.5 * L * s_[l]->e[k];
+    if (staged()) return {el_[l][k], 6, r, Vec3::Zero()};  // zero velocity
     return {el_[l][k], 6, r, s_[l]->w[k].cross(s_[l]->w[k].cross(r))};
   }
   Point body_point(std::size_t l, std::size_t b, const Vec3& r) const {
     const Vec3& w = ws_[l]->body[b].w;
+    if (staged()) return {body_[l][b], 6, r, Vec3::Zero()};
     return {body_[l][b], 6, r, w.cross(w.cross(r))};
   }
   Point attachment_point(std::size_t l, std::size_t i) const { return {att_[l][i], 3, Vec3::Zero(), Vec3::Zero()}; }
@@ -116,7 +155,7 @@ class KktReference {
   /// q'' = (l / L_1) L_1'' + 2 l' L_1' / L_1 - 2 l L_1'^2 / L_1^2.
   /// sheave_c_ is the part without L'', sheave_u_ the coefficient of L''.
   void winch_setup(double t) {
-    if (!ws_[0]->winch) return;
+    if (!ws_[0]->winch || staged()) return;
     const Model& m = *m_[0];
     const PhysicalState& s = *s_[0];
     const Vec3& e1 = s.e[0];
@@ -213,8 +252,59 @@ class KktReference {
       A.block<3, 3>(r, c0 + 3) -= sign * skew(p.r);
   }
 
+  bool staged() const { return !stage_.iw.empty(); }
+
+  /// The stage's inertias M + hg C + hg^2 K and its right-hand side's loads
+  /// of line l's parts (as put_parts): a rigid element's damping at G and
+  /// rocking stiffness in its rotation block, an elastic element's spring S
+  /// on d (the KKT's d-block Mt/12 + S: the recursion's Mt/3 + hg C/4 + S on
+  /// (v_top, d') seen from G), a body's damping and rotational stiffness, an
+  /// attachment's damping and stiffness at its joint.
+  void put_stage_parts(std::size_t l, Eigen::MatrixXd& A, Eigen::VectorXd& rhs) const {
+    const Model& m = *m_[l];
+    const PhysicalState& s = *s_[l];
+    const Workspace& ws = *ws_[l];
+    const ImplicitWorkspace& iw = *stage_.iw[l];
+    const LocalJacobian& jac = iw.jac;
+    const double hg = stage_.hg;
+    for (std::size_t k = 0; k < m.cable.elements.size(); ++k) {
+      const auto o = static_cast<Eigen::Index>(el_[l][k]);
+      const Vec3& e = s.e[k];
+      const Element& el = element(l, k);
+      const Mat3 P = Mat3::Identity() - e * e.transpose();
+      A.block<3, 3>(o, o) = element_mass(el, e) + hg * jac.element_damping[k];
+      rhs.segment<3>(o) = iw.F[k];
+      if (elastic(l, k)) {
+        const double len = s.length_of(m, k);
+        const Mat3 S = (hg * element_axial_damping_rate(el, len) + hg * hg * element_axial_stiffness(el, len)) *
+                           (e * e.transpose()) +
+                       hg * hg * jac.element_stiffness[k] / (len * len) * P;
+        A.block<3, 3>(o + 3, o + 3) = element_mass(el, e) / 12 + S;
+        rhs.segment<3>(o + 3) = iw.Fd[k];
+      } else {
+        A.block<3, 3>(o + 3, o + 3) = (element_rot_inertia(el) + hg * hg * jac.element_stiffness[k]) * P;
+        rhs.segment<3>(o + 3) = iw.Mom[k];
+      }
+    }
+    for (std::size_t b = 0; b < body_[l].size(); ++b) {
+      const auto o = static_cast<Eigen::Index>(body_[l][b]);
+      Mat6 Me = ws.body[b].Mw + hg * jac.body_damping[b];
+      Me.bottomRightCorner<3, 3>() += hg * hg * jac.body_stiffness[b];
+      A.block<6, 6>(o, o) = Me;
+      rhs.segment<3>(o) = iw.Fb[b];
+      rhs.segment<3>(o + 3) = iw.Mb[b];
+    }
+    for (std::size_t i = 0; i < att_[l].size(); ++i) {
+      const auto o = static_cast<Eigen::Index>(att_[l][i]);
+      const auto j = static_cast<std::size_t>(m.cable.attachments[i].joint);
+      A.block<3, 3>(o, o) = ws.Ma[j] + hg * jac.joint_damping[j] + hg * hg * jac.joint_stiffness[j];
+      rhs.segment<3>(o) = iw.Fa[j];
+    }
+  }
+
   /// Inertia and known loads of line l's parts: M x = F - h + sum J^T lambda.
   void put_parts(std::size_t l, Eigen::MatrixXd& A, Eigen::VectorXd& rhs) const {
+    if (staged()) return put_stage_parts(l, A, rhs);
     const Model& m = *m_[l];
     const PhysicalState& s = *s_[l];
     const Workspace& ws = *ws_[l];
@@ -322,6 +412,12 @@ class KktReference {
         continue;
       }
       const Vec3 aG = x_.segment<3>(o), dd = x_.segment<3>(o + 3);
+      if (staged()) {
+        // The stage's d-increment: l' along e, l (z x e) normal to it.
+        length_acc_[l][k] = s.e[k].dot(dd);
+        alpha_[l][k] = s.e[k].cross(dd) / s.length_of(m, k);
+        continue;
+      }
       const Vec3 a_bottom = aG + 0.5 * dd;
       const Vec3 a_joint = k == 0 && l == 0 && ws_[0]->winch ? a0_[0] : Vec3(aG - 0.5 * dd);
       const Vec3 d2 = a_bottom - a_joint;  // d_k'' [m/s^2]
@@ -341,15 +437,17 @@ class KktReference {
   std::vector<const PhysicalState*> s_;
   std::vector<const Workspace*> ws_;
   std::vector<Vec3> a0_;
+  Stage stage_;
   std::size_t dofs_ = 0;
   std::vector<std::vector<int>> el_, body_, att_;
   std::vector<Point> end_point_;  // per line: the point at its cable end (after an attachment there)
   std::vector<Joint> joints_;
-  int drum_ = -1;                      // offset of the unknown L'' (tension winch), -1 = none
-  std::size_t sheave_joint_ = 0;       // the joint at the winch's sheave
-  Vec3 sheave_c_ = Vec3::Zero();       // sheave material's acceleration minus a_0, without L'' [m/s^2]
-  Vec3 sheave_u_ = Vec3::Zero();       // its coefficient of L'' [-]
-  double pay_rate_ = 0, pay_acc_ = 0;  // winch L' [m/s], L'' [m/s^2]
+  std::vector<std::size_t> loop_joint_;  // per loop: its joint
+  int drum_ = -1;                        // offset of the unknown L'' (tension winch), -1 = none
+  std::size_t sheave_joint_ = 0;         // the joint at the winch's sheave
+  Vec3 sheave_c_ = Vec3::Zero();         // sheave material's acceleration minus a_0, without L'' [m/s^2]
+  Vec3 sheave_u_ = Vec3::Zero();         // its coefficient of L'' [-]
+  double pay_rate_ = 0, pay_acc_ = 0;    // winch L' [m/s], L'' [m/s^2]
   Eigen::VectorXd x_, lambda_;
   std::vector<std::vector<Vec3>> alpha_;         // [rad/s^2]
   std::vector<std::vector<double>> length_acc_;  // [m/s^2]

@@ -11,8 +11,14 @@
 // its node's articulated inertia and bias (as an in-line body takes the
 // cable below it); down from the roots, each line driven at its top by its
 // node's acceleration. Cost O(total elements).
+//
+// Loops (TreeModel::loops, docs/theory.md §5.7 "Loops"): each closing ball
+// joint's force, one multiplier vector per loop, from a small dense solve
+// per evaluation (and per stage factorisation) of the loop points' relative
+// accelerations, which are affine in the multipliers.
 #pragma once
 
+#include <Eigen/LU>
 #include <vector>
 
 #include "towsim/dynamics/implicit.hpp"
@@ -30,13 +36,24 @@ struct TreeWorkspace {
   std::vector<Workspace> lines;
   std::vector<int> slot;                // per line hanging from a body: its index in that body's children, else -1
   std::vector<Vec3> top, top_velocity;  // per line: its top joint P_0 and its velocity [m], [m/s], R_g
+  // Loops (empty without): the multipliers and their solve's work.
+  std::vector<int> loop_slot;    // per loop closing on a body's point: its index in that body's children, else -1
+  std::vector<Vec3> loop_force;  // per loop: the force of its node on the line's cable end [N, R_g] (the leg's
+                                 // pull is -loop_force on the node)
+  std::vector<char> loop_path;   // per line: on a path from a root to a loop's point (its passes see the loop forces)
+  Eigen::MatrixXd loop_G;        // the loop points' relative accelerations per unit loop force (3L x 3L) [1/kg]
+  Eigen::VectorXd loop_gap;      // the free sweep's relative accelerations (3L) [m/s^2]
+  Eigen::VectorXd loop_lambda;   // the loop forces stacked (3L) [N]
+  Eigen::PartialPivLU<Eigen::MatrixXd> loop_lu;
   /// True when this workspace was sized for `tree`.
   bool fits(const TreeModel& tree) const;
 };
 
 /// Accelerations of every line of the tree at (s, t): each line's ws.acc as
 /// forward_dynamics gives a chain's (acc.tow_force: the force on the line at
-/// its top, from the vessel or its node). Throws std::logic_error when the
+/// its top, from the vessel or its node). With loops, their forces in
+/// ws.loop_force (the state must satisfy the loops' position and velocity
+/// constraints: tree_close_loops). Throws std::logic_error when the
 /// workspace or state does not fit the tree.
 void tree_forward_dynamics(const TreeModel& tree, const TreeState& s, double t, TreeWorkspace& ws);
 
@@ -44,6 +61,13 @@ void tree_forward_dynamics(const TreeModel& tree, const TreeState& s, double t, 
 struct TreeImplicitWorkspace {
   TreeImplicitWorkspace(const TreeModel& tree, const TreeWorkspace& ws);
   std::vector<ImplicitWorkspace> lines;
+  // Loops (empty without): the stage's multipliers (impulses) and their solve, as TreeWorkspace's.
+  std::vector<Vec3> loop_impulse;  // per loop: the impulse of its node on the line's cable end [N s, R_g]
+  std::vector<StageRhs> zero_rhs;  // per line: a zero right-hand side (the unit responses' loads)
+  Eigen::MatrixXd loop_G;          // relative increments per unit impulse (3L x 3L) [1/kg]
+  Eigen::VectorXd loop_gap;        // [m/s]
+  Eigen::VectorXd loop_mu;         // the impulses stacked (3L) [N s]
+  Eigen::PartialPivLU<Eigen::MatrixXd> loop_lu;
 };
 
 /// Each line's local Jacobian (local_jacobian) at the evaluation ws holds
@@ -60,7 +84,17 @@ void tree_implicit_factor(const TreeModel& tree, const TreeState& s, const TreeW
 /// StageRhs per line): the right-hand side down from the roots, the bias up
 /// from the last line, the increments down; each line's result in its
 /// ImplicitWorkspace (a line below a node: iw.a0 is its node's increment).
+/// With loops, z keeps them closed to first order (the gap of the loop
+/// points' increments is zero), their impulses in iw.loop_impulse.
 void tree_stage_solve(const TreeModel& tree, const TreeState& s, const TreeWorkspace& ws, double hg,
                       const std::vector<StageRhs>& r, TreeImplicitWorkspace& iw);
+
+/// Put a state that nearly closes its loops onto them: the positions by
+/// Gauss-Newton steps on the element directions and the bodies' attitudes
+/// (least norm in the parts' rotational inertias; lengths and roots held),
+/// to 1e-12 m; then the velocities (the elements' and bodies' angular
+/// velocities) projected onto the loops' velocity constraint the same way.
+/// Returns the largest position gap left [m]. No loops: nothing changes.
+double tree_close_loops(const TreeModel& tree, TreeState& s);
 
 }  // namespace towsim
