@@ -169,12 +169,7 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
     err << sc.diags.str();
     return kExitInvalid;
   }
-  // NETWORK RUN DISPATCH: `towsim run` of a network (*sc.network) plugs in
-  // here; until then it is refused like the other commands refuse it.
-  if (sc.is_network()) {
-    err << network_refusal(sc, "towsim run")->str() << "\n";
-    return kExitInvalid;
-  }
+  if (sc.is_network()) return run_network(sc, *sc.network, opts, out, err, stop_flag);
   const Model& model = *sc.model;
   std::error_code ec;
   std::filesystem::create_directories(opts.out_dir, ec);

@@ -38,6 +38,18 @@ std::string network_end_line(const Network& net, const RunStats& stats, const Ne
 
 int run_network(const LoadedScenario& sc, const Network& net, const RunOptions& opts, std::ostream& out,
                 std::ostream& err, const volatile int* stop_flag) {
+  // What a network's run does not do yet: refused before anything is written.
+  for (std::size_t i = 0; i < net.tree.lines.size(); ++i)
+    if (net.tree.lines[i].winch.active()) {
+      err << "towsim: run: line " << net.line_names[i]
+          << ": a winch on a network's line is not run yet (give the line its deployed length)\n";
+      return kExitInvalid;
+    }
+  if (net.settings().initial.kind == Initial::Kind::Steady) {
+    err << "towsim: run: initial: steady is not available for networks yet (use hanging or {direction: [x, y, "
+           "z]}; the run settles)\n";
+    return kExitInvalid;
+  }
   std::error_code ec;
   std::filesystem::create_directories(opts.out_dir, ec);
   if (ec || !std::filesystem::is_directory(opts.out_dir)) {

@@ -30,6 +30,9 @@ TreeState shapes(const std::vector<std::unique_ptr<ChainRows>>& rows) {
   return s;
 }
 
+/// A loop's initial gap left by its assembly at most this [m].
+constexpr double kLoopAssembly = 1e-9;
+
 }  // namespace
 
 NetworkSystem::NetworkSystem(const Network& net)
@@ -114,6 +117,11 @@ void NetworkSystem::project(StateVector& y, double t) {
     }
     rows_[i]->normalise(yi);
   }
+  // Loops: the state put back onto their position and velocity constraints.
+  if (tree_.loops.empty()) return;
+  tree_state_into(y, js_close_);
+  tree_close_loops(tree_, js_close_);
+  for (std::size_t i = 0; i < rows_.size(); ++i) rows_[i]->pack(js_close_[i], y.data() + offset_[i]);
 }
 
 double NetworkSystem::tow_jump(double t) const {
@@ -207,6 +215,11 @@ TreeState network_initial_state(const Network& net) {
       throw std::invalid_argument("towsim: network: initial: steady is not available for networks yet");
     s.push_back(initial_state(m));
   }
+  // A loop starts closed: assembled from the hanging lines.
+  if (!tree.loops.empty() && !(tree_close_loops(tree, s) <= kLoopAssembly))
+    throw std::invalid_argument(
+        "towsim: network: a loop could not be closed from the initial state (give initial: {direction: ...} "
+        "along which the loop's lines can meet)");
   // A line below a node starts at its node: the tree's kinematics give it.
   TreeWorkspace ws(tree);
   tree_forward_dynamics(tree, s, 0.0, ws);

@@ -51,7 +51,7 @@ class NetworkSystem final : public System {
   StateVector initial(const PhysicalState& s, double t) override;
   void derivative(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override;
   /// Every root line's tow rows to its imposed motion, unit vectors and
-  /// quaternions renormalised.
+  /// quaternions renormalised, the loops closed (tree_close_loops).
   void project(StateVector& y, double t) override;
   /// The tow velocity's jump at t as each root line's impulsive response.
   /// On a tree with lines below a node (whose impulse is not computed yet)
@@ -86,10 +86,12 @@ class NetworkSystem final : public System {
   std::vector<StageRhs> rhs_;                     // per line: one stage's right-hand side
   std::vector<CourseCursor> course_;              // per line: the tow law's cursor for project()
   Accelerations forces_;                          // gather_forces()
+  TreeState js_close_;                            // project()'s state while closing loops (storage)
 };
 
 /// Initial state of a network's tree (hanging, or along a direction: every
-/// line from its top, at rest; elastic lines at their own static stretch).
+/// line from its top, at rest; elastic lines at their own static stretch;
+/// loops closed by tree_close_loops, std::invalid_argument when they cannot be).
 /// Throws std::invalid_argument for `initial: steady` (not for networks yet).
 TreeState network_initial_state(const Network& net);
 

@@ -1,0 +1,84 @@
+// `towsim run` on networks: the files' columns, and the bridle's leg
+// tensions against statics by hand (shared/MODEL.md §10).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "../support/cli.hpp"
+
+namespace {
+
+using towsim::testing::quoted;
+using towsim::testing::read_csv;
+using towsim::testing::run_towsim;
+using towsim::testing::slurp;
+using Cli = towsim::testing::TempDirTest;
+
+// A 100 kg sphere of radius 0.2 m hung at rest from a junction by two light
+// legs (a = 2 m, hull points 2b = 2 m apart): each leg carries
+// W / (2 cos(asin(b/a))), W the sphere's apparent weight. The legs weigh
+// 2 g each: the tolerance 0.02 N is their weight in water.
+const char* kBridleAtRest = R"(bodies:
+  - name: box
+    mass: 100
+    inertia: [10, 10, 10]
+    link_point: [1, 0, 0.2]
+    spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]
+    points: {a: [1, 0, 0.2], b: [-1, 0, 0.2]}
+junctions:
+  - {name: j, mass: 1}
+lines:
+  - {name: main, from: vessel.top, to: j, length: 10, elements: 5, mass_per_length: 1.0, diameter: 0.02}
+  - {name: leg_a, from: j, to: box.a, length: 2, elements: 1, mass_per_length: 0.001, diameter: 0.001}
+  - {name: leg_b, from: j, to: box.b, length: 2, elements: 1, mass_per_length: 0.001, diameter: 0.001}
+vessel:
+  tow_points: {top: [0, 0, 0]}
+tow: {motion: []}
+initial: hanging
+simulation: {duration: 60, integrator: rosenbrock, output_interval: 1}
+)";
+
+TEST_F(Cli, BridleAtRestCarriesTheLegTensionsOfStatics) {
+  const auto file = dir_ / "bridle.yaml";
+  std::ofstream(file) << kBridleAtRest;
+  const auto r = run_towsim("run " + quoted(file) + " -o " + quoted(dir_ / "out") + " -q");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto ts = read_csv(dir_ / "out" / "timeseries.csv");
+  const double W = (100 - 1025 * 4.0 / 3 * std::numbers::pi * 0.008) * 9.81;  // [N]
+  const double expected = W / (2 * std::cos(std::asin(0.5)));
+  constexpr double kLegWeight = 0.02;  // [N]
+  for (const char* leg : {"leg_a_top_tension", "leg_b_top_tension"}) {
+    const int c = ts.column(leg);
+    ASSERT_GE(c, 0) << leg;
+    EXPECT_NEAR(ts.rows.back()[static_cast<std::size_t>(c)], expected, kLegWeight) << leg;
+  }
+  // Every line, body and junction by name; nodes.csv with the line first.
+  for (const char* col : {"main_top_force_z", "main_end_depth", "box_depth", "box_link_tension", "j_x", "j_depth"})
+    EXPECT_GE(ts.column(col), 0) << col;
+  EXPECT_EQ(slurp(dir_ / "out" / "nodes.csv").rfind("line,time,node,x,y,z", 0), 0u);
+  const std::string summary = slurp(dir_ / "out" / "summary.json");
+  EXPECT_NE(summary.find("\"max_leg_a_top_tension\""), std::string::npos);
+  EXPECT_NE(summary.find("\"max_box_depth\""), std::string::npos);
+}
+
+TEST_F(Cli, NetworkWinchIsRefusedBeforeAnythingIsWritten) {
+  const auto file = dir_ / "winch.yaml";
+  std::ofstream(file) << R"(lines:
+  - {name: main, from: vessel.top, to: free, length: 10, elements: 5, mass_per_length: 1.0, diameter: 0.02,
+     winch: {rate: 0.5}}
+vessel:
+  tow_points: {top: [0, 0, 0]}
+tow: {motion: []}
+simulation: {duration: 10}
+)";
+  const auto r = run_towsim("run " + quoted(file) + " -o " + quoted(dir_ / "out"));
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_EQ(r.out, "towsim: run: line main: a winch on a network's line is not run yet (give the line its deployed "
+                   "length)\n");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out" / "timeseries.csv"));
+}
+
+}  // namespace
