@@ -146,6 +146,15 @@ int report_run(const RunStats& stats, const Model& model, const RunOptions& opts
 
 }  // namespace
 
+bool create_output_dir(const std::string& dir, std::ostream& err) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (!ec && std::filesystem::is_directory(dir)) return true;
+  err << "towsim: cannot create the output directory '" << dir << "'" << (ec ? ": " + ec.message() : std::string())
+      << "\n";
+  return false;
+}
+
 LoadedScenario load_input(const InputOptions& in) {
   if (in.scenario.empty() == in.example.empty()) {
     LoadedScenario s;
@@ -171,13 +180,7 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
   }
   if (sc.is_network()) return run_network(sc, *sc.network, opts, out, err, stop_flag);
   const Model& model = *sc.model;
-  std::error_code ec;
-  std::filesystem::create_directories(opts.out_dir, ec);
-  if (ec || !std::filesystem::is_directory(opts.out_dir)) {
-    err << "towsim: cannot create the output directory '" << opts.out_dir << "'"
-        << (ec ? ": " + ec.message() : std::string()) << "\n";
-    return kExitError;
-  }
+  if (!create_output_dir(opts.out_dir, err)) return kExitError;
   try {
     const DirLock lock(opts.out_dir);  // one towsim at a time in a directory
     remove_run_outputs(opts.out_dir);  // no stale file of a previous run

@@ -55,6 +55,11 @@ struct StaticsOptions {
 /// of a file or an example); every problem is in the result's diagnostics.
 LoadedScenario load_input(const InputOptions& in);
 
+/// Create the output directory `dir` (and its parents) when missing; false,
+/// with "towsim: cannot create the output directory ..." on `err`, when it
+/// cannot be or is not a directory.
+bool create_output_dir(const std::string& dir, std::ostream& err);
+
 /// `towsim run`: simulate and write timeseries.csv, nodes.csv and
 /// summary.json into the output directory. Invalid input writes nothing.
 /// `stop_flag` (may be null) interrupts the run when set. Returns an ExitStatus.

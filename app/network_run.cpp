@@ -50,13 +50,7 @@ int run_network(const LoadedScenario& sc, const Network& net, const RunOptions& 
            "z]}; the run settles)\n";
     return kExitInvalid;
   }
-  std::error_code ec;
-  std::filesystem::create_directories(opts.out_dir, ec);
-  if (ec || !std::filesystem::is_directory(opts.out_dir)) {
-    err << "towsim: cannot create the output directory '" << opts.out_dir << "'"
-        << (ec ? ": " + ec.message() : std::string()) << "\n";
-    return kExitError;
-  }
+  if (!create_output_dir(opts.out_dir, err)) return kExitError;
   try {
     const DirLock lock(opts.out_dir);  // one towsim at a time in a directory
     remove_run_outputs(opts.out_dir);  // no stale file of a previous run

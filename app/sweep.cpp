@@ -654,13 +654,7 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
   const SweepLocs& locs = checked.locs;
   const LoadedScenario& base = checked.base;
 
-  std::error_code ec;
-  std::filesystem::create_directories(opts.out_dir, ec);
-  if (ec || !std::filesystem::is_directory(opts.out_dir)) {
-    err << "towsim: cannot create the output directory '" << opts.out_dir << "'"
-        << (ec ? ": " + ec.message() : std::string()) << "\n";
-    return kExitError;
-  }
+  if (!create_output_dir(opts.out_dir, err)) return kExitError;
   const std::size_t n = spec.cases.size();
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t jobs = std::min<std::size_t>(n, opts.jobs > 0 ? static_cast<std::size_t>(opts.jobs) : cores);
