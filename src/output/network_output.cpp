@@ -60,7 +60,7 @@ std::vector<std::string> network_timeseries_columns(const Network& net) {
       add(b.name, {"_lower_link_force_x", "_lower_link_force_y", "_lower_link_force_z", "_lower_link_tension"});
   }
   for (const NetworkJunction& j : net.junctions) add(j.name, {"_x", "_y", "_z", "_depth"});
-  if (has_sea(net.settings())) c.push_back("wave_elevation");
+  if (net.settings().fluid.waves) c.push_back("wave_elevation");  // (a tow point's own vessel has no waves)
   if (net.settings().seabed)
     for (const std::string& l : net.line_names) add(l, {"_contact_length", "_lying_length"});
   return c;
@@ -95,7 +95,7 @@ void network_timeseries_values(const Network& net, const NetworkSample& s, std::
     add3(p);
     v.push_back(-p.z());
   }
-  if (has_sea(net.settings())) v.push_back(s.lines.front().wave_elevation);
+  if (net.settings().fluid.waves) v.push_back(s.lines.front().wave_elevation);
   if (net.settings().seabed)
     for (const Sample& l : s.lines) v.insert(v.end(), {l.contact_length, l.lying_length});
 }

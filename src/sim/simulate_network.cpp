@@ -27,7 +27,7 @@ struct NetworkRig {
 
   const Simulation& sim() const { return net.settings().sim; }
   bool winch() const { return false; }
-  bool sea() const { return has_sea(net.settings()); }
+  bool sea() const { return net.settings().fluid.waves != nullptr; }  // waves (a tow point alone gives a vessel)
   double force_scale() const {
     double w = 0;
     for (const Model& m : net.tree.lines) w += run::force_scale(m);
