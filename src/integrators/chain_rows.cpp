@@ -81,8 +81,7 @@ void ChainRows::unpack(const double* y, PhysicalState& s) const {
   }
   std::size_t i = 0;
   for (BodyState& bs : s.bodies)
-    for (ControlState& c : bs.controls)
-      c.integral = y[layout_.control(i)], c.deflection = y[layout_.control(i++) + 1];
+    for (ControlState& c : bs.controls) c.integral = y[layout_.control(i)], c.deflection = y[layout_.control(i++) + 1];
 }
 
 void ChainRows::impose_winch(double t, PhysicalState& s) const {
@@ -182,8 +181,8 @@ void ChainRows::stage_rhs(const double* r, const PhysicalState& js, StageRhs& rh
   }
 }
 
-void ChainRows::stage_result(const double* r, const PhysicalState& js, const StageRhs& rhs,
-                             const ImplicitWorkspace& iw, double hg, double* k) const {
+void ChainRows::stage_result(const double* r, const PhysicalState& js, const StageRhs& rhs, const ImplicitWorkspace& iw,
+                             double hg, double* k) const {
   // Rows without local terms keep k = r (W = I there: still a W-method);
   // the tow point's and the elements' rows (the first layout_.bodies.offset) are
   // all written below, so only the rest is copied.

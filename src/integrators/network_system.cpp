@@ -148,8 +148,8 @@ double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
   if (has_nodes() && size <= NetworkSystem::kRoundOffJump) return 0;
   if (has_nodes())
     throw std::runtime_error("the tow velocity jumps at t = " + std::to_string(t) +
-                               " s (the start of a heave or a track, or a tow at speed at t = 0): a network with "
-                               "lines below a junction or body takes a tow law whose velocity is continuous");
+                             " s (the start of a heave or a track, or a tow at speed at t = 0): a network with "
+                             "lines below a junction or body takes a tow law whose velocity is continuous");
   // Lines joined only through the vessel: each line's own impulsive response.
   tree_state_into(y, s_);
   for (std::size_t i = 0; i < rows_.size(); ++i) {
@@ -187,8 +187,7 @@ const Workspace& NetworkSystem::evaluate(const StateVector& y, double t) { retur
 std::string NetworkSystem::describe(std::size_t i) const {
   std::size_t line = 0;
   while (line + 1 < offset_.size() && offset_[line + 1] <= i) ++line;
-  return "line " + net_.line_names[line] + ": " +
-         rows_[line]->layout().describe(i - offset_[line], tree_.lines[line]);
+  return "line " + net_.line_names[line] + ": " + rows_[line]->layout().describe(i - offset_[line], tree_.lines[line]);
 }
 
 void NetworkSystem::prepare_stage_solve(double t, const StepWindow& window) {

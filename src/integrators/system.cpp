@@ -333,9 +333,9 @@ class DefaultSystem final : public System {
     side.out->link_force = side.ws.acc.link_force;
   }
   const Model& model_;
-  ChainRows rows_;                // the chain's rows: packing, rates, stage right-hand side and result
-  const StateLayout& layout_;     // the flat state's blocks (rows_')
-  DefaultWorkspace work_;  // storage and caches: derivative()'s results do not depend on it
+  ChainRows rows_;             // the chain's rows: packing, rates, stage right-hand side and result
+  const StateLayout& layout_;  // the flat state's blocks (rows_')
+  DefaultWorkspace work_;      // storage and caches: derivative()'s results do not depend on it
   int n_ = 0;
   bool winch_ = false;        // the state carries the winch's l_1, l_1'
   bool elastic_top_ = false;  // ... as L_1, L_1' of an elastic top element (l_1, l_1' among the lengths)

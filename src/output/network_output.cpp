@@ -214,7 +214,7 @@ nlohmann::ordered_json make_network_summary(const nlohmann::ordered_json& scenar
     const Extremes& ex = record.extremes()[b.line];
     const Body& body = net.tree.lines[b.line].bodies[b.body];
     const BodyExtremes& be = body.inline_body && b.body < ex.inline_bodies.size() ? ex.inline_bodies[b.body]
-                                                                                 : ex.end_body_extremes;
+                                                                                  : ex.end_body_extremes;
     e["max_" + b.name + "_link_force"] = json_of(be.max_link_force);
     if (body.inline_body) e["max_" + b.name + "_lower_link_force"] = json_of(be.max_lower_link_force);
     e["max_" + b.name + "_depth"] = json_of(be.max_depth);

@@ -21,7 +21,6 @@
 
 namespace towsim {
 
-
 namespace {
 
 constexpr double kRad2Deg = 180.0 / M_PI;

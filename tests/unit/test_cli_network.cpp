@@ -76,8 +76,9 @@ simulation: {duration: 10}
 )";
   const auto r = run_towsim("run " + quoted(file) + " -o " + quoted(dir_ / "out"));
   EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_EQ(r.out, "towsim: run: line main: a winch on a network's line is not run yet (give the line its deployed "
-                   "length)\n");
+  EXPECT_EQ(r.out,
+            "towsim: run: line main: a winch on a network's line is not run yet (give the line its deployed "
+            "length)\n");
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out" / "timeseries.csv"));
 }
 

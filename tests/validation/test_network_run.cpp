@@ -112,7 +112,8 @@ Network every_node_tree(double rho) {
   c.n = 2, c.length = 3;
   Model tail = cable_model(c, rho);
   return network_of({root, free_line, body_line, tail},
-                    {LineTop{}, LineTop{0, -1, Vec3::Zero()}, LineTop{0, -1, Vec3::Zero()}, LineTop{2, 0, Vec3(0, 0, -0.1)}});
+                    {LineTop{}, LineTop{0, -1, Vec3::Zero()}, LineTop{0, -1, Vec3::Zero()},
+                     LineTop{2, 0, Vec3(0, 0, -0.1)}});
 }
 
 /// Apparent weight of everything in the network [N].
@@ -184,7 +185,8 @@ TEST(NetworkRun, ASwingingTreeInVacuumConservesEnergy) {
   double swing = 0, drift = 0;
   for (const NetworkSample& s : sink.samples) {
     double kinetic = 0;
-    for (std::size_t i = 0; i < net.tree.lines.size(); ++i) kinetic += cable_energy(net.tree.lines[i], s.lines[i]).kinetic;
+    for (std::size_t i = 0; i < net.tree.lines.size(); ++i)
+      kinetic += cable_energy(net.tree.lines[i], s.lines[i]).kinetic;
     swing = std::max(swing, kinetic);
     drift = std::max(drift, std::abs(energy(net, s) - E0));
   }

@@ -58,14 +58,14 @@ struct NetworkBody {
 /// A compiled network: the tree and the names the outputs use. Every line's
 /// Model carries the run's settings (fluid, seabed, simulation, initial).
 struct Network {
-  std::string name;                      // scenario name (file stem)
-  TreeModel tree;                        // lines in tree order
-  std::vector<std::string> line_names;   // per tree line [-]
-  std::vector<std::string> line_from;    // per tree line, as written: vessel.<point>, <junction>, <body>.<point>
-  std::vector<std::string> line_to;      // per tree line, as written: <junction>, <body>.<point>, free
-  std::vector<std::string> tow_point;    // per tree line: its tow point's name (root lines), else empty
+  std::string name;                     // scenario name (file stem)
+  TreeModel tree;                       // lines in tree order
+  std::vector<std::string> line_names;  // per tree line [-]
+  std::vector<std::string> line_from;   // per tree line, as written: vessel.<point>, <junction>, <body>.<point>
+  std::vector<std::string> line_to;     // per tree line, as written: <junction>, <body>.<point>, free
+  std::vector<std::string> tow_point;   // per tree line: its tow point's name (root lines), else empty
   std::vector<NetworkJunction> junctions;
-  std::vector<NetworkBody> bodies;       // every body of every line, in tree order
+  std::vector<NetworkBody> bodies;  // every body of every line, in tree order
   /// The run's settings (simulation, initial, fluid): those of the first line.
   const Model& settings() const { return tree.lines.front(); }
 };
