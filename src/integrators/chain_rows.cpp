@@ -1,6 +1,7 @@
 // One chain's rows of a flat state in the default formulation.
 #include "chain_rows.hpp"
 
+#include "towsim/dynamics/dynamics.hpp"
 #include "towsim/model/depth_control.hpp"
 #include "towsim/model/winch.hpp"
 
@@ -15,6 +16,24 @@ using CMap3 = Eigen::Map<const Vec3>;
 void set3(double* y, std::size_t i, const Vec3& v) { y[i] = v.x(), y[i + 1] = v.y(), y[i + 2] = v.z(); }
 
 }  // namespace
+
+Vec3 tow_jump(const Model& m, double t) {
+  if (m.tow.mode != Tow::Mode::Motion) return Vec3::Zero();
+  const double d = 1e-9 * std::max(1.0, std::abs(t));
+  return tow_kinematics(m.tow, t + d).vel - tow_kinematics(m.tow, t - d).vel;
+}
+
+PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws) {
+  tow_velocity_jump(m, s, dv, ws);
+  for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
+  for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws.acc.length_acc[k];
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws.acc.alpha_b[b];
+  if (m.tow.mode != Tow::Mode::Motion) return s;
+  const double d = 1e-9 * std::max(1.0, std::abs(t));
+  s.r0 = tow_kinematics(m.tow, t).pos;
+  s.v0 = tow_kinematics(m.tow, t + d).vel;
+  return s;
+}
 
 ChainRows::ChainRows(const Model& m)
     : model_(m), layout_(StateLayout::default_of(m)), shape_(PhysicalState::hanging(m)) {

@@ -11,6 +11,12 @@
 
 namespace towsim {
 
+/// Jump of the chain's imposed tow velocity at t: v(t+) - v(t-) [m/s] (zero in Force mode).
+Vec3 tow_jump(const Model& m, double t);
+/// Physical state after the impulsive response to the tow velocity jump dv
+/// at t (tow_velocity_jump; ws: its storage), the tow point at its motion's right limit.
+PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws);
+
 /// A chain's rows, at a pointer to the first row of its block.
 class ChainRows {
  public:

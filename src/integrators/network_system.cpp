@@ -16,13 +16,6 @@ using CMap3 = Eigen::Map<const Vec3>;
 
 void set3(double* y, const Vec3& v) { y[0] = v.x(), y[1] = v.y(), y[2] = v.z(); }
 
-/// Jump of line m's imposed tow velocity at t: v(t+) - v(t-) [m/s] (zero in Force mode).
-Vec3 tow_jump_of(const Model& m, double t) {
-  if (m.tow.mode != Tow::Mode::Motion) return Vec3::Zero();
-  const double d = 1e-9 * std::max(1.0, std::abs(t));
-  return tow_kinematics(m.tow, t + d).vel - tow_kinematics(m.tow, t - d).vel;
-}
-
 /// The state sizes of every line (their shapes).
 TreeState shapes(const std::vector<std::unique_ptr<ChainRows>>& rows) {
   TreeState s;
@@ -127,7 +120,7 @@ void NetworkSystem::project(StateVector& y, double t) {
 double NetworkSystem::tow_jump(double t) const {
   double size = 0;
   for (std::size_t i = 0; i < rows_.size(); ++i)
-    if (tree_.tops[i].line < 0) size = std::max(size, tow_jump_of(tree_.lines[i], t).norm());
+    if (tree_.tops[i].line < 0) size = std::max(size, towsim::tow_jump(tree_.lines[i], t).norm());
   return size;
 }
 
@@ -140,7 +133,7 @@ double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
   std::vector<Vec3> dv(rows_.size(), Vec3::Zero());
   double size = 0;
   for (std::size_t i = 0; i < rows_.size(); ++i)
-    if (tree_.tops[i].line < 0) dv[i] = tow_jump_of(tree_.lines[i], t), size = std::max(size, dv[i].norm());
+    if (tree_.tops[i].line < 0) dv[i] = towsim::tow_jump(tree_.lines[i], t), size = std::max(size, dv[i].norm());
   if (size == 0) return 0;
   // A tree's impulsive response is not computed: below kRoundOffJump the
   // jump is the difference quotient's round-off at a change of acceleration
@@ -153,19 +146,8 @@ double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
   // Lines joined only through the vessel: each line's own impulsive response.
   tree_state_into(y, s_);
   for (std::size_t i = 0; i < rows_.size(); ++i) {
-    const Model& m = tree_.lines[i];
-    PhysicalState& s = s_[i];
-    Workspace& ws = ws_.lines[i];
-    tow_velocity_jump(m, s, dv[i], ws);
-    for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
-    for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws.acc.length_acc[k];
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws.acc.alpha_b[b];
-    if (m.tow.mode == Tow::Mode::Motion) {
-      const double d = 1e-9 * std::max(1.0, std::abs(t));
-      s.r0 = tow_kinematics(m.tow, t).pos;
-      s.v0 = tow_kinematics(m.tow, t + d).vel;
-    }
-    rows_[i]->pack(s, y.data() + offset_[i]);
+    s_[i] = jumped(tree_.lines[i], s_[i], dv[i], t, ws_.lines[i]);
+    rows_[i]->pack(s_[i], y.data() + offset_[i]);
   }
   return size;
 }

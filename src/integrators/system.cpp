@@ -34,26 +34,6 @@ void impose_tow(const Model& m, double t, Vec3& r0, Vec3& v0, CourseCursor& cour
   v0 = k.vel;
 }
 
-/// Jump of the imposed tow velocity at t: v(t+) - v(t-) [m/s] (zero in Force mode).
-Vec3 tow_jump(const Model& m, double t) {
-  if (m.tow.mode != Tow::Mode::Motion) return Vec3::Zero();
-  const double d = 1e-9 * std::max(1.0, std::abs(t));
-  return tow_kinematics(m.tow, t + d).vel - tow_kinematics(m.tow, t - d).vel;
-}
-
-/// Physical state after the impulsive response to the tow velocity jump dv at t.
-PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws) {
-  tow_velocity_jump(m, s, dv, ws);
-  for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
-  for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws.acc.length_acc[k];
-  for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws.acc.alpha_b[b];
-  if (m.tow.mode != Tow::Mode::Motion) return s;
-  const double d = 1e-9 * std::max(1.0, std::abs(t));
-  s.r0 = tow_kinematics(m.tow, t).pos;
-  s.v0 = tow_kinematics(m.tow, t + d).vel;
-  return s;
-}
-
 /// Jump of the imposed pay-out speed at t from the state's (the left limit,
 /// or at rest at t = 0) to the schedule's right limit L'(t+) [m/s] (zero
 /// unless length control).
