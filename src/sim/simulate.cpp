@@ -251,7 +251,7 @@ struct ChainRig {
     for (double b : winch_breakpoints(model.winch)) breaks.push_back(b);
     return breaks;
   }
-  System& sys() { return *chain.sys; }
+  System& sys() const { return *chain.sys; }
   std::string check(const System& sys, const StateVector& y) {
     if (std::string err = run::check_finite(sys, y); !err.empty()) return err;
     sys.physical_into(y, checked);
