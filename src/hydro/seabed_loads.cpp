@@ -32,7 +32,9 @@ SegmentContact element_seabed_contact(const Model& model, const Workspace& ws, s
   const BodyWork* q = bi >= 0 && model.bodies[static_cast<std::size_t>(bi)].inline_body
                           ? &ws.body[static_cast<std::size_t>(bi)]
                           : nullptr;
-  return segment_contact(*model.seabed, ws.P[k], ws.vP[k], q ? q->Q : ws.P[k + 1], q ? q->vQ : ws.vP[k + 1]);
+  const Element& e = model.cable.elements[k];
+  return segment_contact(*model.seabed, ws.P[k], ws.vP[k], q ? q->Q : ws.P[k + 1], q ? q->vQ : ws.vP[k + 1],
+                         model.seabed->rest_sink(e.weight / e.length));
 }
 
 namespace {

@@ -28,7 +28,8 @@ constexpr double kGaussW3[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
 
 }  // namespace
 
-SegmentContact segment_contact(const Seabed& sb, const Vec3& a, const Vec3& va, const Vec3& b, const Vec3& vb) {
+SegmentContact segment_contact(const Seabed& sb, const Vec3& a, const Vec3& va, const Vec3& b, const Vec3& vb,
+                               double rest_sink) {
   SegmentContact out;
   const Vec3 d = b - a, dv = vb - va;
   const double L = d.norm();  // [m]
@@ -38,7 +39,8 @@ SegmentContact segment_contact(const Seabed& sb, const Vec3& a, const Vec3& va, 
     if (!(u1 > u0)) return;
     const Vec3 n = sb.normal(a.x() + 0.5 * (u0 + u1) * d.x());
     const Vec3 p0 = a + u0 * d, p1 = a + u1 * d;
-    const double h0 = (p0.z() - sb.bottom_z(p0.x())) * n.z(), h1 = (p1.z() - sb.bottom_z(p1.x())) * n.z();  // gaps [m]
+    const double h0 = (p0.z() - sb.bottom_z(p0.x())) * n.z() - rest_sink * n.z();  // gaps above the contact level [m]
+    const double h1 = (p1.z() - sb.bottom_z(p1.x())) * n.z() - rest_sink * n.z();
     double c0 = 0, c1 = 0;
     if (!negative_part(h0, h1, u0, u1, c0, c1)) return;
     // Length in contact and its shares at the ends.

@@ -43,7 +43,7 @@ struct Seabed {
   // half of each adjacent element); true, along each element's straight
   // segment (segment_contact, MODEL.md 10) [-]. Scenario key
   // environment.seabed.contact: joints | elements.
-  bool along_elements = false;
+  bool along_elements = true;
 
   /// A flat bottom at depth d [m].
   static Seabed flat(double d, double stiffness = 1e5, double damping = 1e3, double friction = 0.5);
@@ -62,6 +62,13 @@ struct Seabed {
   SeabedForce contact(const Vec3& p, const Vec3& v, double length) const;
   /// d|F_n|/d(penetration) of such a point [N/m]: k * length in contact, 0 above.
   double normal_stiffness(const Vec3& p, double length) const { return gap(p) < 0 ? stiffness * length : 0.0; }
+  /// The sink delta = w / k [m] of a cable of apparent weight w [N/m] lying
+  /// at rest on a flat bottom under this law (0 for a buoyant cable). Along
+  /// elements the contact level is raised by it (times n_z on a slope), so
+  /// that a lying cable rests with its axis on the bottom's level, as on the
+  /// rigid bottom the penalty stands for: the hanging part then ends where
+  /// the lying part begins.
+  double rest_sink(double weight_per_metre) const { return weight_per_metre > 0 ? weight_per_metre / stiffness : 0.0; }
 };
 
 }  // namespace towsim

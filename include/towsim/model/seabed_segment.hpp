@@ -40,7 +40,11 @@ struct SegmentContact {
 };
 
 /// The contact of the segment a -> b [m, R_g] whose ends move at va, vb
-/// [m/s, R_g] with the bottom `sb`; zero above it.
-SegmentContact segment_contact(const Seabed& sb, const Vec3& a, const Vec3& va, const Vec3& b, const Vec3& vb);
+/// [m/s, R_g] with the bottom `sb`; zero above it. `rest_sink` [m, >= 0]
+/// moves the level the gap is measured from up by that much along the
+/// vertical: h(u) is the gap minus rest_sink n_z (Seabed::rest_sink: a cable lying at rest then has
+/// its axis on the bottom's level).
+SegmentContact segment_contact(const Seabed& sb, const Vec3& a, const Vec3& va, const Vec3& b, const Vec3& vb,
+                               double rest_sink = 0);
 
 }  // namespace towsim

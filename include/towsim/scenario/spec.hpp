@@ -39,12 +39,12 @@ struct RowSpec {
 struct SeabedSpec {
   bool present = false;
   Where where;
-  Where depth_where;                     // the `depth` key's value
-  std::vector<RowSpec> depth;            // rows {x [m], depth [m]}; a number = one row at x = 0
-  Field<double> stiffness{1e5};          // [N/m per m of cable in contact]
-  Field<double> damping{1e3};            // [N s/m per m]
-  Field<double> friction{0.5};           // Coulomb coefficient [-]
-  Field<std::string> contact{"joints"};  // where the cable's contact acts: joints | elements
+  Where depth_where;                       // the `depth` key's value
+  std::vector<RowSpec> depth;              // rows {x [m], depth [m]}; a number = one row at x = 0
+  Field<double> stiffness{1e5};            // [N/m per m of cable in contact]
+  Field<double> damping{1e3};              // [N s/m per m]
+  Field<double> friction{0.5};             // Coulomb coefficient [-]
+  Field<std::string> contact{"elements"};  // where the cable's contact acts: joints | elements
 };
 
 /// environment: water, gravity, current, seabed.
