@@ -45,9 +45,9 @@ int run_network(const LoadedScenario& sc, const Network& net, const RunOptions& 
           << ": a winch on a network's line is not run yet (give the line its deployed length)\n";
       return kExitInvalid;
     }
-  if (net.settings().initial.kind == Initial::Kind::Steady) {
-    err << "towsim: run: initial: steady is not available for networks yet (use hanging or {direction: [x, y, "
-           "z]}; the run settles)\n";
+  if (net.settings().initial.kind == Initial::Kind::Steady && net.settings().seabed) {
+    err << "towsim: run: initial: steady: a network on a seabed has no steady start yet (its friction is relative "
+           "to the bottom; use hanging or {direction: [x, y, z]})\n";
     return kExitInvalid;
   }
   if (!create_output_dir(opts.out_dir, err)) return kExitError;

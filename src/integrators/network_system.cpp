@@ -193,7 +193,7 @@ TreeState network_initial_state(const Network& net) {
   TreeState s;
   for (const Model& m : tree.lines) {
     if (m.initial.kind == Initial::Kind::Steady)
-      throw std::invalid_argument("towsim: network: initial: steady is not available for networks yet");
+      throw std::invalid_argument("towsim: network: initial: steady is network_steady_state's (simulate_network)");
     s.push_back(initial_state(m));
   }
   // A loop starts closed: assembled from the hanging lines.

@@ -1,6 +1,7 @@
 // The run loop for a network (towsim/sim/simulate_network.hpp).
 #include "towsim/sim/simulate_network.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -62,7 +63,105 @@ struct NetworkRig {
   void flush() { sink.flush(); }
 };
 
+/// Watches a relaxation's samples: stops it (through `stop`) at the first
+/// whose joints and bodies all move by less than kNetworkSettledSpeed (a
+/// body's rotation counted at 1 m from its origin).
+class SettleSink final : public NetworkSink {
+ public:
+  volatile int stop = 0;
+  double speed = 0;  // the last sample's largest speed [m/s]
+  double time = 0;   // its time [s]
+  void write(const NetworkSample& s) override {
+    speed = 0;
+    for (const Sample& l : s.lines) {
+      for (const Vec3& v : l.node_vel) speed = std::max(speed, v.norm());
+      for (const BodySample& b : l.bodies) speed = std::max({speed, b.vel.norm(), b.omega.norm() * 1.0});
+    }
+    time = s.t;
+    if (s.t > 0 && speed < kNetworkSettledSpeed) stop = 1;
+  }
+  void flush() override {}
+};
+
+/// The network seen from its tow points at velocity V: each root line's
+/// tow held at its position at t = 0, the current less V, calm water, the
+/// hanging start, the relaxation's settings.
+Network tow_frame(const Network& net, const Vec3& V) {
+  Network r = net;
+  for (std::size_t i = 0; i < r.tree.lines.size(); ++i) {
+    Model& m = r.tree.lines[i];
+    if (r.tree.tops[i].line < 0) {
+      const Vec3 p0 = tow_kinematics(m.tow, 0.0).pos;
+      m.tow.pieces.clear();
+      m.tow.vessel.reset();
+      m.tow.start = p0;
+      finalize_tow(m.tow);
+    }
+    Fluid& f = m.fluid;
+    f.waves.reset();
+    if (f.current_velocity.empty()) f.current_depth = {0.0}, f.current_velocity = {Vec3::Zero()};
+    for (Vec3& u : f.current_velocity) u -= V;
+    if (m.initial.kind == Initial::Kind::Steady) m.initial.kind = Initial::Kind::Hanging;
+    m.sim.integrator = Integrator::Rosenbrock;
+    m.sim.tolerance = 1e-6;
+    m.sim.time_step = 0.01;
+    m.sim.duration = kNetworkRelaxTime;
+    m.sim.output_interval = 1;
+  }
+  return r;
+}
+
 }  // namespace
+
+NetworkSteady network_steady_state(const Network& net, const volatile int* stop_flag) {
+  const TreeModel& tree = net.tree;
+  NetworkSteady out;
+  // The tow velocity at t = 0+: one for every root line.
+  bool first = true;
+  for (std::size_t i = 0; i < tree.lines.size(); ++i) {
+    const Model& m = tree.lines[i];
+    if (tree.tops[i].line >= 0) continue;
+    if (m.seabed)
+      throw std::invalid_argument(
+          "initial: steady: a network on a seabed has no steady start yet (its friction "
+          "is relative to the bottom; use hanging or {direction: [x, y, z]})");
+    if (m.tow.mode != Tow::Mode::Motion)
+      throw std::invalid_argument(
+          "initial: steady needs tow.mode: motion (the steady velocity comes from the tow law)");
+    const Vec3 v = tow_kinematics(m.tow, 1e-9).vel;
+    if (first) out.velocity = v, first = false;
+    if ((v - out.velocity).norm() > 1e-9 * std::max(1.0, v.norm()))
+      throw std::invalid_argument("initial: steady: the tow points start at different velocities (a turn at t = 0)");
+  }
+  // Relax in the tow's frame until every joint is at rest.
+  const Network frame = tow_frame(net, out.velocity);
+  SettleSink watch;
+  NetworkRig rig(frame, watch);
+  StateVector y = rig.system.initial_tree(network_initial_state(frame));
+  rig.system.project(y, 0.0);
+  RunStats stats;
+  rig.write(y, 0.0, stats);
+  const volatile int* stop = &watch.stop;
+  stats = run::run_loop(rig, y, std::move(stats), std::chrono::steady_clock::now(), {}, stop);
+  if (stop_flag && *stop_flag) throw std::runtime_error("initial: steady: interrupted");
+  if (stats.status == "failed") throw std::runtime_error("initial: steady: the relaxation failed: " + stats.message);
+  if (!watch.stop)
+    throw std::runtime_error("initial: steady: the network did not settle in " + std::to_string(kNetworkRelaxTime) +
+                             " s of relaxation (joints still move at " + std::to_string(watch.speed) + " m/s)");
+  out.relaxed_time = watch.time;
+  out.residual_speed = watch.speed;
+  out.steps = stats.steps;
+  // At rest relative to the tow, every point moving at V.
+  rig.system.tree_state_into(y, out.state);
+  for (PhysicalState& s : out.state) {
+    s.v0 = out.velocity;
+    for (Vec3& w : s.w) w.setZero();
+    for (double& r : s.length_rate) r = 0;
+    s.top_unstretched_rate = 0;
+    for (BodyState& b : s.bodies) b.w.setZero();
+  }
+  return out;
+}
 
 RunStats simulate_network(const Network& net, NetworkSink& sink, const ProgressFn& progress,
                           const volatile int* stop_flag) {
@@ -81,8 +180,13 @@ RunStats simulate_network(const Network& net, NetworkSink& sink, const ProgressF
           throw std::runtime_error("the tow velocity jumps at t = " + std::to_string(b) +
                                    " s (the start of a heave or a track): a network with lines below a junction or "
                                    "body takes a tow law whose velocity is continuous");
-    y = rig.system.initial_tree(network_initial_state(net));
-    rig.system.apply_tow_jump(y, 0.0);  // at rest, tow at speed
+    if (settings.initial.kind == Initial::Kind::Steady) {
+      const NetworkSteady st = network_steady_state(net, stop_flag);
+      y = rig.system.initial_tree(st.state);  // moving at the tow's velocity: no jump
+    } else {
+      y = rig.system.initial_tree(network_initial_state(net));
+      rig.system.apply_tow_jump(y, 0.0);  // at rest, tow at speed
+    }
   } catch (const std::exception& e) {
     stats.status = "failed";
     stats.message = e.what();

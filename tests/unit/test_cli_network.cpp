@@ -64,6 +64,29 @@ TEST_F(Cli, BridleAtRestCarriesTheLegTensionsOfStatics) {
   EXPECT_NE(summary.find("\"max_box_depth\""), std::string::npos);
 }
 
+// The same bridle's steady start (initial: steady, the tow at rest): the
+// legs carry the statics' tensions from the first row on (the relaxation
+// settles to 1e-6 m/s; the tolerance is the legs' weight, as above), and
+// the run stays there.
+TEST_F(Cli, BridleSteadyStartCarriesTheLegTensionsOfStatics) {
+  const auto file = dir_ / "bridle.yaml";
+  std::string text = kBridleAtRest;
+  text.replace(text.find("initial: hanging"), 16, "initial: steady");
+  text.replace(text.find("duration: 60"), 12, "duration: 5");
+  std::ofstream(file) << text;
+  const auto r = run_towsim("run " + quoted(file) + " -o " + quoted(dir_ / "out") + " -q");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto ts = read_csv(dir_ / "out" / "timeseries.csv");
+  const double W = (100 - 1025 * 4.0 / 3 * std::numbers::pi * 0.008) * 9.81;  // [N]
+  const double expected = W / (2 * std::cos(std::asin(0.5)));
+  constexpr double kLegWeight = 0.02;  // [N]
+  for (const char* leg : {"leg_a_top_tension", "leg_b_top_tension"}) {
+    const auto c = static_cast<std::size_t>(ts.column(leg));
+    EXPECT_NEAR(ts.rows.front()[c], expected, kLegWeight) << leg;
+    EXPECT_NEAR(ts.rows.back()[c], expected, kLegWeight) << leg;
+  }
+}
+
 TEST_F(Cli, NetworkWinchIsRefusedBeforeAnythingIsWritten) {
   const auto file = dir_ / "winch.yaml";
   std::ofstream(file) << R"(lines:

@@ -92,7 +92,8 @@ class NetworkSystem final : public System {
 /// Initial state of a network's tree (hanging, or along a direction: every
 /// line from its top, at rest; elastic lines at their own static stretch;
 /// loops closed by tree_close_loops, std::invalid_argument when they cannot be).
-/// Throws std::invalid_argument for `initial: steady` (not for networks yet).
+/// Throws std::invalid_argument for `initial: steady` (network_steady_state
+/// computes that start).
 TreeState network_initial_state(const Network& net);
 
 }  // namespace towsim
