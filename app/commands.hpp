@@ -77,6 +77,12 @@ int run_network(const LoadedScenario& sc, const Network& net, const RunOptions& 
 int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream& err,
                     const volatile int* stop_flag = nullptr);
 
+/// `towsim statics` on a network: its steady tow at the tow law's final
+/// velocity (network_statics), printed per line, body and junction and
+/// written as a one-sample network run with an output directory.
+int statics_network(const LoadedScenario& sc, const Network& net, const StaticsOptions& opts, std::ostream& out,
+                    std::ostream& err, const volatile int* stop_flag);
+
 /// Why `towsim statics` refuses a valid scenario (a tow in force mode: the
 /// steady speed comes from the tow law), as an error at its key; nullopt when
 /// it can be solved.

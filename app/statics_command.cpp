@@ -84,8 +84,7 @@ void print_statics(const Model& model, const StaticsResult& r, const Sample& s, 
 }  // namespace
 
 std::optional<Diagnostic> statics_refusal(const LoadedScenario& sc) {
-  if (auto refusal = network_refusal(sc, "towsim statics")) return refusal;
-  if (sc.model->tow.mode == Tow::Mode::Motion) return std::nullopt;
+  if (sc.is_network() || sc.model->tow.mode == Tow::Mode::Motion) return std::nullopt;
   const Where& w = sc.spec.tow.mode.where;
   return Diagnostic{w.loc, w.path, "statics needs mode: motion (the steady speed comes from the tow law; got force)"};
 }
@@ -173,6 +172,7 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
     err << refusal->str() << "\n";
     return kExitInvalid;
   }
+  if (sc.is_network()) return statics_network(sc, *sc.network, opts, out, err, stop_flag);
   const Model& model = *sc.model;
   // --target-depth: the deployed length for that depth, and the statics there.
   std::optional<Model> deployed;

@@ -3,11 +3,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "run_checks.hpp"
 #include "run_loop.hpp"
 #include "towsim/integrators/network_system.hpp"
+#include "towsim/sim/statics.hpp"
 #include "towsim/waves/vessel.hpp"
 
 namespace towsim {
@@ -84,17 +87,21 @@ class SettleSink final : public NetworkSink {
 };
 
 /// The network seen from its tow points at velocity V: each root line's
-/// tow held at its position at t = 0, the current less V, calm water, the
+/// tow held at its position at t = 0 turned by `yaw` about the vertical
+/// through the first tow point, the current less V, calm water, the
 /// hanging start, the relaxation's settings.
-Network tow_frame(const Network& net, const Vec3& V) {
+Network tow_frame(const Network& net, const Vec3& V, double yaw) {
   Network r = net;
+  const Eigen::AngleAxisd turn(yaw, Vec3::UnitZ());
+  std::optional<Vec3> first;
   for (std::size_t i = 0; i < r.tree.lines.size(); ++i) {
     Model& m = r.tree.lines[i];
     if (r.tree.tops[i].line < 0) {
-      const Vec3 p0 = tow_kinematics(m.tow, 0.0).pos;
+      const Vec3 p = tow_kinematics(m.tow, 0.0).pos;
+      if (!first) first = p;
       m.tow.pieces.clear();
       m.tow.vessel.reset();
-      m.tow.start = p0;
+      m.tow.start = *first + turn * (p - *first);
       finalize_tow(m.tow);
     }
     Fluid& f = m.fluid;
@@ -111,42 +118,39 @@ Network tow_frame(const Network& net, const Vec3& V) {
   return r;
 }
 
-}  // namespace
-
-NetworkSteady network_steady_state(const Network& net, const volatile int* stop_flag) {
-  const TreeModel& tree = net.tree;
-  NetworkSteady out;
-  // The tow velocity at t = 0+: one for every root line.
-  bool first = true;
-  for (std::size_t i = 0; i < tree.lines.size(); ++i) {
-    const Model& m = tree.lines[i];
-    if (tree.tops[i].line >= 0) continue;
+/// What a steady tow of the network needs: every root line in motion mode, no seabed.
+void check_steady(const Network& net) {
+  for (std::size_t i = 0; i < net.tree.lines.size(); ++i) {
+    const Model& m = net.tree.lines[i];
     if (m.seabed)
       throw std::invalid_argument(
-          "initial: steady: a network on a seabed has no steady start yet (its friction "
-          "is relative to the bottom; use hanging or {direction: [x, y, z]})");
-    if (m.tow.mode != Tow::Mode::Motion)
-      throw std::invalid_argument(
-          "initial: steady needs tow.mode: motion (the steady velocity comes from the tow law)");
-    const Vec3 v = tow_kinematics(m.tow, 1e-9).vel;
-    if (first) out.velocity = v, first = false;
-    if ((v - out.velocity).norm() > 1e-9 * std::max(1.0, v.norm()))
-      throw std::invalid_argument("initial: steady: the tow points start at different velocities (a turn at t = 0)");
+          "a network on a seabed has no steady tow yet (its friction is relative to the "
+          "bottom; use hanging or {direction: [x, y, z]})");
+    if (net.tree.tops[i].line < 0 && m.tow.mode != Tow::Mode::Motion)
+      throw std::invalid_argument("a steady tow needs tow.mode: motion (the steady velocity comes from the tow law)");
   }
+}
+
+}  // namespace
+
+NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw, const volatile int* stop_flag) {
+  check_steady(net);
+  NetworkSteady out;
+  out.velocity = V;
+  out.yaw = yaw;
   // Relax in the tow's frame until every joint is at rest.
-  const Network frame = tow_frame(net, out.velocity);
+  const Network frame = tow_frame(net, V, yaw);
   SettleSink watch;
   NetworkRig rig(frame, watch);
   StateVector y = rig.system.initial_tree(network_initial_state(frame));
   rig.system.project(y, 0.0);
   RunStats stats;
   rig.write(y, 0.0, stats);
-  const volatile int* stop = &watch.stop;
-  stats = run::run_loop(rig, y, std::move(stats), std::chrono::steady_clock::now(), {}, stop);
-  if (stop_flag && *stop_flag) throw std::runtime_error("initial: steady: interrupted");
-  if (stats.status == "failed") throw std::runtime_error("initial: steady: the relaxation failed: " + stats.message);
+  stats = run::run_loop(rig, y, std::move(stats), std::chrono::steady_clock::now(), {}, &watch.stop);
+  if (stop_flag && *stop_flag) throw std::runtime_error("the steady tow's relaxation was interrupted");
+  if (stats.status == "failed") throw std::runtime_error("the steady tow's relaxation failed: " + stats.message);
   if (!watch.stop)
-    throw std::runtime_error("initial: steady: the network did not settle in " + std::to_string(kNetworkRelaxTime) +
+    throw std::runtime_error("the network did not settle in " + std::to_string(kNetworkRelaxTime) +
                              " s of relaxation (joints still move at " + std::to_string(watch.speed) + " m/s)");
   out.relaxed_time = watch.time;
   out.residual_speed = watch.speed;
@@ -154,13 +158,64 @@ NetworkSteady network_steady_state(const Network& net, const volatile int* stop_
   // At rest relative to the tow, every point moving at V.
   rig.system.tree_state_into(y, out.state);
   for (PhysicalState& s : out.state) {
-    s.v0 = out.velocity;
+    s.v0 = V;
     for (Vec3& w : s.w) w.setZero();
     for (double& r : s.length_rate) r = 0;
     s.top_unstretched_rate = 0;
     for (BodyState& b : s.bodies) b.w.setZero();
   }
   return out;
+}
+
+NetworkSteady network_steady_state(const Network& net, const volatile int* stop_flag) {
+  check_steady(net);
+  // The tow velocity at t = 0+: one for every root line.
+  std::optional<Vec3> V;
+  for (std::size_t i = 0; i < net.tree.lines.size(); ++i) {
+    if (net.tree.tops[i].line >= 0) continue;
+    const Vec3 v = tow_kinematics(net.tree.lines[i].tow, 1e-9).vel;
+    if (V && (v - *V).norm() > 1e-9 * std::max(1.0, v.norm()))
+      throw std::invalid_argument("initial: steady: the tow points start at different velocities (a turn at t = 0)");
+    if (!V) V = v;
+  }
+  return network_steady_state(net, V.value_or(Vec3::Zero()), 0.0, stop_flag);
+}
+
+NetworkSteady network_statics(const Network& net, const volatile int* stop_flag) {
+  check_steady(net);
+  const Tow& tow = net.settings().tow;
+  const Vec3 V = final_tow_velocity(tow);
+  // The heading's change from the offsets' own (before any manoeuvre) to the final course's.
+  Tow straight = tow;
+  std::erase_if(straight.pieces, [](const TowLaw& p) { return is_manoeuvre(p); });
+  const Vec3 v0 = final_tow_velocity(straight);
+  const double yaw = V.head<2>().norm() > 0 && v0.head<2>().norm() > 0
+                         ? std::atan2(V.y(), V.x()) - std::atan2(v0.y(), v0.x())
+                         : 0.0;
+  return network_steady_state(net, V, yaw, stop_flag);
+}
+
+RunStats write_network_steady(const Network& net, const NetworkSteady& st, NetworkSink& sink) {
+  // Evaluated where it is steady: in the tow's frame (tow points held, the current less V).
+  const Network frame = tow_frame(net, st.velocity, st.yaw);
+  NetworkMemorySink mem;
+  RunStats stats;
+  NetworkRig rig(frame, mem);
+  TreeState s = st.state;
+  for (PhysicalState& p : s) p.v0.setZero();
+  StateVector y = rig.system.initial_tree(s);
+  rig.system.project(y, 0.0);
+  rig.write(y, 0.0, stats);
+  // Seen from the water: everything moves at V.
+  NetworkSample out = mem.samples.front();
+  for (Sample& l : out.lines) {
+    l.tow_vel += st.velocity;
+    for (Vec3& v : l.node_vel) v += st.velocity;
+    for (BodySample& b : l.bodies) b.vel += st.velocity;
+  }
+  sink.write(out);
+  sink.flush();
+  return stats;
 }
 
 RunStats simulate_network(const Network& net, NetworkSink& sink, const ProgressFn& progress,

@@ -87,6 +87,31 @@ TEST_F(Cli, BridleSteadyStartCarriesTheLegTensionsOfStatics) {
   }
 }
 
+// `towsim statics` on the bridle at rest: the same leg tensions, printed
+// and written (--out: a one-sample network run).
+TEST_F(Cli, BridleStaticsCarriesTheLegTensionsOfStatics) {
+  const auto file = dir_ / "bridle.yaml";
+  std::ofstream(file) << kBridleAtRest;
+  const auto r = run_towsim("statics " + quoted(file) + " --out " + quoted(dir_ / "out"));
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out.rfind("steady tow of bridle at V = (0 0 0) m/s, |V| = 0 m/s\n", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("    leg_a: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  junction j: depth "), std::string::npos) << r.out;
+  const auto ts = read_csv(dir_ / "out" / "timeseries.csv");
+  ASSERT_EQ(ts.rows.size(), 1u);
+  const double W = (100 - 1025 * 4.0 / 3 * std::numbers::pi * 0.008) * 9.81;  // [N]
+  const double expected = W / (2 * std::cos(std::asin(0.5)));
+  constexpr double kLegWeight = 0.02;  // [N]
+  for (const char* leg : {"leg_a_top_tension", "leg_b_top_tension"})
+    EXPECT_NEAR(ts.rows.front()[static_cast<std::size_t>(ts.column(leg))], expected, kLegWeight) << leg;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "out" / "summary.json"));
+  // What it does not take yet: refused, nothing written.
+  const auto t = run_towsim("statics " + quoted(file) + " --target-depth 20 --out " + quoted(dir_ / "out2"));
+  EXPECT_EQ(t.status, 2) << t.out;
+  EXPECT_EQ(t.out, "towsim: statics: --target-depth takes a single line (cable:), not a network yet\n");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out2"));
+}
+
 TEST_F(Cli, NetworkWinchIsRefusedBeforeAnythingIsWritten) {
   const auto file = dir_ / "winch.yaml";
   std::ofstream(file) << R"(lines:

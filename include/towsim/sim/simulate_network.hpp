@@ -35,7 +35,8 @@ class NetworkMemorySink : public NetworkSink {
 /// The steady tow of a network (`initial: steady`, docs/theory.md §7.2).
 struct NetworkSteady {
   TreeState state;               // every line at rest relative to the tow, moving at `velocity`
-  Vec3 velocity = Vec3::Zero();  // the tow velocity at t = 0+ [m/s, R_g]
+  Vec3 velocity = Vec3::Zero();  // the tow velocity [m/s, R_g]
+  double yaw = 0;                // the tow points' turn from their t = 0 layout [rad]
   double relaxed_time = 0;       // simulated time the relaxation took [s]
   double residual_speed = 0;     // largest joint speed relative to the tow left [m/s]
   long steps = 0;                // the relaxation's steps
@@ -46,17 +47,33 @@ inline constexpr double kNetworkSettledSpeed = 1e-6;
 /// Longest relaxation [s of simulated time].
 inline constexpr double kNetworkRelaxTime = 20000;
 
-/// The steady state of the network towed at its tow law's velocity at
-/// t = 0+ (every root line's the same): its own dynamics in the tow's frame
-/// (the tow points held at their t = 0 positions, the current less the tow
-/// velocity, calm water), integrated from the hanging start (loops
-/// assembled) by the Rosenbrock method until every joint moves by less than
-/// kNetworkSettledSpeed; then every line at rest relative to the tow.
-/// Throws std::invalid_argument for what it cannot relax (tow points at
-/// different velocities, a seabed: its friction is relative to the bottom,
-/// not to the tow), std::runtime_error when the relaxation fails or does not
-/// settle within kNetworkRelaxTime.
+/// The steady tow of the network at velocity V [m/s, R_g]: its own dynamics
+/// in the tow's frame (the tow points held at their t = 0 positions, turned
+/// by `yaw` [rad] about the vertical through the first, the current less V,
+/// calm water), integrated from the hanging start (loops assembled) by the
+/// Rosenbrock method until every joint moves by less than
+/// kNetworkSettledSpeed; then every line at rest relative to the tow,
+/// moving at V. Throws std::invalid_argument for what it cannot relax (a
+/// seabed: its friction is relative to the bottom, not to the tow; a tow in
+/// force mode), std::runtime_error when the relaxation fails, is stopped or
+/// does not settle within kNetworkRelaxTime.
+NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw,
+                                   const volatile int* stop_flag = nullptr);
+
+/// `initial: steady`: the steady tow at the tow law's velocity at t = 0+
+/// (every root line's the same, else std::invalid_argument), tow points as
+/// at t = 0.
 NetworkSteady network_steady_state(const Network& net, const volatile int* stop_flag = nullptr);
+
+/// `towsim statics`: the steady tow at the tow law's final velocity
+/// (final_tow_velocity, as for a chain), the tow points turned with the
+/// vessel from its heading before any manoeuvre to its final one.
+NetworkSteady network_statics(const Network& net, const volatile int* stop_flag = nullptr);
+
+/// The steady tow's sample at t = 0 written to `sink` (towsim statics):
+/// evaluated in the tow's frame of network_steady_state, every velocity
+/// then V plus the frame's (zero); the statistics of that one sample.
+RunStats write_network_steady(const Network& net, const NetworkSteady& st, NetworkSink& sink);
 
 /// Integrate the network from its initial state (network_initial_state, or
 /// network_steady_state for `initial: steady`) to

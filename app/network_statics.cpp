@@ -1,0 +1,96 @@
+// `towsim statics` on a network of lines (docs/scenario.md "Statics of a
+// network"): the steady tow at the tow law's final velocity, printed per
+// line, body and junction, and written as a one-sample run with --out.
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+
+#include "commands.hpp"
+#include "towsim/output/dir_lock.hpp"
+#include "towsim/output/network_output.hpp"
+#include "towsim/sim/simulate_network.hpp"
+
+namespace towsim::io {
+
+namespace {
+
+constexpr double kDeg = 180.0 / M_PI;
+
+/// The steady tow as text: the relaxation, then every line, body and junction.
+void print_network_statics(const Network& net, const NetworkSteady& st, const NetworkSample& smp, std::ostream& out) {
+  out << std::setprecision(7) << "steady tow of " << net.name << " at V = (" << st.velocity.transpose()
+      << ") m/s, |V| = " << st.velocity.norm() << " m/s\n";
+  out << "  relaxed by the network's dynamics: " << st.relaxed_time << " s of simulated time in " << st.steps
+      << " steps; joints left moving at " << std::setprecision(2) << st.residual_speed << " m/s relative to the tow\n"
+      << std::setprecision(7);
+  out << "  line: top tension [N], top force (x y z) [N], angle below horizontal at the top [deg], end depth [m]\n";
+  for (std::size_t i = 0; i < smp.lines.size(); ++i) {
+    const Sample& l = smp.lines[i];
+    const Vec3 e = (l.node_pos.size() > 1 ? (l.node_pos[1] - l.node_pos[0]) : Vec3(0, 0, -1)).normalized();
+    out << "    " << net.line_names[i] << ": " << l.tow_force.norm() << ", (" << l.tow_force.transpose() << "), "
+        << std::asin(-e.z()) * kDeg << ", " << -l.node_pos.back().z() << "\n";
+  }
+  for (const NetworkBody& b : net.bodies) {
+    const BodySample& bs = smp.lines[static_cast<std::size_t>(b.line)].bodies[static_cast<std::size_t>(b.body)];
+    out << "  body " << b.name << ": depth " << -bs.pos.z() << " m, at (" << bs.pos.transpose()
+        << ") m, roll/pitch/yaw (" << bs.rpy_deg.transpose() << ") deg, link tension " << bs.link_force.norm()
+        << " N\n";
+  }
+  for (const NetworkJunction& j : net.junctions)
+    out << "  junction " << j.name << ": depth " << -smp.lines[static_cast<std::size_t>(j.line)].node_pos.back().z()
+        << " m\n";
+}
+
+/// --out: the steady tow as a network run's files, its one sample at t = 0.
+int write_network_statics(const LoadedScenario& sc, const Network& net, const NetworkSteady& st,
+                          const StaticsOptions& opts, std::ostream& err) {
+  if (!create_output_dir(opts.out_dir, err)) return kExitError;
+  try {
+    const DirLock lock(opts.out_dir);
+    remove_run_outputs(opts.out_dir);
+    NetworkWriter writer(opts.out_dir, net, true);
+    RunStats stats = write_network_steady(net, st, writer);
+    stats.steps = st.steps;
+    writer.flush();
+    auto summary = make_network_summary(to_json(sc.tree), stats, writer, true);
+    std::string why;
+    if (!write_summary(opts.out_dir, summary, &why)) throw std::runtime_error(why);
+    if (const std::string e = writer.error(); !e.empty()) throw std::runtime_error(e);
+  } catch (const std::exception& e) {
+    err << "towsim: " << e.what() << "\n";
+    return kExitError;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int statics_network(const LoadedScenario& sc, const Network& net, const StaticsOptions& opts, std::ostream& out,
+                    std::ostream& err, const volatile int* stop_flag) {
+  // What a network's statics does not do yet: refused before anything is written.
+  if (opts.target_depth || !opts.trim_body.empty()) {
+    err << "towsim: statics: " << (opts.target_depth ? "--target-depth" : "--trim")
+        << " takes a single line (cable:), not a network yet\n";
+    return kExitInvalid;
+  }
+  NetworkSteady st;
+  try {
+    st = network_statics(net, stop_flag);
+  } catch (const std::invalid_argument& e) {
+    err << "towsim: statics: " << e.what() << "\n";
+    return kExitInvalid;
+  } catch (const std::exception& e) {
+    if (stop_flag && *stop_flag) {
+      err << "towsim: statics: interrupted\n";
+      return kExitInterrupted;
+    }
+    err << "towsim: statics: " << e.what() << "\n";
+    return kExitFailed;
+  }
+  NetworkMemorySink mem;
+  write_network_steady(net, st, mem);
+  print_network_statics(net, st, mem.samples.front(), out);
+  return opts.out_dir.empty() ? kExitOk : write_network_statics(sc, net, st, opts, err);
+}
+
+}  // namespace towsim::io
