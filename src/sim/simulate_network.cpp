@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 
@@ -68,10 +69,16 @@ struct NetworkRig {
 
 /// Watches a relaxation's samples: stops it (through `stop`) at the first
 /// whose joints and bodies all move by less than kNetworkSettledSpeed (a
-/// body's rotation counted at 1 m from its origin).
+/// body's rotation counted at 1 m from its origin), or when the motion has
+/// stopped decaying: the largest speed over the last kStallWindow seconds
+/// at least kStallRatio of the window's before (a limit cycle: a body
+/// hunting, a line strumming), which no longer relaxation would settle.
 class SettleSink final : public NetworkSink {
  public:
+  static constexpr double kStallWindow = 2000;  // [s]
+  static constexpr double kStallRatio = 0.9;    // [-]
   volatile int stop = 0;
+  bool settled = false;
   double speed = 0;  // the last sample's largest speed [m/s]
   double time = 0;   // its time [s]
   void write(const NetworkSample& s) override {
@@ -81,10 +88,31 @@ class SettleSink final : public NetworkSink {
       for (const BodySample& b : l.bodies) speed = std::max({speed, b.vel.norm(), b.omega.norm() * 1.0});
     }
     time = s.t;
-    if (s.t > 0 && speed < kNetworkSettledSpeed) stop = 1;
+    if (s.t > 0 && speed < kNetworkSettledSpeed) {
+      settled = true;
+      stop = 1;
+    }
+    // The windows' largest speeds: the current one and the one before.
+    window_max_ = std::max(window_max_, speed);
+    if (s.t >= window_end_) {
+      if (previous_max_ > 0 && window_max_ >= kStallRatio * previous_max_) stop = 1;
+      previous_max_ = window_max_;
+      window_max_ = 0;
+      window_end_ += kStallWindow;
+    }
   }
   void flush() override {}
+
+ private:
+  double window_end_ = kStallWindow, window_max_ = 0, previous_max_ = 0;
 };
+
+/// A number as text in %g's shortest form.
+std::string fmt_g(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 
 /// The network seen from its tow points at velocity V: each root line's
 /// tow held at its position at t = 0 turned by `yaw` about the vertical
@@ -149,9 +177,11 @@ NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw
   stats = run::run_loop(rig, y, std::move(stats), std::chrono::steady_clock::now(), {}, &watch.stop);
   if (stop_flag && *stop_flag) throw std::runtime_error("the steady tow's relaxation was interrupted");
   if (stats.status == "failed") throw std::runtime_error("the steady tow's relaxation failed: " + stats.message);
-  if (!watch.stop)
-    throw std::runtime_error("the network did not settle in " + std::to_string(kNetworkRelaxTime) +
-                             " s of relaxation (joints still move at " + std::to_string(watch.speed) + " m/s)");
+  if (!watch.settled)
+    throw std::runtime_error("the network has no steady tow: after " + std::to_string(std::lround(watch.time)) +
+                             " s of relaxation its joints still move at " + fmt_g(watch.speed) +
+                             " m/s and no longer settle (a body hunting, a line strumming, or a mode slower than " +
+                             std::to_string(std::lround(kNetworkRelaxTime)) + " s)");
   out.relaxed_time = watch.time;
   out.residual_speed = watch.speed;
   out.steps = stats.steps;

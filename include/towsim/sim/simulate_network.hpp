@@ -55,8 +55,8 @@ inline constexpr double kNetworkRelaxTime = 20000;
 /// kNetworkSettledSpeed; then every line at rest relative to the tow,
 /// moving at V. Throws std::invalid_argument for what it cannot relax (a
 /// seabed: its friction is relative to the bottom, not to the tow; a tow in
-/// force mode), std::runtime_error when the relaxation fails, is stopped or
-/// does not settle within kNetworkRelaxTime.
+/// force mode), std::runtime_error when the relaxation fails, is stopped,
+/// stops decaying (a limit cycle) or does not settle within kNetworkRelaxTime.
 NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw,
                                    const volatile int* stop_flag = nullptr);
 
