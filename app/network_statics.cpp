@@ -4,10 +4,13 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <optional>
+#include <stdexcept>
 
 #include "commands.hpp"
 #include "towsim/output/dir_lock.hpp"
 #include "towsim/output/network_output.hpp"
+#include "towsim/sim/network_target_depth.hpp"
 #include "towsim/sim/simulate_network.hpp"
 
 namespace towsim::io {
@@ -68,14 +71,29 @@ int write_network_statics(const LoadedScenario& sc, const Network& net, const Ne
 int statics_network(const LoadedScenario& sc, const Network& net, const StaticsOptions& opts, std::ostream& out,
                     std::ostream& err, const volatile int* stop_flag) {
   // What a network's statics does not do yet: refused before anything is written.
-  if (opts.target_depth || !opts.trim_body.empty()) {
-    err << "towsim: statics: " << (opts.target_depth ? "--target-depth" : "--trim")
-        << " takes a single line (cable:), not a network yet\n";
+  if (!opts.trim_body.empty()) {
+    err << "towsim: statics: --trim takes a single line (cable:), not a network yet\n";
+    return kExitInvalid;
+  }
+  if (opts.target_depth && !(*opts.target_depth > 0)) {
+    err << "towsim: statics: --target-depth must be > 0 (got " << fmt_num(*opts.target_depth) << ")\n";
     return kExitInvalid;
   }
   NetworkSteady st;
+  std::optional<NetworkTargetDepth> target;
   try {
-    st = network_statics(net, stop_flag);
+    if (opts.target_depth) {
+      target = network_length_for_depth(net, *opts.target_depth, stop_flag);
+      if (!target->found)
+        throw std::runtime_error("--target-depth " + fmt_num(*opts.target_depth) + ": " + target->message);
+      st = target->steady;
+      out << std::setprecision(7) << "deployed length of line "
+          << net.line_names[static_cast<std::size_t>(target->line)] << " for a depth of " << fmt_num(*opts.target_depth)
+          << " m: " << target->length << " m (deepest " << (net.bodies.empty() ? "line end" : "body") << " at "
+          << target->depth << " m; " << target->evaluations << " steady tows)\n";
+    } else {
+      st = network_statics(net, stop_flag);
+    }
   } catch (const std::invalid_argument& e) {
     err << "towsim: statics: " << e.what() << "\n";
     return kExitInvalid;
@@ -87,10 +105,11 @@ int statics_network(const LoadedScenario& sc, const Network& net, const StaticsO
     err << "towsim: statics: " << e.what() << "\n";
     return kExitFailed;
   }
+  const Network& used = target ? target->network : net;
   NetworkMemorySink mem;
-  write_network_steady(net, st, mem);
-  print_network_statics(net, st, mem.samples.front(), out);
-  return opts.out_dir.empty() ? kExitOk : write_network_statics(sc, net, st, opts, err);
+  write_network_steady(used, st, mem);
+  print_network_statics(used, st, mem.samples.front(), out);
+  return opts.out_dir.empty() ? kExitOk : write_network_statics(sc, used, st, opts, err);
 }
 
 }  // namespace towsim::io

@@ -106,10 +106,26 @@ TEST_F(Cli, BridleStaticsCarriesTheLegTensionsOfStatics) {
     EXPECT_NEAR(ts.rows.front()[static_cast<std::size_t>(ts.column(leg))], expected, kLegWeight) << leg;
   EXPECT_TRUE(std::filesystem::exists(dir_ / "out" / "summary.json"));
   // What it does not take yet: refused, nothing written.
-  const auto t = run_towsim("statics " + quoted(file) + " --target-depth 20 --out " + quoted(dir_ / "out2"));
+  const auto t = run_towsim("statics " + quoted(file) + " --trim box --out " + quoted(dir_ / "out2"));
   EXPECT_EQ(t.status, 2) << t.out;
-  EXPECT_EQ(t.out, "towsim: statics: --target-depth takes a single line (cable:), not a network yet\n");
+  EXPECT_EQ(t.out, "towsim: statics: --trim takes a single line (cable:), not a network yet\n");
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out2"));
+}
+
+// --target-depth on the bridle at rest: everything hangs straight down, so
+// the box's origin is at L + sqrt(a^2 - b^2) + 0.2 m below the tow point (the
+// main line's L, the legs' drop sqrt(3) m, the origin 0.2 m below the hull
+// points): for 15 m, L = 15 - sqrt(3) - 0.2 = 13.0679 m. Checked to 2e-3 m:
+// the search's 1 mm of depth plus the legs' sag under their own weight.
+TEST_F(Cli, BridleTargetDepthIsTheHangingLength) {
+  const auto file = dir_ / "bridle.yaml";
+  std::ofstream(file) << kBridleAtRest;
+  const auto r = run_towsim("statics " + quoted(file) + " --target-depth 15");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::string head = "deployed length of line main for a depth of 15 m: ";
+  ASSERT_EQ(r.out.rfind(head, 0), 0u) << r.out;
+  const double L = std::stod(r.out.substr(head.size()));
+  EXPECT_NEAR(L, 15 - std::sqrt(3.0) - 0.2, 2e-3) << r.out;
 }
 
 TEST_F(Cli, NetworkWinchIsRefusedBeforeAnythingIsWritten) {
