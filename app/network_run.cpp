@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "towsim/output/dir_lock.hpp"
 #include "towsim/output/network_output.hpp"
+#include "towsim/sim/network_discretisation.hpp"
 #include "towsim/sim/simulate_network.hpp"
 
 namespace towsim::io {
@@ -59,6 +60,7 @@ int run_network(const LoadedScenario& sc, const Network& net, const RunOptions& 
     RunStats stats;
     try {
       stats = simulate_network(net, writer, {}, stop_flag);
+      record_network_discretisation_estimate(net, stats, stop_flag);  // the element count's share of the error
     } catch (const std::exception& e) {
       stats.status = "failed";
       stats.message = std::string("internal error: ") + e.what();

@@ -30,8 +30,9 @@ double richardson(double Tn, double T2n) {
   return std::abs(Tn - T2n) / (1 - std::pow(2.0, -kDiscretisationOrder)) / Tn;
 }
 
-/// True when the tow law or the model has no steady state of its own.
-bool needs_proxy(const Model& model) {
+}  // namespace
+
+bool needs_steady_proxy(const Model& model) {
   if (has_sea(model) || model.winch.active()) return true;
   return std::any_of(model.tow.pieces.begin(), model.tow.pieces.end(), [](const auto& piece) {
     if (std::holds_alternative<Heave>(piece)) return true;
@@ -39,8 +40,6 @@ bool needs_proxy(const Model& model) {
     return turn != nullptr && !std::isfinite(turn->angle);
   });
 }
-
-}  // namespace
 
 Model refined_model(const Model& model, int factor) {
   Model m = model;
@@ -69,7 +68,7 @@ DiscretisationEstimate estimate_discretisation_error(const Model& model, const v
   }
   const Vec3 V = final_tow_velocity(model.tow);
   d.speed = V.norm();
-  d.proxy = needs_proxy(model);
+  d.proxy = needs_steady_proxy(model);
   // The steady tow with n elements, then with 2n.
   const StaticsResult coarse = solve_statics(model, V, stop_flag);
   const StaticsResult fine = coarse.converged ? solve_statics(refined_model(model, 2), V, stop_flag) : StaticsResult{};

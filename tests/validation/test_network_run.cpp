@@ -7,6 +7,7 @@
 
 #include "../support/models.hpp"
 #include "../support/physics.hpp"
+#include "towsim/sim/network_discretisation.hpp"
 #include "towsim/sim/simulate_network.hpp"
 #include "towsim/sim/statics.hpp"
 
@@ -250,6 +251,40 @@ TEST(NetworkSteady, LinesJoinedOnlyThroughTheVesselAreEachTheirOwnStatics) {
     EXPECT_LT((s.v0 - V).norm(), 1e-12);
     for (const Vec3& w : s.w) EXPECT_EQ(w.norm(), 0.0);
   }
+}
+
+// ---------------------------------------------------------------------------
+// The element count's share of a network's error
+// (estimate_network_discretisation: Richardson on two relaxed steady tows)
+// against the chains' own (estimate_discretisation_error: Newton statics of
+// each line): the two lines of the steady test above, joined only through
+// the vessel, give the larger of the two lines' estimates. Checked to 1e-5
+// absolute: each relaxed tension is within ~2e-6 of its Newton value
+// (above), so a difference of two, over 1 - 2^-2, is within ~5e-6. Line b
+// ends in a 5 kg sphere here: its free end at 12 elements whips in the flow
+// (a limit cycle at 0.5 m/s, which the relaxation reports as no steady tow;
+// Newton's statics finds the unstable equilibrium).
+// ---------------------------------------------------------------------------
+TEST(NetworkDiscretisation, LinesJoinedOnlyThroughTheVesselGiveTheirChainsEstimate) {
+  Model a = cable_model(testing::paper52_cable(10, 30));
+  testing::add_sphere_body(a, 20.0, 0.15, 0.5, 0.5);
+  Model b = cable_model(testing::paper52_cable(6, 20, 0.01));
+  testing::add_sphere_body(b, 5.0, 0.1, 0.5, 0.5);
+  b.tow.start = Vec3(0, 5, 0);
+  for (Model* m : {&a, &b}) {
+    m->tow.mode = Tow::Mode::Motion;
+    m->tow.pieces = {testing::ramp_piece(Vec3::UnitX(), 1.5, 0.0)};
+    finalize_tow(m->tow);
+  }
+  const DiscretisationEstimate da = estimate_discretisation_error(a), db = estimate_discretisation_error(b);
+  ASSERT_TRUE(da.available() && db.available()) << da.message << " / " << db.message;
+  const DiscretisationEstimate dn = estimate_network_discretisation(network_of({a, b}, {LineTop{}, LineTop{}}));
+  ASSERT_TRUE(dn.available()) << dn.message;
+  const double chains = std::max(da.estimate, db.estimate);
+  std::printf("[measured] discretisation estimate: network %.6e, chains %.6e and %.6e\n", dn.estimate, da.estimate,
+              db.estimate);
+  EXPECT_NEAR(dn.estimate, chains, 1e-5);
+  EXPECT_EQ(dn.elements, 16);
 }
 
 }  // namespace

@@ -42,6 +42,11 @@ struct ElementAdvice {
   bool beyond = false;  // the refinements stopped below the target: more than `elements`
 };
 
+/// True when the tow law or the model has no steady state of its own (a
+/// turn without end, heave, waves, a winch): the steady tow at the final
+/// speed then stands in for the run (DiscretisationEstimate::proxy).
+bool needs_steady_proxy(const Model& model);
+
 /// `model` with every element split into `factor` equal elements (same
 /// section, per-length properties kept); joints of bodies, attachments and
 /// sections keep their place on the cable.

@@ -53,12 +53,14 @@ inline constexpr double kNetworkRelaxTime = 20000;
 /// calm water), integrated from the hanging start (loops assembled) by the
 /// Rosenbrock method until every joint moves by less than
 /// kNetworkSettledSpeed; then every line at rest relative to the tow,
-/// moving at V. Throws std::invalid_argument for what it cannot relax (a
+/// moving at V; from `start` instead of hanging when given (network_statics).
+/// Throws std::invalid_argument for what it cannot relax (a
 /// seabed: its friction is relative to the bottom, not to the tow; a tow in
 /// force mode), std::runtime_error when the relaxation fails, is stopped,
 /// stops decaying (a limit cycle) or does not settle within kNetworkRelaxTime.
 NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw,
-                                   const volatile int* stop_flag = nullptr);
+                                   const volatile int* stop_flag = nullptr, const TreeState* start = nullptr,
+                                   double settled_speed = kNetworkSettledSpeed);
 
 /// `initial: steady`: the steady tow at the tow law's velocity at t = 0+
 /// (every root line's the same, else std::invalid_argument), tow points as
@@ -67,8 +69,12 @@ NetworkSteady network_steady_state(const Network& net, const volatile int* stop_
 
 /// `towsim statics`: the steady tow at the tow law's final velocity
 /// (final_tow_velocity, as for a chain), the tow points turned with the
-/// vessel from its heading before any manoeuvre to its final one.
-NetworkSteady network_statics(const Network& net, const volatile int* stop_flag = nullptr);
+/// vessel from its heading before any manoeuvre to its final one. `start`
+/// (optional): the shape to relax from (each line's directions, lengths and
+/// attitudes; its tops are put where the tow's frame has them), instead of
+/// the hanging start. `settled_speed` [m/s]: the relaxation's stop.
+NetworkSteady network_statics(const Network& net, const volatile int* stop_flag = nullptr,
+                              const TreeState* start = nullptr, double settled_speed = kNetworkSettledSpeed);
 
 /// The steady tow's sample at t = 0 written to `sink` (towsim statics):
 /// evaluated in the tow's frame of network_steady_state, every velocity
