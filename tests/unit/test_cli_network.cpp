@@ -41,15 +41,21 @@ initial: hanging
 simulation: {duration: 60, integrator: rosenbrock, output_interval: 1}
 )";
 
+/// Each leg's tension of the bridle at rest, W / (2 cos(asin(b/a))) [N],
+/// and its tolerance, the legs' weight in water [N].
+constexpr double kLegWeight = 0.02;
+double bridle_leg_tension() {
+  const double W = (100 - 1025 * 4.0 / 3 * std::numbers::pi * 0.008) * 9.81;  // the box's apparent weight [N]
+  return W / (2 * std::cos(std::asin(0.5)));
+}
+
 TEST_F(Cli, BridleAtRestCarriesTheLegTensionsOfStatics) {
   const auto file = dir_ / "bridle.yaml";
   std::ofstream(file) << kBridleAtRest;
   const auto r = run_towsim("run " + quoted(file) + " -o " + quoted(dir_ / "out") + " -q");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto ts = read_csv(dir_ / "out" / "timeseries.csv");
-  const double W = (100 - 1025 * 4.0 / 3 * std::numbers::pi * 0.008) * 9.81;  // [N]
-  const double expected = W / (2 * std::cos(std::asin(0.5)));
-  constexpr double kLegWeight = 0.02;  // [N]
+  const double expected = bridle_leg_tension();
   for (const char* leg : {"leg_a_top_tension", "leg_b_top_tension"}) {
     const int c = ts.column(leg);
     ASSERT_GE(c, 0) << leg;
@@ -77,9 +83,7 @@ TEST_F(Cli, BridleSteadyStartCarriesTheLegTensionsOfStatics) {
   const auto r = run_towsim("run " + quoted(file) + " -o " + quoted(dir_ / "out") + " -q");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto ts = read_csv(dir_ / "out" / "timeseries.csv");
-  const double W = (100 - 1025 * 4.0 / 3 * std::numbers::pi * 0.008) * 9.81;  // [N]
-  const double expected = W / (2 * std::cos(std::asin(0.5)));
-  constexpr double kLegWeight = 0.02;  // [N]
+  const double expected = bridle_leg_tension();
   for (const char* leg : {"leg_a_top_tension", "leg_b_top_tension"}) {
     const auto c = static_cast<std::size_t>(ts.column(leg));
     EXPECT_NEAR(ts.rows.front()[c], expected, kLegWeight) << leg;
@@ -99,9 +103,7 @@ TEST_F(Cli, BridleStaticsCarriesTheLegTensionsOfStatics) {
   EXPECT_NE(r.out.find("  junction j: depth "), std::string::npos) << r.out;
   const auto ts = read_csv(dir_ / "out" / "timeseries.csv");
   ASSERT_EQ(ts.rows.size(), 1u);
-  const double W = (100 - 1025 * 4.0 / 3 * std::numbers::pi * 0.008) * 9.81;  // [N]
-  const double expected = W / (2 * std::cos(std::asin(0.5)));
-  constexpr double kLegWeight = 0.02;  // [N]
+  const double expected = bridle_leg_tension();
   for (const char* leg : {"leg_a_top_tension", "leg_b_top_tension"})
     EXPECT_NEAR(ts.rows.front()[static_cast<std::size_t>(ts.column(leg))], expected, kLegWeight) << leg;
   EXPECT_TRUE(std::filesystem::exists(dir_ / "out" / "summary.json"));
