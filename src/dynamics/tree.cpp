@@ -161,8 +161,10 @@ void tree_up(const TreeModel& tree, const TreeState& s, TreeWorkspace& ws, bool 
   }
 }
 
-/// Down the tree: each line driven at its top by its node's acceleration.
-void tree_down(const TreeModel& tree, const TreeState& s, double t, TreeWorkspace& ws, bool path_only) {
+/// Down the tree: each line driven at its top by its node's acceleration
+/// (a root line by its tow law's, or by root_a0[i] when given: an impulse).
+void tree_down(const TreeModel& tree, const TreeState& s, double t, TreeWorkspace& ws, bool path_only,
+               const std::vector<Vec3>* root_a0 = nullptr) {
   for (std::size_t i = 0; i < tree.lines.size(); ++i) {
     if (path_only && !ws.loop_path[i]) continue;
     const LineTop& top = tree.tops[i];
@@ -170,8 +172,10 @@ void tree_down(const TreeModel& tree, const TreeState& s, double t, TreeWorkspac
     if (top.line >= 0) {
       const Workspace& p = ws.lines[idx(top.line)];
       a0 = top.body < 0 ? p.acc.end_acc : p.body[idx(top.body)].children[idx(ws.slot[i])].a;
+    } else if (root_a0 != nullptr) {
+      a0 = (*root_a0)[i];
     }
-    chain::accelerate(tree.lines[i], s[i], t, ws.lines[i], top.line < 0 ? nullptr : &a0);
+    chain::accelerate(tree.lines[i], s[i], t, ws.lines[i], top.line < 0 && root_a0 == nullptr ? nullptr : &a0);
   }
 }
 
@@ -190,12 +194,13 @@ void loop_gaps(const TreeModel& tree, const TreeWorkspace& ws, Eigen::Ref<Eigen:
 /// "Loops"): the free sweep, one probe sweep per force component along the
 /// loops' paths (bias and down passes: the inertias do not depend on the
 /// forces), the dense solve G lambda = -gap, the final sweep with lambda.
-void solve_loops(const TreeModel& tree, const TreeState& s, double t, TreeWorkspace& ws) {
+void solve_loops(const TreeModel& tree, const TreeState& s, double t, TreeWorkspace& ws,
+                 const std::vector<Vec3>* root_a0 = nullptr) {
   const std::size_t nloop = tree.loops.size();
   // Free sweep: no loop forces.
   std::fill(ws.loop_force.begin(), ws.loop_force.end(), Vec3::Zero());
   tree_up(tree, s, ws, false, false);
-  tree_down(tree, s, t, ws, false);
+  tree_down(tree, s, t, ws, false, root_a0);
   loop_gaps(tree, ws, ws.loop_gap);
   // Probe force of the size of the tree's top forces: the responses stand
   // well above the free accelerations' round-off.
@@ -205,7 +210,7 @@ void solve_loops(const TreeModel& tree, const TreeState& s, double t, TreeWorksp
     std::fill(ws.loop_force.begin(), ws.loop_force.end(), Vec3::Zero());
     ws.loop_force[c / 3][static_cast<Eigen::Index>(c % 3)] = probe;
     tree_up(tree, s, ws, true, true);
-    tree_down(tree, s, t, ws, true);
+    tree_down(tree, s, t, ws, true, root_a0);
     auto col = ws.loop_G.col(static_cast<Eigen::Index>(c));
     loop_gaps(tree, ws, col);
     col = (col - ws.loop_gap) / probe;
@@ -216,7 +221,7 @@ void solve_loops(const TreeModel& tree, const TreeState& s, double t, TreeWorksp
   for (std::size_t j = 0; j < nloop; ++j)
     ws.loop_force[j] = ws.loop_lambda.segment<3>(static_cast<Eigen::Index>(3 * j));
   tree_up(tree, s, ws, true, true);
-  tree_down(tree, s, t, ws, false);
+  tree_down(tree, s, t, ws, false, root_a0);
 }
 
 }  // namespace
@@ -234,6 +239,34 @@ void tree_forward_dynamics(const TreeModel& tree, const TreeState& s, double t, 
   if (!tree.loops.empty()) return solve_loops(tree, s, t, ws);
   tree_up(tree, s, ws, false, false);
   tree_down(tree, s, t, ws, false);
+}
+
+void tree_tow_velocity_jump(const TreeModel& tree, const TreeState& s, const std::vector<Vec3>& dv, TreeWorkspace& ws) {
+  const std::size_t nl = tree.lines.size();
+  if (!ws.fits(tree) || s.size() != nl || dv.size() != nl)
+    throw std::logic_error("towsim: tree: workspace, state or jumps do not fit");
+  // The same sweep at zero velocity with zero finite loads: only inertia and
+  // the joints' (and loops') impulses remain; "accelerations" are then
+  // velocity jumps (as the chain's tow_velocity_jump).
+  TreeState s0 = s;
+  for (PhysicalState& p : s0) {
+    p.v0.setZero();
+    for (Vec3& w : p.w) w.setZero();
+    for (double& r : p.length_rate) r = 0;
+    for (BodyState& b : p.bodies) b.w.setZero();
+  }
+  tree_kinematics(tree, s0, ws);
+  for (std::size_t i = 0; i < nl; ++i) {
+    Workspace& w = ws.lines[i];
+    compute_loads(tree.lines[i], s0[i], 0.0, w);
+    for (std::size_t k = 0; k < w.F.size(); ++k) w.F[k].setZero(), w.Mom[k].setZero();
+    for (Vec3& f : w.Fa) f.setZero();
+    for (auto& ew : w.elastic) ew.T = 0;  // a finite tension gives no impulse
+    for (BodyWork& bw : w.body) bw.Fb.setZero(), bw.Mb.setZero(), bw.hw.setZero();
+  }
+  if (!tree.loops.empty()) return solve_loops(tree, s0, 0.0, ws, &dv);
+  tree_up(tree, s0, ws, false, false);
+  tree_down(tree, s0, 0.0, ws, false, &dv);
 }
 
 TreeImplicitWorkspace::TreeImplicitWorkspace(const TreeModel& tree, const TreeWorkspace& ws) {

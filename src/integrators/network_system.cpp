@@ -135,19 +135,34 @@ double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
   for (std::size_t i = 0; i < rows_.size(); ++i)
     if (tree_.tops[i].line < 0) dv[i] = towsim::tow_jump(tree_.lines[i], t), size = std::max(size, dv[i].norm());
   if (size == 0) return 0;
-  // A tree's impulsive response is not computed: below kRoundOffJump the
-  // jump is the difference quotient's round-off at a change of acceleration
-  // (a ramp's end) and is left out; above it, refused.
+  // Below kRoundOffJump on a tree with nodes the jump is the difference
+  // quotient's round-off at a change of acceleration (a ramp's end): left out.
   if (has_nodes() && size <= NetworkSystem::kRoundOffJump) return 0;
-  if (has_nodes())
-    throw std::runtime_error("the tow velocity jumps at t = " + std::to_string(t) +
-                             " s (the start of a heave or a track, or a tow at speed at t = 0): a network with "
-                             "lines below a junction or body takes a tow law whose velocity is continuous");
-  // Lines joined only through the vessel: each line's own impulsive response.
   tree_state_into(y, s_);
+  if (!has_nodes()) {
+    // Lines joined only through the vessel: each line's own impulsive response.
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+      s_[i] = jumped(tree_.lines[i], s_[i], dv[i], t, ws_.lines[i]);
+      rows_[i]->pack(s_[i], y.data() + offset_[i]);
+    }
+    return size;
+  }
+  // The tree's impulsive response (loops closed by impulses), then every
+  // root's tow rows on its law's right limit (the lines below nodes keep
+  // rows for their tops that follow their nodes: not read by the dynamics).
+  tree_tow_velocity_jump(tree_, s_, dv, ws_);
+  const double d = 1e-9 * std::max(1.0, std::abs(t));
   for (std::size_t i = 0; i < rows_.size(); ++i) {
-    s_[i] = jumped(tree_.lines[i], s_[i], dv[i], t, ws_.lines[i]);
-    rows_[i]->pack(s_[i], y.data() + offset_[i]);
+    PhysicalState& p = s_[i];
+    const Accelerations& jump = ws_.lines[i].acc;
+    for (std::size_t k = 0; k < p.w.size(); ++k) p.w[k] += jump.alpha[k];
+    for (std::size_t k = 0; k < p.length_rate.size(); ++k) p.length_rate[k] += jump.length_acc[k];
+    for (std::size_t b = 0; b < p.bodies.size(); ++b) p.bodies[b].w += jump.alpha_b[b];
+    if (tree_.tops[i].line < 0 && tree_.lines[i].tow.mode == Tow::Mode::Motion) {
+      p.r0 = tow_kinematics(tree_.lines[i].tow, t).pos;
+      p.v0 = tow_kinematics(tree_.lines[i].tow, t + d).vel;
+    }
+    rows_[i]->pack(p, y.data() + offset_[i]);
   }
   return size;
 }

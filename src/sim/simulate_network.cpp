@@ -272,13 +272,6 @@ RunStats simulate_network(const Network& net, NetworkSink& sink, const ProgressF
   NetworkRig rig(net, sink);
   StateVector y;
   try {
-    // The tree's impulsive response is not computed: a jump of the tow velocity is refused before the run.
-    if (rig.system.has_nodes())
-      for (double b : rig.breakpoints())
-        if (b <= settings.sim.duration && rig.system.tow_jump(b) > NetworkSystem::kRoundOffJump)
-          throw std::runtime_error("the tow velocity jumps at t = " + std::to_string(b) +
-                                   " s (the start of a heave or a track): a network with lines below a junction or "
-                                   "body takes a tow law whose velocity is continuous");
     if (settings.initial.kind == Initial::Kind::Steady) {
       const NetworkSteady st = network_steady_state(net, stop_flag);
       y = rig.system.initial_tree(st.state);  // moving at the tow's velocity: no jump

@@ -372,6 +372,58 @@ TEST(LoopStageSolve, EqualsDenseStageSystemWithLoopRows) {
 // to round-off (1e-12 m/s: one linear projection of velocities of order 1
 // m/s), the directions stay unit vectors and the angular velocities normal
 // to them.
+// The tree's impulsive response to a jump of the tow velocities
+// (tree_tow_velocity_jump, loops closed by impulses) is the tree's
+// acceleration at rest without finite loads and with the roots accelerated
+// by the jumps: the same tree without gravity (no weight, no buoyancy; the
+// added mass stays), at zero velocity (no drag), its tow laws accelerating
+// by dv, in still water (no drag at rest), its elements weightless (their
+// weight is compiled with g), through tree_forward_dynamics, which the
+// dense multiplier reference above checks. Rigid lines here (an elastic line's finite tension is no
+// impulse but would be a load). To round-off: 1e-12 of the largest jump.
+TEST(LoopImpulse, TowVelocityJumpIsTheUnloadedSweepAtRest) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (TreeModel tree : {bridle(), junction_loop(), two_loops()}) {
+    for (Model& m : tree.lines)
+      for (Element& el : m.cable.elements) el.axial_stiffness = 0, el.axial_damping = 0;
+    TreeState s = closed_state(tree, rng, 3.0);
+    for (PhysicalState& p : s) {
+      p.v0.setZero();
+      for (Vec3& w : p.w) w.setZero();
+      for (BodyState& b : p.bodies) b.w.setZero();
+    }
+    std::vector<Vec3> dv(tree.lines.size(), Vec3::Zero());
+    TreeModel ref = tree;
+    for (std::size_t i = 0; i < tree.lines.size(); ++i) {
+      Model& m = ref.lines[i];
+      m.fluid.g = 0;
+      m.fluid.current_depth.clear(), m.fluid.current_velocity.clear();  // no drag at rest
+      for (Element& el : m.cable.elements) el.weight = 0;               // compiled with g
+      if (tree.tops[i].line >= 0) continue;
+      dv[i] = Vec3(U(rng), U(rng), U(rng));
+      const Vec3 r0 = s[i].r0;
+      m.tow.pieces = {testing::ramp_piece(dv[i].normalized(), 2 * dv[i].norm(), 2.0)};  // accelerating by dv
+      m.tow.start = r0 - 0.25 * dv[i];  // at t = 1 s it is at r0 (the ramp's half-way: dv t^2 / 2 behind)
+      finalize_tow(m.tow);
+    }
+    TreeWorkspace ws(tree), wr(ref);
+    tree_tow_velocity_jump(tree, s, dv, ws);
+    tree_forward_dynamics(ref, s, 1.0, wr);
+    double diff = 0, scale = 0;
+    for (std::size_t i = 0; i < tree.lines.size(); ++i) {
+      const Accelerations &a = ws.lines[i].acc, &b = wr.lines[i].acc;
+      for (std::size_t k = 0; k < a.alpha.size(); ++k)
+        diff = std::max(diff, (a.alpha[k] - b.alpha[k]).norm()), scale = std::max(scale, a.alpha[k].norm());
+      for (std::size_t k = 0; k < a.alpha_b.size(); ++k)
+        diff = std::max(diff, (a.alpha_b[k] - b.alpha_b[k]).norm()), scale = std::max(scale, a.alpha_b[k].norm());
+    }
+    std::printf("[measured] tow velocity jump vs the unloaded sweep at rest: %.2e of %.3e rad/s\n", diff, scale);
+    ASSERT_GT(scale, 0);
+    EXPECT_LT(diff, 1e-12 * scale);
+  }
+}
+
 TEST(LoopClose, PerturbedClosedStateClosesToRoundOff) {
   const double t = 4.2;  // [s]
   const std::pair<const char*, TreeModel> cases[] = {{"bridle", bridle()},

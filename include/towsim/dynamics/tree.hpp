@@ -89,6 +89,14 @@ void tree_implicit_factor(const TreeModel& tree, const TreeState& s, const TreeW
 void tree_stage_solve(const TreeModel& tree, const TreeState& s, const TreeWorkspace& ws, double hg,
                       const std::vector<StageRhs>& r, TreeImplicitWorkspace& iw);
 
+/// The tree's impulsive response to a jump dv[i] of each root line's tow
+/// velocity (dv of a line below a node unused) [m/s, R_g]: the sweep at
+/// zero velocity with zero finite loads, the loops closed by impulses, so
+/// each line's ws.lines[i].acc holds velocity jumps (alpha: the elements'
+/// angular velocity jumps [rad/s], alpha_b the bodies', length_acc the
+/// elastic lengths' rates). As tow_velocity_jump for a chain.
+void tree_tow_velocity_jump(const TreeModel& tree, const TreeState& s, const std::vector<Vec3>& dv, TreeWorkspace& ws);
+
 /// Put a state that nearly closes its loops onto them: the positions by
 /// Gauss-Newton steps on the element directions and the bodies' attitudes
 /// (least norm in the parts' rotational inertias; lengths and roots held),

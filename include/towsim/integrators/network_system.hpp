@@ -53,10 +53,10 @@ class NetworkSystem final : public System {
   /// Every root line's tow rows to its imposed motion, unit vectors and
   /// quaternions renormalised, the loops closed (tree_close_loops).
   void project(StateVector& y, double t) override;
-  /// The tow velocity's jump at t as each root line's impulsive response.
-  /// On a tree with lines below a node (whose impulse is not computed yet)
-  /// a jump of at most kRoundOffJump is left out, a larger one throws
-  /// std::runtime_error.
+  /// The tow velocity's jump at t as the tree's impulsive response: each
+  /// line's own (jumped) when the lines meet only at the vessel, else the
+  /// tree's (tree_tow_velocity_jump, loops closed by impulses), where a jump
+  /// of at most kRoundOffJump is left out.
   double apply_tow_jump(StateVector& y, double t) override;
   /// Line 0's physical state (physical_into likewise).
   PhysicalState physical(const StateVector& y) const override;
