@@ -28,6 +28,11 @@ std::string check_finite(const System& sys, const StateVector& y);
 std::string check_chain(const Model& model, const PhysicalState& s);
 /// Absolute force scale of the force error norm: the chain's apparent weight [N] (at least 1).
 double force_scale(const Model& model);
+/// An adaptive tolerance's warnings into stats: above 3e-4 the time step's
+/// error of the tow force may pass 0.1 % of its peak, above 1e-2 the results
+/// may be far from converged.
+void tolerance_warnings(const Simulation& sim, RunStats& stats);
+
 /// The sample of the evaluated state (s, ws) at t into `out`, with the
 /// sample's checks (rk4 step into *err when given, stall, surface) and the
 /// element length drift into stats.

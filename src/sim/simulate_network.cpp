@@ -268,6 +268,7 @@ RunStats simulate_network(const Network& net, NetworkSink& sink, const ProgressF
   const Model& settings = net.settings();
   stats.integrator = integrator_key(settings.sim.integrator);
   stats.threads = 1;
+  run::tolerance_warnings(settings.sim, stats);
   const auto wall0 = std::chrono::steady_clock::now();
   NetworkRig rig(net, sink);
   StateVector y;
