@@ -44,16 +44,16 @@ void print_network_statics(const Network& net, const NetworkSteady& st, const Ne
         << " m\n";
 }
 
-/// --out: the steady tow as a network run's files, its one sample at t = 0.
-int write_network_statics(const LoadedScenario& sc, const Network& net, const NetworkSteady& st,
+/// --out: the steady tow as a network run's files, its one sample (at t = 0)
+/// and that sample's statistics.
+int write_network_statics(const LoadedScenario& sc, const Network& net, const NetworkSample& sample, RunStats stats,
                           const StaticsOptions& opts, std::ostream& err) {
   if (!create_output_dir(opts.out_dir, err)) return kExitError;
   try {
     const DirLock lock(opts.out_dir);
     remove_run_outputs(opts.out_dir);
     NetworkWriter writer(opts.out_dir, net, true);
-    RunStats stats = write_network_steady(net, st, writer);
-    stats.steps = st.steps;
+    writer.write(sample);
     writer.flush();
     auto summary = make_network_summary(to_json(sc.tree), stats, writer, true);
     std::string why;
@@ -107,9 +107,10 @@ int statics_network(const LoadedScenario& sc, const Network& net, const StaticsO
   }
   const Network& used = target ? target->network : net;
   NetworkMemorySink mem;
-  write_network_steady(used, st, mem);
+  RunStats stats = write_network_steady(used, st, mem);
+  stats.steps = st.steps;
   print_network_statics(used, st, mem.samples.front(), out);
-  return opts.out_dir.empty() ? kExitOk : write_network_statics(sc, used, st, opts, err);
+  return opts.out_dir.empty() ? kExitOk : write_network_statics(sc, used, mem.samples.front(), stats, opts, err);
 }
 
 }  // namespace towsim::io

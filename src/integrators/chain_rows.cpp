@@ -23,15 +23,19 @@ Vec3 tow_jump(const Model& m, double t) {
   return tow_kinematics(m.tow, t + d).vel - tow_kinematics(m.tow, t - d).vel;
 }
 
-PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws) {
-  tow_velocity_jump(m, s, dv, ws);
-  for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
-  for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws.acc.length_acc[k];
-  for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws.acc.alpha_b[b];
-  if (m.tow.mode != Tow::Mode::Motion) return s;
+void add_jump(const Model& m, const Accelerations& jump, double t, bool tow_law, PhysicalState& s) {
+  for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += jump.alpha[k];
+  for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += jump.length_acc[k];
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += jump.alpha_b[b];
+  if (!tow_law || m.tow.mode != Tow::Mode::Motion) return;
   const double d = 1e-9 * std::max(1.0, std::abs(t));
   s.r0 = tow_kinematics(m.tow, t).pos;
   s.v0 = tow_kinematics(m.tow, t + d).vel;
+}
+
+PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws) {
+  tow_velocity_jump(m, s, dv, ws);
+  add_jump(m, ws.acc, t, true, s);
   return s;
 }
 

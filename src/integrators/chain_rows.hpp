@@ -13,6 +13,10 @@ namespace towsim {
 
 /// Jump of the chain's imposed tow velocity at t: v(t+) - v(t-) [m/s] (zero in Force mode).
 Vec3 tow_jump(const Model& m, double t);
+/// Add an impulsive response `jump` (its accelerations are velocity jumps:
+/// tow_velocity_jump, tree_tow_velocity_jump) to s; with `tow_law`, the
+/// tow point to its motion's right limit at t.
+void add_jump(const Model& m, const Accelerations& jump, double t, bool tow_law, PhysicalState& s);
 /// Physical state after the impulsive response to the tow velocity jump dv
 /// at t (tow_velocity_jump; ws: its storage), the tow point at its motion's right limit.
 PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws);

@@ -151,18 +151,9 @@ double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
   // root's tow rows on its law's right limit (the lines below nodes keep
   // rows for their tops that follow their nodes: not read by the dynamics).
   tree_tow_velocity_jump(tree_, s_, dv, ws_);
-  const double d = 1e-9 * std::max(1.0, std::abs(t));
   for (std::size_t i = 0; i < rows_.size(); ++i) {
-    PhysicalState& p = s_[i];
-    const Accelerations& jump = ws_.lines[i].acc;
-    for (std::size_t k = 0; k < p.w.size(); ++k) p.w[k] += jump.alpha[k];
-    for (std::size_t k = 0; k < p.length_rate.size(); ++k) p.length_rate[k] += jump.length_acc[k];
-    for (std::size_t b = 0; b < p.bodies.size(); ++b) p.bodies[b].w += jump.alpha_b[b];
-    if (tree_.tops[i].line < 0 && tree_.lines[i].tow.mode == Tow::Mode::Motion) {
-      p.r0 = tow_kinematics(tree_.lines[i].tow, t).pos;
-      p.v0 = tow_kinematics(tree_.lines[i].tow, t + d).vel;
-    }
-    rows_[i]->pack(p, y.data() + offset_[i]);
+    add_jump(tree_.lines[i], ws_.lines[i].acc, t, tree_.tops[i].line < 0, s_[i]);
+    rows_[i]->pack(s_[i], y.data() + offset_[i]);
   }
   return size;
 }

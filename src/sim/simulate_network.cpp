@@ -68,7 +68,7 @@ struct NetworkRig {
 };
 
 /// Watches a relaxation's samples: stops it (through `stop`) at the first
-/// whose joints and bodies all move by less than the settled speed (a
+/// whose joints and bodies all move by less than kNetworkSettledSpeed (a
 /// body's rotation counted at 1 m from its origin), or when the motion has
 /// stopped decaying: the largest speed over the last kStallWindow seconds
 /// at least kStallRatio of the window's before (a limit cycle: a body
@@ -77,7 +77,6 @@ class SettleSink final : public NetworkSink {
  public:
   static constexpr double kStallWindow = 2000;  // [s]
   static constexpr double kStallRatio = 0.9;    // [-]
-  explicit SettleSink(double settled_speed) : settled_speed_(settled_speed) {}
   volatile int stop = 0;
   bool settled = false;
   double speed = 0;  // the last sample's largest speed [m/s]
@@ -89,7 +88,7 @@ class SettleSink final : public NetworkSink {
       for (const BodySample& b : l.bodies) speed = std::max({speed, b.vel.norm(), b.omega.norm() * 1.0});
     }
     time = s.t;
-    if (s.t > 0 && speed < settled_speed_) {
+    if (s.t > 0 && speed < kNetworkSettledSpeed) {
       settled = true;
       stop = 1;
     }
@@ -105,7 +104,6 @@ class SettleSink final : public NetworkSink {
   void flush() override {}
 
  private:
-  double settled_speed_;  // [m/s]
   double window_end_ = kStallWindow, window_max_ = 0, previous_max_ = 0;
 };
 
@@ -164,14 +162,14 @@ void check_steady(const Network& net) {
 }  // namespace
 
 NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw, const volatile int* stop_flag,
-                                   const TreeState* start, double settled_speed) {
+                                   const TreeState* start) {
   check_steady(net);
   NetworkSteady out;
   out.velocity = V;
   out.yaw = yaw;
   // Relax in the tow's frame until every joint is at rest.
   const Network frame = tow_frame(net, V, yaw);
-  SettleSink watch(settled_speed);
+  SettleSink watch;
   NetworkRig rig(frame, watch);
   TreeState s0 = network_initial_state(frame);
   if (start != nullptr) {
@@ -224,8 +222,7 @@ NetworkSteady network_steady_state(const Network& net, const volatile int* stop_
   return network_steady_state(net, V.value_or(Vec3::Zero()), 0.0, stop_flag);
 }
 
-NetworkSteady network_statics(const Network& net, const volatile int* stop_flag, const TreeState* start,
-                              double settled_speed) {
+NetworkSteady network_statics(const Network& net, const volatile int* stop_flag, const TreeState* start) {
   check_steady(net);
   const Tow& tow = net.settings().tow;
   const Vec3 V = final_tow_velocity(tow);
@@ -236,7 +233,7 @@ NetworkSteady network_statics(const Network& net, const volatile int* stop_flag,
   const double yaw = V.head<2>().norm() > 0 && v0.head<2>().norm() > 0
                          ? std::atan2(V.y(), V.x()) - std::atan2(v0.y(), v0.x())
                          : 0.0;
-  return network_steady_state(net, V, yaw, stop_flag, start, settled_speed);
+  return network_steady_state(net, V, yaw, stop_flag, start);
 }
 
 RunStats write_network_steady(const Network& net, const NetworkSteady& st, NetworkSink& sink) {

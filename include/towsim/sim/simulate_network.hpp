@@ -59,8 +59,7 @@ inline constexpr double kNetworkRelaxTime = 20000;
 /// force mode), std::runtime_error when the relaxation fails, is stopped,
 /// stops decaying (a limit cycle) or does not settle within kNetworkRelaxTime.
 NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw,
-                                   const volatile int* stop_flag = nullptr, const TreeState* start = nullptr,
-                                   double settled_speed = kNetworkSettledSpeed);
+                                   const volatile int* stop_flag = nullptr, const TreeState* start = nullptr);
 
 /// `initial: steady`: the steady tow at the tow law's velocity at t = 0+
 /// (every root line's the same, else std::invalid_argument), tow points as
@@ -72,9 +71,9 @@ NetworkSteady network_steady_state(const Network& net, const volatile int* stop_
 /// vessel from its heading before any manoeuvre to its final one. `start`
 /// (optional): the shape to relax from (each line's directions, lengths and
 /// attitudes; its tops are put where the tow's frame has them), instead of
-/// the hanging start. `settled_speed` [m/s]: the relaxation's stop.
+/// the hanging start.
 NetworkSteady network_statics(const Network& net, const volatile int* stop_flag = nullptr,
-                              const TreeState* start = nullptr, double settled_speed = kNetworkSettledSpeed);
+                              const TreeState* start = nullptr);
 
 /// The steady tow's sample at t = 0 written to `sink` (towsim statics):
 /// evaluated in the tow's frame of network_steady_state, every velocity
