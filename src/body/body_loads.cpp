@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "body_load_laws.hpp"
 #include "towsim/hydro/loads.hpp"
 #include "towsim/model/table.hpp"
 
@@ -22,42 +23,19 @@ void add_force(BodyWork& ws, const Vec3& c, const Vec3& F) {
   ws.Mb += c.cross(F);
 }
 
-/// Drag of a sphere load.
-void sphere_loads(const Fluid& fluid, const SphereLoad& sp, double t, BodyWork& ws) {
-  const Vec3 c = ws.R * sp.center;
-  const Vec3 ur = ws.vO + ws.w.cross(c) - fluid.velocity(ws.O + c, t);
-  const double area = std::numbers::pi * sp.radius * sp.radius;
-  add_force(ws, c, -0.5 * fluid.rho * sp.drag * area * ur.norm() * ur);
-}
-
-/// Normal drag and axial skin friction of a slender cylinder load.
-void cylinder_loads(const Fluid& fluid, const CylinderLoad& cy, double t, BodyWork& ws) {
-  const Vec3 c = ws.R * cy.center;
-  const Vec3 a = ws.R * cy.axis;
-  const Vec3 u = ws.vO + ws.w.cross(c) - fluid.velocity(ws.O + c, t);
-  const double ua = u.dot(a);
-  const Vec3 un = u - ua * a;
-  const double rho = fluid.rho;
-  Vec3 F = -0.5 * rho * cy.normal_drag * cy.diameter * cy.length * un.norm() * un;
-  F -= 0.5 * rho * std::numbers::pi * cy.diameter * cy.length * cy.axial_drag * std::abs(ua) * ua * a;
-  add_force(ws, c, F);
-}
-
-/// Lift and drag of a lifting surface from its local angle of attack.
-/// d: the surface's deflection [rad].
-void surface_loads(const Fluid& fluid, const LiftingSurface& ls, double d, double t, BodyWork& ws) {
-  const SurfaceFlow f = surface_flow(fluid, ls, d, t, ws);
-  if (f.speed < 1e-12) return;
-  const double alpha = f.alpha;
-  const double cl = lift_coefficient(ls, alpha);
-  const double as = ls.stall_angle;
-  double cd = ls.drag0 + ls.induced_drag * cl * cl;
-  const double sa = std::abs(std::sin(alpha));
-  if (std::abs(alpha) > as) cd += 2 * (sa * sa - std::sin(as) * std::sin(as));
-  const double qA = 0.5 * fluid.rho * f.speed * f.speed * ls.area;
-  const Vec3 lift_dir = f.span.cross(f.up) / f.speed;
-  add_force(ws, ws.R * ls.center, qA * (cl * lift_dir - cd * f.up / f.speed));
-}
+/// The sum of a body's load laws (body_laws::visit_body_loads): F_b and M_b
+/// about O_t [N, N m, R_g].
+struct LoadSum {
+  BodyWork& ws;
+  void world(const Vec3& c, const Vec3& F) const { add_force(ws, c, F); }
+  void turning(const Vec3& c, const Vec3& F) const { add_force(ws, c, F); }
+  void waves(const Vec3& c, const Vec3& F, double /*rV*/) const { add_force(ws, c, F); }
+  void flow(const Vec3& c, const Vec3& /*u*/, const body_laws::PointLoad& p) const { add_force(ws, c, p.F); }
+  void damping(const Vec3& /*xr*/, const Vec6& /*nur*/, const Vec6& tau, const Mat6& /*T*/) const {
+    ws.Fb += ws.R * tau.head<3>();
+    ws.Mb += ws.R * tau.tail<3>();
+  }
+};
 }  // namespace
 
 SurfaceFlow surface_flow(const Fluid& fluid, const LiftingSurface& ls, double d, double t, const BodyWork& ws) {
@@ -135,35 +113,10 @@ void body_inertia(const Fluid& fluid, const Body& b, BodyWork& ws, double t) {
 }
 
 void body_loads(const Fluid& fluid, const Body& b, double t, BodyWork& ws) {
-  const double rho = fluid.rho, g = fluid.g;
   ws.Fb.setZero();
   ws.Mb.setZero();
-  // Gravity at the CG, buoyancy at the centre of the displaced volume.
-  add_force(ws, ws.R * b.cg, Vec3(0, 0, -b.mass * g));
-  add_force(ws, ws.R * b.buoyancy_center, Vec3(0, 0, rho * g * b.displaced_volume));
-  // Thrusters (they push in vacuum too).
-  for (const Thruster& th : b.thrusters)
-    add_force(ws, ws.R * th.point, interpolate(th.time, th.force, t) * (ws.R * th.direction));
-  if (rho == 0) return;
-  // Waves: Froude-Krylov force rho V a_w at the centre of the displaced volume
-  // (the added mass's part is in body_inertia through rate_seen).
-  if (fluid.waves) {
-    const Vec3 cb = ws.R * b.buoyancy_center;
-    add_force(ws, cb, rho * b.displaced_volume * fluid.acceleration(ws.O + cb, t));
-  }
-  for (const auto& sp : b.spheres) sphere_loads(fluid, sp, t, ws);
-  for (const auto& cy : b.cylinders) cylinder_loads(fluid, cy, t, ws);
-  // Surfaces: deflection from the depth controller's state, else from the table.
-  for (std::size_t j = 0; j < b.surfaces.size(); ++j)
-    surface_loads(fluid, b.surfaces[j], current_deflection(b, j, ws, t), t, ws);
-  // Generic damping on the body-frame velocity relative to the water.
-  if (b.damped) {
-    Vec6 nur;
-    nur << ws.R.transpose() * (ws.vO - fluid.velocity(ws.O, t)), ws.R.transpose() * ws.w;
-    const Vec6 tau = -b.linear_damping * nur - b.quadratic_damping * nur.cwiseAbs().cwiseProduct(nur);
-    ws.Fb += ws.R * tau.head<3>();
-    ws.Mb += ws.R * tau.tail<3>();
-  }
+  LoadSum sum{ws};
+  body_laws::visit_body_loads<false>(fluid, b, t, ws, sum);
 }
 
 }  // namespace towsim

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "../body/body_load_laws.hpp"
+#include "../hydro/drag_laws.hpp"
 #include "articulated.hpp"
 #include "parts/body_node.hpp"
 #include "parts/coupled_element.hpp"
@@ -44,79 +46,6 @@ Eigen::Matrix<double, N, N> psd_part_n(const Eigen::Matrix<double, N, N>& A) {
   return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
 }
 
-/// dCL/dalpha of lift_coefficient [1/rad] (either side's slope at its kinks).
-double lift_coefficient_slope(const LiftingSurface& ls, double alpha) {
-  // Reverse flow: CL(alpha) = -CL(sgn(alpha) (pi - |alpha|)), whose slope in
-  // alpha is +CL'(mirrored).
-  const double half = std::numbers::pi / 2;
-  if (std::abs(alpha) > half)
-    return lift_coefficient_slope(ls, (alpha > 0 ? 1 : -1) * (std::numbers::pi - std::abs(alpha)));
-  const double as = ls.stall_angle;
-  if (std::abs(alpha) <= as) return ls.lift_slope;
-  // Past stall: CL = sgn(alpha) a as cos(s pi/2), s = (|alpha| - as)/(pi/2 - as).
-  const double s = (std::abs(alpha) - as) / (half - as);
-  return -ls.lift_slope * as * std::sin(s * half) * half / (half - as);
-}
-
-/// A force at c (from O_t, R_g) that depends on the local velocity relative
-/// to the water u = v_O + w x c - U(O_t + c) [m/s] and on the body's axes:
-/// the force F [N] and its slope A = dF/du [N s/m].
-struct PointLoad {
-  Vec3 F = Vec3::Zero();
-  Mat3 A = Mat3::Zero();
-};
-
-/// Quadratic drag F = -k |u| u, A = -k (|u| I + u u^T / |u|).
-PointLoad quadratic_drag(double k, const Vec3& u) {
-  PointLoad p;
-  const double un = u.norm();
-  if (un == 0) return p;
-  p.F = -k * un * u;
-  p.A = -k * (un * Mat3::Identity() + u * u.transpose() / un);
-  return p;
-}
-
-/// A cylinder load (as cylinder_loads): normal drag on u_n = (I - a a^T) u
-/// and axial friction -k_a |u_a| u_a a, axis a [R_g].
-PointLoad cylinder_load(const Fluid& fluid, const CylinderLoad& cy, const Vec3& a, const Vec3& u) {
-  const double ua = u.dot(a);
-  const Mat3 Pa = Mat3::Identity() - a * a.transpose();
-  const Vec3 un = Pa * u;
-  const double unn = un.norm(), kn = 0.5 * fluid.rho * cy.normal_drag * cy.diameter * cy.length;
-  const double ka = 0.5 * fluid.rho * std::numbers::pi * cy.diameter * cy.length * cy.axial_drag;
-  PointLoad p;
-  p.F = -kn * unn * un - ka * std::abs(ua) * ua * a;
-  p.A = -2 * ka * std::abs(ua) * a * a.transpose();
-  if (unn > 0) p.A -= kn * (unn * Pa + un * un.transpose() / unn);
-  return p;
-}
-
-/// A lifting surface (as surface_loads), deflection d [rad]. With k = rho A / 2
-/// and u_p = P u (P: projector onto the surface's plane, normal to the span
-/// s), F = k |u_p| (C_L s x u_p - C_D u_p); alpha = atan2(-u_p.n, u_p.c) has
-/// gradient P (-x n - y c) / (x^2 + y^2), x = u_p.c, y = -u_p.n.
-PointLoad surface_load(const Fluid& fluid, const LiftingSurface& ls, double d, double t, const BodyWork& bw) {
-  PointLoad p;
-  const SurfaceFlow f = surface_flow(fluid, ls, d, t, bw);
-  if (f.speed < 1e-12) return p;
-  const Vec3 chord = bw.R * (std::cos(d) * ls.chord + std::sin(d) * ls.normal);
-  const Vec3 normal = bw.R * (-std::sin(d) * ls.chord + std::cos(d) * ls.normal);
-  const Mat3 P = Mat3::Identity() - f.span * f.span.transpose();
-  const double x = f.up.dot(chord), y = -f.up.dot(normal);
-  const Vec3 g = P * (-x * normal - y * chord) / (x * x + y * y);
-  const double alpha = f.alpha, cl = lift_coefficient(ls, alpha), dcl = lift_coefficient_slope(ls, alpha);
-  const double as = ls.stall_angle;
-  double cd = ls.drag0 + ls.induced_drag * cl * cl, dcd = 2 * ls.induced_drag * cl * dcl;
-  const double sa = std::abs(std::sin(alpha));
-  if (std::abs(alpha) > as) cd += 2 * (sa * sa - std::sin(as) * std::sin(as)), dcd += 2 * std::sin(2 * alpha);
-  const Vec3 sxu = f.span.cross(f.up);
-  const double k = 0.5 * fluid.rho * ls.area, v = f.speed;
-  p.F = k * v * (cl * sxu - cd * f.up);
-  p.A = k * ((cl * sxu - cd * f.up) * f.up.transpose() / v +
-             v * ((dcl * sxu - dcd * f.up) * g.transpose() + cl * skew(f.span) * P - cd * P));
-  return p;
-}
-
 /// Gradient of a field at O_t + c along the displacements of c as the body
 /// turns about O_t, dc = -[c]x dtheta: central differences in theta (steps
 /// 1e-6 rad, as the rotations of body_local_jacobian's stiffness).
@@ -136,81 +65,69 @@ Mat3 turned_gradient(const Vec3& O, const Vec3& c, Field&& field) {
 Mat3 psd_part(const Mat3& A) { return psd_part_n<3>(A); }
 Mat6 psd_part(const Mat6& A) { return psd_part_n<6>(A); }
 
-void body_load_derivatives(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& D, Mat3& KO) {
-  D.setZero();
-  // dM/dtheta (KO = -dM/dtheta). A force F at c = R c_b turning with the
-  // body: dc = -[c]x dtheta, dM = dc x F + c x dF = ([F]x [c]x + [c]x dF/dtheta) dtheta.
+namespace {
+
+/// The derivatives of a body's load laws (body_laws::visit_body_loads):
+/// D = -d(F; M)/d(v_O; omega) and dM/dtheta (M about O_t, R_g). A force F at
+/// c = R c_b turning with the body moves its point by dc = -[c]x dtheta:
+/// dM = dc x F + c x dF = ([F]x [c]x + [c]x dF/dtheta) dtheta.
+struct LoadDerivatives {
+  const Fluid& fluid;
+  const BodyWork& bw;
+  double t;
+  Mat6 D = Mat6::Zero();
   Mat3 dM = Mat3::Zero();
-  const double g = fluid.g;
-  auto fixed = [&](const Vec3& c, const Vec3& F) { dM.noalias() += skew(F) * skew(c); };
-  fixed(bw.R * body.cg, Vec3(0, 0, -body.mass * g));
-  fixed(bw.R * body.buoyancy_center, Vec3(0, 0, fluid.rho * g * body.displaced_volume));
-  // Thrusters turn with the body: dF = dtheta x F.
-  for (const Thruster& th : body.thrusters) {
-    const Vec3 c = bw.R * th.point, F = interpolate(th.time, th.force, t) * (bw.R * th.direction);
-    fixed(c, F);
+
+  /// A force fixed in R_g: only its point turns.
+  void world(const Vec3& c, const Vec3& F) { dM.noalias() += skew(F) * skew(c); }
+  /// A force turning with the body: dF = dtheta x F as well.
+  void turning(const Vec3& c, const Vec3& F) {
+    world(c, F);
     dM.noalias() -= skew(c) * skew(F);
   }
-  if (fluid.rho != 0) {
-    // Froude-Krylov: dF = rho V grad(a_w) dc.
-    if (fluid.waves) {
-      const Vec3 cb = bw.R * body.buoyancy_center;
-      const double rV = fluid.rho * body.displaced_volume;
-      fixed(cb, rV * fluid.acceleration(bw.O + cb, t));
-      dM.noalias() += skew(cb) * rV *
-                      turned_gradient(bw.O, cb, [&](const Vec3& x) { return fluid.acceleration(x, t); });
-    }
-    // Velocity-dependent loads at c: dF/d(v_O, omega) = A [I, -[c]x]; as the
-    // body turns, u changes by w x dc - grad(U) dc and the load's axes turn
-    // with it, dF = dtheta x F - A (dtheta x u) (the laws are isotropic):
-    // dF/dtheta = A ([u]x - [w]x [c]x + grad(U) [c]x) - [F]x.
-    const bool uniform = fluid.uniform();
-    auto point = [&](const Vec3& c, const Vec3& u, const PointLoad& p) {
-      Eigen::Matrix<double, 3, 6> J;
-      J << Mat3::Identity(), -skew(c);
-      Eigen::Matrix<double, 6, 3> Jt;
-      Jt << Mat3::Identity(), skew(c);
-      D.noalias() -= Jt * p.A * J;
-      Mat3 dFdt = p.A * (skew(u) - skew(bw.w) * skew(c)) - skew(p.F);
-      if (!uniform)
-        dFdt.noalias() -= p.A * turned_gradient(bw.O, c, [&](const Vec3& x) { return fluid.velocity(x, t); });
-      fixed(c, p.F);
-      dM.noalias() += skew(c) * dFdt;
-    };
-    auto u_at = [&](const Vec3& c) { return Vec3(bw.vO + bw.w.cross(c) - fluid.velocity(bw.O + c, t)); };
-    for (const SphereLoad& sp : body.spheres) {
-      const Vec3 c = bw.R * sp.center, u = u_at(c);
-      point(c, u, quadratic_drag(0.5 * fluid.rho * sp.drag * std::numbers::pi * sp.radius * sp.radius, u));
-    }
-    for (const CylinderLoad& cy : body.cylinders) {
-      const Vec3 c = bw.R * cy.center, u = u_at(c);
-      point(c, u, cylinder_load(fluid, cy, bw.R * cy.axis, u));
-    }
-    for (std::size_t j = 0; j < body.surfaces.size(); ++j) {
-      const LiftingSurface& ls = body.surfaces[j];
-      const Vec3 c = bw.R * ls.center;
-      point(c, u_at(c), surface_load(fluid, ls, current_deflection(body, j, bw, t), t, bw));
-    }
-    // Generic damping tau(nu_r), nu_r = B^T (v_O - U(O_t); omega), B = diag(R, R),
-    // dtau/dnu_r = -T, T = D_l + D_q diag(2 |nu_r|): -d(F; M)/d(v_O; omega) =
-    // B T B^T. Turning: d(B tau) = dtheta x (B tau) + B dtau, dnu_r = B^T [x]x dtheta.
-    if (body.damped) {
-      const Vec3 xr = bw.vO - fluid.velocity(bw.O, t);
-      Vec6 nur;
-      nur << bw.R.transpose() * xr, bw.R.transpose() * bw.w;
-      const Vec6 tau = -body.linear_damping * nur - body.quadratic_damping * nur.cwiseAbs().cwiseProduct(nur);
-      const Mat6 T = body.linear_damping + body.quadratic_damping * (2 * nur.cwiseAbs()).asDiagonal();
-      Mat6 B = Mat6::Zero();
-      B.topLeftCorner<3, 3>() = bw.R;
-      B.bottomRightCorner<3, 3>() = bw.R;
-      const Mat6 BTB = B * T * B.transpose();
-      D += BTB;
-      Eigen::Matrix<double, 6, 3> X;
-      X << skew(xr), skew(bw.w);
-      dM.noalias() -= skew(Vec3(bw.R * tau.tail<3>())) + (BTB * X).bottomRows<3>();
-    }
+  /// Froude-Krylov: dF = rho V grad(a_w) dc.
+  void waves(const Vec3& c, const Vec3& F, double rV) {
+    world(c, F);
+    dM.noalias() += skew(c) * rV * turned_gradient(bw.O, c, [&](const Vec3& x) { return fluid.acceleration(x, t); });
   }
-  KO = -dM;
+  /// A velocity-dependent load at c: dF/d(v_O, omega) = A [I, -[c]x]; as the
+  /// body turns, u changes by w x dc - grad(U) dc and the load's axes turn
+  /// with it, dF = dtheta x F - A (dtheta x u) (the laws are isotropic):
+  /// dF/dtheta = A ([u]x - [w]x [c]x + grad(U) [c]x) - [F]x.
+  void flow(const Vec3& c, const Vec3& u, const body_laws::PointLoad& p) {
+    Eigen::Matrix<double, 3, 6> J;
+    J << Mat3::Identity(), -skew(c);
+    Eigen::Matrix<double, 6, 3> Jt;
+    Jt << Mat3::Identity(), skew(c);
+    D.noalias() -= Jt * p.A * J;
+    Mat3 dFdt = p.A * (skew(u) - skew(bw.w) * skew(c)) - skew(p.F);
+    if (!fluid.uniform())
+      dFdt.noalias() -= p.A * turned_gradient(bw.O, c, [&](const Vec3& x) { return fluid.velocity(x, t); });
+    world(c, p.F);
+    dM.noalias() += skew(c) * dFdt;
+  }
+  /// Generic damping: dtau/dnu_r = -T, so -d(F; M)/d(v_O; omega) = B T B^T,
+  /// B = diag(R, R). Turning: d(B tau) = dtheta x (B tau) + B dtau,
+  /// dnu_r = B^T [x]x dtheta, x = (xr; omega).
+  void damping(const Vec3& xr, const Vec6& /*nur*/, const Vec6& tau, const Mat6& T) {
+    Mat6 B = Mat6::Zero();
+    B.topLeftCorner<3, 3>() = bw.R;
+    B.bottomRightCorner<3, 3>() = bw.R;
+    const Mat6 BTB = B * T * B.transpose();
+    D += BTB;
+    Eigen::Matrix<double, 6, 3> X;
+    X << skew(xr), skew(bw.w);
+    dM.noalias() -= skew(Vec3(bw.R * tau.tail<3>())) + (BTB * X).bottomRows<3>();
+  }
+};
+
+}  // namespace
+
+void body_load_derivatives(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& D, Mat3& KO) {
+  LoadDerivatives d{fluid, bw, t};
+  body_laws::visit_body_loads<true>(fluid, body, t, bw, d);
+  D = d.D;
+  KO = -d.dM;  // KO = -dM/dtheta
 }
 
 void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& C, Mat3& K) {
@@ -243,44 +160,18 @@ void element_local_jacobian(const Model& model, const Element& el, const Vec3& e
                                                        : Vec3(vG - fluid.velocity(xG, t));
   const double ue = u.dot(e);
   const Vec3 un = u - ue * e;
-  const double unn = un.norm();
-  if (unn > 0) C += el.drag_factor * (unn * (Mat3::Identity() - e * e.transpose()) + un * un.transpose() / unn);
+  C += drag_laws::normal_drag_damping(el.drag_factor, e, un);
   // Tangential friction: its e-e derivative (symmetric part along e).
-  double ct = 0;
-  if (model.cable.tangential_law == TangentialLaw::Pode) {
-    const double vs = model.cable.sign_smoothing_speed, q = std::sqrt(ue * ue + vs * vs);
-    ct = el.friction_factor * (2 * ue * ue / q + u.squaredNorm() * vs * vs / (q * q * q));
-  } else {
-    ct = 2 * el.friction_factor * std::abs(ue);
-  }
+  const double ct = drag_laws::tangential_friction_damping(model.cable.tangential_law, el.friction_factor, u, ue,
+                                                           model.cable.sign_smoothing_speed);
   C += ct * e * e.transpose();
 }
 
 Mat3 attachment_local_damping(const Model& model, const Attachment& a, const Vec3& x, const Vec3& v, double t) {
   const Fluid& fluid = model.fluid;
   if (fluid.rho == 0) return Mat3::Zero();
-  // Drag -1/2 rho CdA |u| u: derivative 1/2 rho CdA (|u| I + u u^T / |u|).
-  const Vec3 u = v - fluid.velocity(x, t);
-  const double un = u.norm();
-  if (un == 0) return Mat3::Zero();
-  return 0.5 * fluid.rho * a.drag_area * (un * Mat3::Identity() + u * u.transpose() / un);
-}
-
-void seabed_local_terms(const Seabed& sb, const Vec3& p, const Vec3& v, double length, const Vec3& f, Mat3& C,
-                        Mat3& K) {
-  if (length <= 0) return;
-  const Vec3 nrm = sb.normal(p.x());
-  const Mat3 nn = nrm * nrm.transpose();
-  K += sb.stiffness * length * nn;
-  C += sb.damping * length * nn;
-  // Friction mu |F_n| u_t / q, q = sqrt(|u_t|^2 + v_s^2): its slope on u_t,
-  // mu |F_n| (P - u_t u_t^T / q^2) / q (P: projector onto the bottom's plane).
-  const double fn = std::max(0.0, f.dot(nrm));
-  if (sb.friction <= 0 || fn <= 0) return;
-  const Mat3 P = Mat3::Identity() - nn;
-  const Vec3 ut = P * v;
-  const double q2 = ut.squaredNorm() + sb.slip_speed * sb.slip_speed;
-  C += sb.friction * fn / std::sqrt(q2) * (P - ut * ut.transpose() / q2);
+  // Drag -1/2 rho CdA |u| u (attachment_loads).
+  return drag_laws::point_drag_damping(0.5 * fluid.rho * a.drag_area, v - fluid.velocity(x, t));
 }
 
 // ---- A body's own seabed contact (its hull points) ------------------------
@@ -293,7 +184,7 @@ void body_contact_local_jacobian(const Seabed& sb, const Body& body, const BodyW
     const SeabedForce f = sb.contact(p, v, length);
     if (f.length <= 0) return;
     Mat3 Cp = Mat3::Zero(), Kp = Mat3::Zero();
-    seabed_local_terms(sb, p, v, f.length, f.total(), Cp, Kp);
+    sb.contact_slopes(p, v, f.length, f.total(), Cp, Kp);
     // The point moves with the body: dp = dx_O - [r]x dtheta.
     Eigen::Matrix<double, 3, 6> J;
     J << Mat3::Identity(), -skew(r);
@@ -330,10 +221,10 @@ void local_jacobian(const Model& model, const PhysicalState& s, const Workspace&
       const bool end_body = bi >= 0 && !model.bodies[idx(bi)].inline_body;
       Mat3& C = end_body ? jac.bodyq_damping[idx(bi)] : jac.joint_damping[k];
       Mat3& K = end_body ? jac.bodyq_stiffness[idx(bi)] : jac.joint_stiffness[k];
-      seabed_local_terms(sb, ws.P[k], ws.vP[k], ws.ls[k], ws.Fs[k], C, K);
+      sb.contact_slopes(ws.P[k], ws.vP[k], ws.ls[k], ws.Fs[k], C, K);
       if (bi >= 0 && !end_body) {
         const BodyWork& bw = ws.body[idx(bi)];
-        seabed_local_terms(sb, bw.Q, bw.vQ, bw.ls_q, bw.Fs_q, jac.bodyq_damping[idx(bi)], jac.bodyq_stiffness[idx(bi)]);
+        sb.contact_slopes(bw.Q, bw.vQ, bw.ls_q, bw.Fs_q, jac.bodyq_damping[idx(bi)], jac.bodyq_stiffness[idx(bi)]);
       }
     }
   }

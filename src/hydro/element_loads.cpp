@@ -2,6 +2,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "drag_laws.hpp"
 #include "towsim/hydro/loads.hpp"
 
 namespace towsim {
@@ -39,7 +40,7 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   if (faired != nullptr && !faired->normal_loading.empty())
     F += faired->normal_loading.normal_force(el.drag_factor, un, ue, v_s);
   else
-    F -= el.drag_factor * un.norm() * un;
+    F -= drag_laws::normal_drag(el.drag_factor, un);
 
   // Tangential friction: the table f_t(phi), Pode/Landweber (paper 2.43) or
   // skin friction. Without friction (friction_factor 0) the default laws
@@ -48,10 +49,7 @@ void element_loads(const Model& model, const Element& el, const Vec3& e, const V
   if (faired != nullptr && !faired->tangential_loading.empty()) {
     F += faired->tangential_loading.tangential_force(el.drag_factor, un, ue, e, v_s);
   } else if (el.friction_factor != 0) {
-    if (model.cable.tangential_law == TangentialLaw::Pode)
-      F -= el.friction_factor * u.squaredNorm() * smooth_sign(ue, v_s) * e;
-    else
-      F -= el.friction_factor * std::abs(ue) * ue * e;
+    F -= drag_laws::tangential_friction(model.cable.tangential_law, el.friction_factor, u, ue, e, v_s);
   }
 
   // Added mass: the relative velocity also changes as G moves through a
@@ -84,7 +82,7 @@ void attachment_loads(const Model& model, double t, Workspace& ws) {
     ws.Fa[k].z() -= (a.mass - fluid.rho * a.volume) * fluid.g;
     if (fluid.rho == 0) continue;
     const Vec3 u = ws.vP[k] - fluid.velocity(ws.P[k], t);
-    ws.Fa[k] -= 0.5 * fluid.rho * a.drag_area * u.norm() * u;
+    ws.Fa[k] -= drag_laws::point_drag(0.5 * fluid.rho * a.drag_area, u);
     // Added mass in a non-uniform flow: the water's velocity seen by the
     // moving joint changes at a known rate (as for the elements).
     if (!fluid.uniform()) ws.Fa[k] += a.added_mass * fluid.rate_seen(ws.P[k], ws.vP[k], t);

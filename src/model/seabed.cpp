@@ -46,4 +46,20 @@ SeabedForce Seabed::contact(const Vec3& p, const Vec3& v, double length) const {
   return f;
 }
 
+void Seabed::contact_slopes(const Vec3& p, const Vec3& v, double length, const Vec3& f, Mat3& C, Mat3& K) const {
+  if (length <= 0) return;
+  const Vec3 nrm = normal(p.x());
+  const Mat3 nn = nrm * nrm.transpose();
+  K += stiffness * length * nn;
+  C += damping * length * nn;
+  // Friction mu |F_n| u_t / q, q = sqrt(|u_t|^2 + v_s^2): its slope on u_t,
+  // mu |F_n| (P - u_t u_t^T / q^2) / q (P: projector onto the bottom's plane).
+  const double fn = std::max(0.0, f.dot(nrm));
+  if (friction <= 0 || fn <= 0) return;
+  const Mat3 P = Mat3::Identity() - nn;
+  const Vec3 ut = P * v;
+  const double q2 = ut.squaredNorm() + slip_speed * slip_speed;
+  C += friction * fn / std::sqrt(q2) * (P - ut * ut.transpose() / q2);
+}
+
 }  // namespace towsim

@@ -161,7 +161,7 @@ Mismatch stage_matrix_mismatch(const Model& m, const Vec3& v, bool velocity_only
 // the differences' error. Sliding (0.3, 0.1, 0) m/s, the rate columns: the
 // friction's slope across and along the slip, the contact damping, the
 // drag (the friction's dependence on the penetration, a position column,
-// is left out of W: seabed_local_terms).
+// is left out of W: Seabed::contact_slopes).
 TEST(RosenbrockBodyContact, StageMatrixIsTheDynamicsJacobian) {
   const double k = 1e6, d = sled_weight() / (k * 2 * kRadius);
   const struct {

@@ -66,14 +66,8 @@ void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& b
 /// Per-part hook, attachment at a joint: drag damping on the joint's velocity.
 Mat3 attachment_local_damping(const Model& model, const Attachment& a, const Vec3& x, const Vec3& v, double t);
 
-/// Per-part hook, seabed contact at a point p moving at v that represents
-/// `length` [m] in contact (0: none) and bears the contact force f [N, R_g]:
-/// C += c l n n^T + the friction's slope mu |F_n| d(u_t/q)/du_t, K += k l n n^T
-/// (n: the bottom normal; the friction's dependence on the penetration is left out).
-void seabed_local_terms(const Seabed& sb, const Vec3& p, const Vec3& v, double length, const Vec3& f, Mat3& C, Mat3& K);
-
 /// Per-part hook, a body's own seabed contact (its hull points, hull_points):
-/// each point p in contact adds its seabed_local_terms (C_p, K_p) through
+/// each point p in contact adds its Seabed::contact_slopes (C_p, K_p) through
 /// dp = dx_O + dtheta x r, r = p - O_t: C = sum J^T C_p J, K = sum J^T K_p J,
 /// J = [I, -[r]x] (6x6 on (v_O, omega_B) and (x_O, theta)); zero off the bottom.
 void body_contact_local_jacobian(const Seabed& sb, const Body& body, const BodyWork& bw, Mat6& C, Mat6& K);

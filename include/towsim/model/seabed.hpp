@@ -60,6 +60,11 @@ struct Seabed {
   /// The contact force on a point p [m, R_g] moving at v [m/s, R_g] that
   /// represents `length` [m] of cable or hull; zero above the bottom.
   SeabedForce contact(const Vec3& p, const Vec3& v, double length) const;
+  /// The slopes of that force for the stage solve's local Jacobian, given the
+  /// force f [N, R_g] it bears: C += c l n n^T + the friction's slope
+  /// mu |F_n| d(u_t/q)/du_t [N s/m], K += k l n n^T [N/m] (n: the bottom's
+  /// normal; the friction's dependence on the penetration is left out).
+  void contact_slopes(const Vec3& p, const Vec3& v, double length, const Vec3& f, Mat3& C, Mat3& K) const;
   /// d|F_n|/d(penetration) of such a point [N/m]: k * length in contact, 0 above.
   double normal_stiffness(const Vec3& p, double length) const { return gap(p) < 0 ? stiffness * length : 0.0; }
   /// The sink delta = w / k [m] of a cable of apparent weight w [N/m] lying
