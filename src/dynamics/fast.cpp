@@ -207,35 +207,6 @@ void check_fits(const Model& model, const PhysicalState& s, const Workspace& ws)
     throw std::logic_error("towsim: workspace or state does not fit the model");
 }
 
-/// A cable landing vertically on the bottom (docs/theory.md §3.2): a joint in
-/// contact at the end of a vertical line of elements (the element above comes
-/// down within kVertical of the vertical, and the one below, if any, is
-/// vertical too) gets a push of kTip times its normal force along the bottom
-/// (towards +x_g, or +y_g where the bottom's normal is along x_g). Such an
-/// upright column standing on the bottom is an unstable equilibrium that the
-/// exact symmetry of a vertical pay-out would otherwise keep for ever, driven
-/// into the bottom by the winch; the push only starts its fall (it stops once
-/// the element leans by kVertical). A cable lying on the bottom (horizontal
-/// elements below its touchdown) never gets it.
-void seabed_tipping(const Model& model, const PhysicalState& s, Workspace& ws) {
-  if (!model.seabed) return;
-  constexpr double kVertical = 1e-6;  // [rad]: an element leaning less is vertical
-  constexpr double kTip = 1e-3;       // push / normal force [-]
-  const std::size_t n = s.e.size();
-  auto vertical = [&](std::size_t i) { return s.e[i].head<2>().norm() <= kVertical; };
-  for (std::size_t k = 1; k <= n && k < ws.Fs.size(); ++k) {
-    if (ws.ls[k] <= 0 || ws.body_at[k] >= 0) continue;
-    // The element above points down to P_k; the one below stands on it.
-    if (s.e[k - 1].z() >= 0 || !vertical(k - 1) || (k < n && !vertical(k))) continue;
-    const Vec3 nb = model.seabed->normal(ws.P[k].x());  // the bottom's normal [-, R_g]
-    Vec3 d = Vec3::UnitX() - nb.x() * nb;
-    if (d.norm() < 0.1) d = Vec3::UnitY() - nb.y() * nb;
-    const Vec3 push = kTip * std::abs(ws.Fs[k].dot(nb)) * d.normalized();  // [N, R_g]
-    ws.Fs[k] += push;
-    ws.Fa[k] += push;
-  }
-}
-
 }  // namespace
 
 void compute_loads(const Model& model, const PhysicalState& s, double t, Workspace& ws, Fork* fork) {
@@ -270,7 +241,6 @@ void compute_loads(const Model& model, const PhysicalState& s, double t, Workspa
     body_loads(model.fluid, model.bodies[b], t, ws.body[b]);
   }
   seabed_loads(model, ws);  // point loads at joints (ws.Fa) and on bodies, like attachments
-  seabed_tipping(model, s, ws);
 }
 
 void tow_velocity_jump(const Model& model, const PhysicalState& s, const Vec3& dv, Workspace& ws) {

@@ -201,6 +201,7 @@ TreeState network_initial_state(const Network& net) {
     if (m.initial.kind == Initial::Kind::Steady)
       throw std::invalid_argument("towsim: network: initial: steady is network_steady_state's (simulate_network)");
     s.push_back(initial_state(m));
+    lean_upright(m, s.back());
   }
   // A loop starts closed: assembled from the hanging lines.
   if (!tree.loops.empty() && !(tree_close_loops(tree, s) <= kLoopAssembly))

@@ -1,5 +1,6 @@
 // The initial state of a run (docs/scenario.md "initial").
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "towsim/integrators/system.hpp"
@@ -47,6 +48,14 @@ PhysicalState initial_state(const Model& model) {
     s.r0 = model.tow.start;
   }
   return s;
+}
+
+void lean_upright(const Model& model, PhysicalState& s) {
+  if (!model.seabed || end_body(model) != nullptr) return;
+  constexpr double kLean = 1e-4;                             // [rad]
+  const Vec3 leaning(std::sin(kLean), 0, -std::cos(kLean));  // [-, R_g]
+  for (Vec3& e : s.e)
+    if (e.x() == 0 && e.y() == 0 && e.z() < 0) e = leaning;
 }
 
 }  // namespace towsim

@@ -302,6 +302,7 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
     s0 = st.state;
   } else {
     s0 = initial_state(model);
+    lean_upright(model, s0);
   }
   ChainRig rig(model, sink);
   StateVector y = rig.chain.sys->initial(s0, 0.0);

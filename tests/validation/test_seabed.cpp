@@ -495,11 +495,12 @@ INSTANTIATE_TEST_SUITE_P(Seabed, SeabedLying,
 // The same check paid out (MODEL.md 9): from a stationary tow point a winch
 // pays a vertically hanging cable out onto the bottom (40 m -> 70.25 m over
 // a 50 m depth, 0.5 m/s, then holds). The upright column landing on the
-// bottom must fall over and lie there, not be driven into the bottom (before
-// the landing push: the end 20 m below the bottom and 2e7 N at the top). After
+// bottom must fall over and lie there, not be driven into the bottom (an
+// exactly vertical column: the end 20 m below the bottom and 2e7 N at the
+// top; the run's start leans it by 1e-4 rad, lean_upright). After
 // it settles the top tension is w h within the crossing element's
 // w (L/2 + 2 delta) (the bound above, 5 % of w h here; measured at 150 s:
-// 2.2 % with rosenbrock, 1.2 % with rk4 at the joints, 1.4 % and 3.8 % along
+// 1.1 % with rosenbrock, 1.4 % with rk4 at the joints, 1.2 % and 3.7 % along
 // elements, where the lying part's smoothed friction still creeps), and no
 // joint is ever deeper than 0.1 m (measured: 2e-4 m; the resting
 // penetration w / k is 1.2e-4 m). Under either contact law.

@@ -170,4 +170,14 @@ int evaluation_threads(const Model& model);
 /// Initial physical state of a model (hanging, along a direction; steady via statics).
 PhysicalState initial_state(const Model& model);
 
+/// The run's start over a bottom (docs/theory.md §3.2): a cable with a free
+/// end whose elements start exactly vertical (hanging from a sheave at rest)
+/// has them leaned by 1e-4 rad towards +x_g (4 mm over 40 m). An upright
+/// column landing on the bottom is an unstable equilibrium, but an exact one
+/// that a symmetric run would keep for ever, the rigid column driven into the
+/// bottom by the winch; the lean is the imperfection a real cable always has,
+/// as a buckling analysis seeds one. The dynamics carry no push. Nothing is
+/// changed without a seabed or with an end body.
+void lean_upright(const Model& model, PhysicalState& s);
+
 }  // namespace towsim
