@@ -19,7 +19,10 @@
 #include "towsim/sim/discretisation.hpp"
 #include "towsim/sim/simulate.hpp"
 
-namespace towsim::io {
+namespace towsim::cli {
+
+using namespace towsim::scenario;
+using namespace towsim::output;
 namespace {
 
 /// "unknown example (did you mean 'y'?); ..." for an example name not built in.
@@ -278,4 +281,4 @@ int examples_command(const std::string& name, std::ostream& out, std::ostream& e
   return kExitOk;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

@@ -16,7 +16,7 @@
 #include "towsim/sim/simulate.hpp"
 #include "towsim/sim/statics.hpp"
 
-namespace towsim::io {
+namespace towsim::cli {
 
 /// Exit statuses of the program (docs/contract.md §U3).
 enum ExitStatus : int {
@@ -53,7 +53,7 @@ struct StaticsOptions {
 
 /// Load, override, check and compile the scenario named by `in` (exactly one
 /// of a file or an example); every problem is in the result's diagnostics.
-LoadedScenario load_input(const InputOptions& in);
+scenario::LoadedScenario load_input(const InputOptions& in);
 
 /// Create the output directory `dir` (and its parents) when missing; false,
 /// with "towsim: cannot create the output directory ..." on `err`, when it
@@ -67,7 +67,7 @@ int run_command(const RunOptions& opts, std::ostream& out, std::ostream& err, co
 
 /// `towsim run` on a network (the scenario's `lines:`): as run_command,
 /// with the network's files (docs/scenario.md "Networks").
-int run_network(const LoadedScenario& sc, const Network& net, const RunOptions& opts, std::ostream& out,
+int run_network(const scenario::LoadedScenario& sc, const Network& net, const RunOptions& opts, std::ostream& out,
                 std::ostream& err, const volatile int* stop_flag);
 
 /// `towsim statics`: the steady-tow equilibrium at the tow law's final
@@ -80,19 +80,20 @@ int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream&
 /// `towsim statics` on a network: its steady tow at the tow law's final
 /// velocity (network_statics), printed per line, body and junction and
 /// written as a one-sample network run with an output directory.
-int statics_network(const LoadedScenario& sc, const Network& net, const StaticsOptions& opts, std::ostream& out,
-                    std::ostream& err, const volatile int* stop_flag);
+int statics_network(const scenario::LoadedScenario& sc, const Network& net, const StaticsOptions& opts,
+                    std::ostream& out, std::ostream& err, const volatile int* stop_flag);
 
 /// Why `towsim statics` refuses a valid scenario (a tow in force mode: the
 /// steady speed comes from the tow law), as an error at its key; nullopt when
 /// it can be solved.
-std::optional<Diagnostic> statics_refusal(const LoadedScenario& sc);
+std::optional<scenario::Diagnostic> statics_refusal(const scenario::LoadedScenario& sc);
 
 /// The summary of a steady tow as `towsim statics --out` writes it: the
 /// equilibrium written to `rec` (of the model solved: the deployed one after
 /// --target-depth) as its one sample (t = 0), status `ok`, `failed` or
 /// `interrupted`, `steps` = solver iterations.
-nlohmann::ordered_json statics_summary(const LoadedScenario& sc, const StaticsResult& r, RunRecord& rec);
+nlohmann::ordered_json statics_summary(const scenario::LoadedScenario& sc, const StaticsResult& r,
+                                       output::RunRecord& rec);
 
 /// The warnings of a steady tow's body equilibria, one sentence each: a
 /// body with more than one stable balance ("trim of body depressor: two
@@ -110,7 +111,7 @@ nlohmann::ordered_json bodies_json(const Model& model, const StaticsResult& r);
 /// layback, depth of the body (or cable end) and tow tension, the maximum
 /// tow tension and when, then samples, steps and wall time.
 std::string end_of_run_line(const Model& model, const RunStats& stats, const nlohmann::ordered_json& final_row,
-                            const Extremes& ex, long samples, const std::string& out_dir);
+                            const output::Extremes& ex, long samples, const std::string& out_dir);
 
 /// `towsim check`: validate and print the derived quantities. Returns an ExitStatus.
 int check_command(const InputOptions& in, std::ostream& out, std::ostream& err);
@@ -129,6 +130,6 @@ void describe_model(const Model& model, std::ostream& out, bool accuracy = true)
 /// tow points or nodes), junctions and loops, the settings common to the
 /// lines once, and each line's derived quantities as describe_model prints
 /// a chain's.
-void describe_network(const LoadedScenario& sc, std::ostream& out);
+void describe_network(const scenario::LoadedScenario& sc, std::ostream& out);
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

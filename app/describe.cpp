@@ -11,7 +11,10 @@
 #include "towsim/sim/discretisation.hpp"
 #include "towsim/waves/vessel.hpp"
 
-namespace towsim::io {
+namespace towsim::cli {
+
+using namespace towsim::scenario;
+using namespace towsim::output;
 namespace {
 
 std::string vec(const Vec3& v) { return "[" + fmt_num(v[0]) + ", " + fmt_num(v[1]) + ", " + fmt_num(v[2]) + "]"; }
@@ -342,4 +345,4 @@ void describe_network(const LoadedScenario& sc, std::ostream& out) {
   describe_run(first, out);
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

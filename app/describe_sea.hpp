@@ -5,9 +5,9 @@
 
 #include "towsim/model/model.hpp"
 
-namespace towsim::io {
+namespace towsim::cli {
 
 /// "waves" and "vessel" blocks (nothing when the model has neither).
 void describe_sea(const Model& m, std::ostream& out);
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

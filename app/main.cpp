@@ -17,7 +17,7 @@
 
 namespace {
 
-using namespace towsim::io;
+using namespace towsim::cli;
 
 static_assert(std::is_same_v<std::sig_atomic_t, int>, "stop flag is passed to simulate() as volatile int");
 

@@ -10,7 +10,10 @@
 #include "towsim/sim/network_discretisation.hpp"
 #include "towsim/sim/simulate_network.hpp"
 
-namespace towsim::io {
+namespace towsim::cli {
+
+using namespace towsim::scenario;
+using namespace towsim::output;
 
 namespace {
 
@@ -92,4 +95,4 @@ int run_network(const LoadedScenario& sc, const Network& net, const RunOptions& 
   }
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

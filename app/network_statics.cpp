@@ -13,7 +13,10 @@
 #include "towsim/sim/network_target_depth.hpp"
 #include "towsim/sim/simulate_network.hpp"
 
-namespace towsim::io {
+namespace towsim::cli {
+
+using namespace towsim::scenario;
+using namespace towsim::output;
 
 namespace {
 
@@ -113,4 +116,4 @@ int statics_network(const LoadedScenario& sc, const Network& net, const StaticsO
   return opts.out_dir.empty() ? kExitOk : write_network_statics(sc, used, mem.samples.front(), stats, opts, err);
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

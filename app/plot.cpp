@@ -24,7 +24,8 @@
 
 extern char** environ;
 
-namespace towsim::io {
+namespace towsim::cli {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -1153,4 +1154,4 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   return render_scripts(plots, scripts, prog, log);
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

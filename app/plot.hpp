@@ -40,7 +40,7 @@
 #include <string>
 #include <vector>
 
-namespace towsim::io {
+namespace towsim::cli {
 
 /// Rendering options of plot_run.
 struct PlotOptions {
@@ -79,4 +79,4 @@ AxisTicks axis_ticks(double lo, double span, double pixels, int font, bool horiz
 /// `spectra`: DIR/spectra.csv exists (a sea-state run).
 std::vector<std::string> plot_names(bool has_body, bool three_d, bool single = false, bool spectra = false);
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

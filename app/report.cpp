@@ -17,7 +17,9 @@
 #include "run_files.hpp"
 #include "towsim/output/output.hpp"
 
-namespace towsim::io {
+namespace towsim::cli {
+
+using namespace towsim::output;
 namespace {
 
 namespace fs = std::filesystem;
@@ -98,7 +100,7 @@ std::string read_file(const fs::path& p) {
 std::string fmt(double v) {
   if (!std::isfinite(v)) return "&ndash;";
   char b[32];
-  std::snprintf(b, sizeof b, "%.6g", std::abs(v) < kZeroBelow ? 0.0 : v);
+  std::snprintf(b, sizeof b, "%.6g", std::abs(v) < output::kZeroBelow ? 0.0 : v);
   return b;
 }
 
@@ -106,7 +108,7 @@ std::string fmt(double v) {
 /// digits (a millimetre on a kilometre of cable) keep the page small.
 json jnum(double v) {
   if (!std::isfinite(v)) return nullptr;
-  if (std::abs(v) < kZeroBelow) return 0.0;
+  if (std::abs(v) < output::kZeroBelow) return 0.0;
   char b[32];
   std::snprintf(b, sizeof b, "%.7g", v);
   return std::strtod(b, nullptr);
@@ -309,7 +311,7 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
       T.push_back(jnum(f.tension[k]));
       if (std::isfinite(f.tension[k])) tmax = std::max(tmax, f.tension[k]);
     }
-    jt.push_back(tidy_time(f.t));
+    jt.push_back(output::tidy_time(f.t));
     jn.push_back(std::move(p));
     jT.push_back(std::move(T));
     std::string info;
@@ -566,4 +568,4 @@ int report_run(const std::string& dir, std::ostream& log, const ReportOptions& o
   return kOk;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-namespace towsim::io {
+namespace towsim::cli {
 
 /// Options of report_run.
 struct ReportOptions {
@@ -40,4 +40,4 @@ ReportOptions default_report_options();
 /// 1 when the page cannot be written.
 int report_run(const std::string& dir, std::ostream& log, const ReportOptions& options);
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

@@ -5,7 +5,8 @@
 #include <cmath>
 #include <fstream>
 
-namespace towsim::io {
+namespace towsim::cli {
+
 namespace {
 
 /// The fields of one CSV line, as views (no copies).
@@ -174,4 +175,4 @@ std::vector<double> arc_lengths(const NodeFrame& f) {
   return s;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace towsim::io {
+namespace towsim::cli {
 
 /// std::getline for towsim's files: a last line without its newline is not
 /// read. The writers end every row with one, so such a line is a row cut off
@@ -57,4 +57,4 @@ std::vector<std::size_t> spread_indices(std::size_t n, std::size_t count);
 /// Distance along the polyline (x, y, z) from its first point [m].
 std::vector<double> arc_lengths(const NodeFrame& f);
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

@@ -14,7 +14,10 @@
 #include "towsim/output/output.hpp"
 #include "towsim/sim/statics.hpp"
 
-namespace towsim::io {
+namespace towsim::cli {
+
+using namespace towsim::scenario;
+using namespace towsim::output;
 
 namespace {
 
@@ -291,4 +294,4 @@ int statics_command(const StaticsOptions& opts, std::ostream& out, std::ostream&
   }
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

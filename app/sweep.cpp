@@ -19,7 +19,10 @@
 #include "towsim/output/output.hpp"
 #include "towsim/sim/discretisation.hpp"
 
-namespace towsim::io {
+namespace towsim::cli {
+
+using namespace towsim::scenario;
+using namespace towsim::output;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -712,4 +715,4 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
   return kExitOk;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

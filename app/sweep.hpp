@@ -14,7 +14,7 @@
 #include "towsim/scenario/scenario.hpp"
 #include "towsim/sim/simulate.hpp"
 
-namespace towsim::io {
+namespace towsim::cli {
 
 /// A summary figure: its name (the summary.json name, flattened) and value (NaN for null).
 using Figure = std::pair<std::string, double>;
@@ -44,7 +44,7 @@ struct CaseResult {
 /// files of `towsim run` there (created if missing); otherwise nothing is
 /// written. Never throws: internal errors become a failed case. `progress`
 /// is called after each output sample (as by simulate()).
-CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag,
+CaseResult run_case(const scenario::LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag,
                     const ProgressFn& progress = {});
 
 /// Solve a loaded, valid scenario's steady tow as `towsim statics` does; the
@@ -52,7 +52,7 @@ CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const 
 /// the equilibrium's). With `out_dir` non-empty, write its files there.
 /// Status `ok`, `failed` (not converged), `interrupted` or `invalid` (a tow in
 /// force mode). Never throws.
-CaseResult statics_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag);
+CaseResult statics_case(const scenario::LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag);
 
 /// The columns of a towing table (DIR/towing_table.csv) after the case's
 /// overrides and status: tow speed [m/s] and [kn], depth of the end body (or
@@ -97,7 +97,7 @@ struct SweepSpec {
 constexpr std::size_t kMaxSweepCases = 100000;
 
 /// Read a sweep file; every problem goes to `diags` as FILE:LINE:COL: key: problem.
-SweepSpec read_sweep(const std::string& path, Diagnostics& diags);
+SweepSpec read_sweep(const std::string& path, scenario::Diagnostics& diags);
 
 /// Read a sweep file and load its base scenario and its first `max_cases`
 /// cases as `towsim sweep` does before it runs anything: true when all are
@@ -121,4 +121,4 @@ struct SweepOptions {
 int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err,
                   const volatile int* stop_flag = nullptr);
 
-}  // namespace towsim::io
+}  // namespace towsim::cli

@@ -42,14 +42,14 @@ __asm__(".pushsection .rodata\n"
         ".popsection\n");
 extern "C" const char towsim_viewer_js_begin[], towsim_viewer_js_end[];
 extern "C" const char towsim_viewer_note_begin[], towsim_viewer_note_end[];
-namespace towsim::io {
+namespace towsim::cli {
 std::string_view embedded_viewer_js() {
   return {towsim_viewer_js_begin, static_cast<std::size_t>(towsim_viewer_js_end - towsim_viewer_js_begin)};
 }
 std::string_view embedded_viewer_note() {
   return {towsim_viewer_note_begin, static_cast<std::size_t>(towsim_viewer_note_end - towsim_viewer_note_begin)};
 }
-}  // namespace towsim::io
+}  // namespace towsim::cli
 ]=])
 configure_file(${TOWSIM_VIEWER_CPP}.in ${TOWSIM_VIEWER_CPP} @ONLY)
 set_source_files_properties(${TOWSIM_VIEWER_CPP} PROPERTIES OBJECT_DEPENDS "${TOWSIM_VIEWER_JS};${TOWSIM_VIEWER_NOTE}")

@@ -55,16 +55,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string yaml = parts.front();
   const std::vector<std::string> sets(parts.begin() + 1, parts.end());
 
-  const auto s = towsim::io::load_scenario_text(yaml, "fuzz.yaml", "fuzz", g_dir, sets);
+  const auto s = towsim::scenario::load_scenario_text(yaml, "fuzz.yaml", "fuzz", g_dir, sets);
   std::ostringstream out;
   out << s.diags.str();
   // As summary.json is written (output.cpp write_summary).
-  out << towsim::io::to_json(s.tree).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+  out << towsim::scenario::to_json(s.tree).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
   // The accuracy section's steady solves only on small cables: their cost
   // grows with the element count (8 s at 100000 elements in Release), and a
   // big model is not what this target looks for.
   constexpr int kMaxSolvedElements = 50;
-  if (s.ok()) towsim::io::describe_model(*s.model, out, s.model->cable.n() <= kMaxSolvedElements);
+  if (s.ok()) towsim::cli::describe_model(*s.model, out, s.model->cable.n() <= kMaxSolvedElements);
   // A valid scenario reports no error and an invalid one at least one.
   if (s.ok() != s.diags.ok()) std::abort();
   return 0;

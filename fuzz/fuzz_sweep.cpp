@@ -51,7 +51,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     f.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   }
   std::ostringstream err;
-  const bool ok = towsim::io::check_sweep_file(path, err, kMaxCheckedCases);
+  const bool ok = towsim::cli::check_sweep_file(path, err, kMaxCheckedCases);
   // A valid sweep reports nothing, an invalid one at least one message.
   if (ok != err.str().empty()) std::abort();
   return 0;

@@ -53,7 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   yaml += "    - {type: track, file: '" + g_file + "'}\n";
   if (with_turn) yaml += "    - {type: turn, radius: 10, start_time: " + std::to_string(turn_start) + "}\n";
 
-  const auto s = towsim::io::load_scenario_text(yaml, "fuzz.yaml", "fuzz", "", {});
+  const auto s = towsim::scenario::load_scenario_text(yaml, "fuzz.yaml", "fuzz", "", {});
   (void)s.diags.str();
   if (s.ok() != s.diags.ok()) std::abort();
   if (!s.ok()) return 0;

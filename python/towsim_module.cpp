@@ -24,7 +24,9 @@
 
 namespace py = pybind11;
 using namespace towsim;
-using namespace towsim::io;
+using namespace towsim::scenario;
+using namespace towsim::output;
+using namespace towsim::cli;
 
 namespace {
 

@@ -3,7 +3,7 @@
 
 #include <utility>
 
-namespace towsim::io {
+namespace towsim::output {
 
 AsyncSink::AsyncSink(OutputSink& inner)
     : inner_(inner), ring_(kDepth), last_hand_(std::chrono::steady_clock::now()), thread_([this] { run(); }) {}
@@ -88,4 +88,4 @@ void AsyncSink::run() {
   }
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::output

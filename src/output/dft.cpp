@@ -5,7 +5,7 @@
 
 #include <unsupported/Eigen/FFT>
 
-namespace towsim::io {
+namespace towsim::output {
 
 bool has_small_factors(std::size_t n) {
   if (n == 0) return false;
@@ -49,4 +49,4 @@ std::vector<std::complex<double>> dft(const std::vector<double>& x) {
   return out;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::output

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace towsim::io {
+namespace towsim::output {
 
 DirLock::DirLock(const std::string& dir) {
   fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
@@ -28,4 +28,4 @@ DirLock::~DirLock() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::output

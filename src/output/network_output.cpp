@@ -8,7 +8,7 @@
 #include "towsim/dynamics/bending.hpp"
 #include "towsim/waves/vessel.hpp"
 
-namespace towsim::io {
+namespace towsim::output {
 
 namespace {
 
@@ -228,4 +228,4 @@ nlohmann::ordered_json make_network_summary(const nlohmann::ordered_json& scenar
   return j;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::output

@@ -19,7 +19,7 @@
 #include "towsim/dynamics/elastic.hpp"
 #include "towsim/version.hpp"
 
-namespace towsim::io {
+namespace towsim::output {
 
 nlohmann::ordered_json json_of(const Extreme& e) {
   nlohmann::ordered_json j;
@@ -857,4 +857,4 @@ bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary
   return false;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::output

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace towsim::io {
+namespace towsim::output {
 
 RowFile::RowFile(const std::string& path) : path_(path) {
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
@@ -36,4 +36,4 @@ bool RowFile::append(const std::string& rows) {
   return true;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::output

@@ -12,7 +12,7 @@
 
 #include "towsim/output/dft.hpp"
 
-namespace towsim::io {
+namespace towsim::output {
 
 SignalStats signal_stats(const std::vector<double>& t, const std::vector<double>& x) {
   SignalStats s;
@@ -244,4 +244,4 @@ std::vector<std::string> SeaStatistics::warnings() const {
   return out;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::output

@@ -7,7 +7,7 @@
 
 #include "towsim/output/output.hpp"
 
-namespace towsim::io {
+namespace towsim::output {
 
 namespace {
 
@@ -131,4 +131,4 @@ nlohmann::ordered_json TransientRecord::json(double end_time) const {
   return list;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::output

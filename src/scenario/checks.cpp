@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 void report(const Where& w, Diagnostics& d, const std::string& msg) { d.error(w.loc, w.path, msg); }
@@ -100,4 +100,4 @@ void check_diagonal_non_negative(const Field<Mat6>& f, Diagnostics& d) {
     }
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -3,7 +3,7 @@
 
 #include "towsim/scenario/spec.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// Report unless value > 0.
 void check_positive(const Field<double>& f, Diagnostics& d);
@@ -73,4 +73,4 @@ void check_winch_rk4(const ScenarioSpec& s, const Model& m, Diagnostics& d);
 /// spec; needs m.tow and m.fluid built.
 void attach_waves(const ScenarioSpec& s, Model& m);
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

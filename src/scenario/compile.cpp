@@ -9,7 +9,7 @@
 #include "reader.hpp"
 #include "scalar.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 constexpr double kMaxSteps = 1e12;   // duration / time_step
@@ -193,4 +193,4 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags) {
   return m;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

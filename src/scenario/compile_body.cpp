@@ -3,7 +3,7 @@
 
 #include "checks.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -158,4 +158,4 @@ Body build_body(const BodySpec& b, const Fluid& fluid) {
   return body;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -12,7 +12,7 @@
 #include "reader.hpp"
 #include "towsim/dynamics/elastic.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 constexpr long long kMaxElements = 100000;  // elements in the whole cable
@@ -329,4 +329,4 @@ void build_chain(const CableSpec& c, const BodySpec& end_body, Model& m) {
                    [](const Attachment& x, const Attachment& y) { return x.joint < y.joint; });
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -13,7 +13,7 @@
 #include "reader.hpp"
 #include "towsim/scenario/compile.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 const std::string kLink = "link_point";
@@ -579,4 +579,4 @@ std::optional<Network> compile_network(const ScenarioSpec& s, Diagnostics& d) {
   return net;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

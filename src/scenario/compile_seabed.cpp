@@ -8,7 +8,7 @@
 #include "towsim/hydro/loads.hpp"
 #include "towsim/integrators/system.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 namespace {
 
@@ -101,4 +101,4 @@ void check_seabed_start(const ScenarioSpec& s, const Model& m, Diagnostics& d) {
   }
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -3,7 +3,7 @@
 
 #include "checks.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 void check_piece(const PieceSpec& p, Diagnostics& d) {
@@ -158,4 +158,4 @@ Tow build_tow(const TowSpec& t, bool include_manoeuvres) {
   return tow;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

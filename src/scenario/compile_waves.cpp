@@ -9,7 +9,7 @@
 #include "checks.hpp"
 #include "towsim/waves/vessel.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 constexpr long long kMaxComponents = 100000;  // waves.spectrum.components
@@ -183,4 +183,4 @@ void attach_waves(const ScenarioSpec& s, Model& m) {
   m.tow.vessel = vessel;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -7,7 +7,7 @@
 
 #include "checks.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 namespace {
 
@@ -187,4 +187,4 @@ bool check_winch_model(const WinchSpec& w, const Model& m, Diagnostics& d) {
   return d.size() == before;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -5,7 +5,7 @@
 #include <map>
 #include <numeric>
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 namespace {
 
@@ -96,4 +96,4 @@ std::string fmt_num(double v) {
   return buf;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string_view>
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace embedded {
 struct File {
   const char* name;
@@ -82,4 +82,4 @@ const Example* find_example(const std::string& name) {
   return nullptr;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

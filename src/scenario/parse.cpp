@@ -4,7 +4,7 @@
 
 #include "parse_sections.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 /// initial: hanging | steady | {direction: [x, y, z]}.
@@ -315,4 +315,4 @@ ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diag
   return s;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

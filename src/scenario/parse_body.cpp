@@ -1,6 +1,6 @@
 #include "parse_sections.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 void parse_sphere(MapReader& r, SphereSpec& s) {
@@ -117,4 +117,4 @@ void parse_body(MapReader& r, BodySpec& b, Diagnostics& d, bool link_required) {
   });
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -5,7 +5,7 @@
 
 #include "parse_sections.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 void parse_points(MapReader& r, const std::string& key, std::vector<NamedPointSpec>& points, bool& given, Where& where,
                   Diagnostics& d) {
@@ -130,4 +130,4 @@ void parse_tow_points(MapReader& r, const YNode* vessel, ScenarioSpec& s, Diagno
   parse_points(r, "tow_points", v.tow_points, v.tow_points_given, v.tow_points_where, d);
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

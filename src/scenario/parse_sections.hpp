@@ -3,7 +3,7 @@
 
 #include "reader.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// environment: water_density, gravity, current.
 void parse_environment(MapReader& r, EnvironmentSpec& env, Diagnostics& d);
@@ -31,4 +31,4 @@ void parse_network(MapReader& r, const YNode& root, ScenarioSpec& s, Diagnostics
 /// vessel.tow_points (a network's named sheaves): `r` reads `vessel`.
 void parse_tow_points(MapReader& r, const YNode* vessel, ScenarioSpec& s, Diagnostics& d);
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

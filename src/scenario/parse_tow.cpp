@@ -7,7 +7,7 @@
 #include "scalar.hpp"
 #include "towsim/scenario/parse.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 /// Split one CSV line at commas, remembering each field's 1-based column.
@@ -202,4 +202,4 @@ void parse_tow(MapReader& r, TowSpec& tow, const std::string& base_dir, Diagnost
   parse_force(r, tow, d);
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -7,7 +7,7 @@
 #include "parse_sections.hpp"
 #include "scalar.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 const std::vector<std::string> kDofs = {"surge", "sway", "heave", "roll", "pitch", "yaw"};
@@ -188,4 +188,4 @@ void parse_vessel(MapReader& r, VesselSpec& v, const std::string& base_dir, Diag
   }
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

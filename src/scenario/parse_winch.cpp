@@ -5,7 +5,7 @@
 #include "parse_sections.hpp"
 #include "scalar.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 namespace {
 
@@ -64,4 +64,4 @@ void parse_winch(MapReader& r, WinchSpec& w, Diagnostics& d) {
   r.read("remove_at", w.remove_at);
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

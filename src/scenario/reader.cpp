@@ -5,7 +5,7 @@
 
 #include "scalar.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 std::string expected(const std::string& what, const YNode& n) {
@@ -256,4 +256,4 @@ void MapReader::finish() {
   }
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -9,7 +9,7 @@
 #include "towsim/scenario/spec.hpp"
 #include "towsim/scenario/yaml_tree.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// "a.b" + "c" -> "a.b.c"; "" + "c" -> "c".
 std::string join_path(const std::string& parent, const std::string& key);
@@ -101,4 +101,4 @@ inline double knots_to_mps(double kn) { return kn * 1852.0 / 3600.0; }
 /// Report `got` unless it is one of `choices` (with a "did you mean" hint).
 bool check_choice(const std::string& got, const std::vector<std::string>& choices, const Where& w, Diagnostics& d);
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// "true"/"True"/"TRUE" or "false"/... as a bool.
 inline std::optional<bool> scalar_to_bool(const std::string& s) {
@@ -42,4 +42,4 @@ inline std::optional<double> scalar_to_double(const std::string& s) {
   return v;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

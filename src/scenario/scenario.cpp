@@ -8,7 +8,7 @@
 #include "towsim/scenario/compile.hpp"
 #include "towsim/scenario/parse.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 /// Compile a chain or a network, as the spec is.
@@ -110,4 +110,4 @@ LoadedScenario load_scenario_text(const std::string& text, const std::string& fi
   return s;
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -16,7 +16,7 @@
 
 #include "scalar.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 namespace {
 
 /// Location of a yaml-cpp mark (0-based) in `file`, shifted by `col_offset` columns.
@@ -374,4 +374,4 @@ nlohmann::ordered_json to_json(const YNode& node) {
   }
 }
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

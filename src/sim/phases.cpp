@@ -10,7 +10,7 @@ namespace towsim {
 namespace {
 
 /// Below this the winch's pay-out speed is taken as zero (a stop) [m/s]: the
-/// output's own zero (io::kZeroBelow); schedule round-off is far smaller.
+/// output's own zero (output::kZeroBelow); schedule round-off is far smaller.
 constexpr double kStoppedBelow = 1e-9;
 
 /// The tow law's activities, in piece order.

@@ -8,7 +8,8 @@
 #include "towsim/scenario/scenario.hpp"
 
 int main() {
-  using namespace towsim::io;
+  using namespace towsim::scenario;
+  using namespace towsim::output;
   const Example* ex = find_example(kDefaultExample);
   if (!ex) return std::printf("no built-in example %s\n", kDefaultExample), 1;
   const LoadedScenario sc = load_scenario_text(ex->yaml, ex->name + ".yaml", ex->name, ".");

@@ -34,9 +34,9 @@ class ScenarioFiles : public ::testing::Test {
     return p.string();
   }
   /// Load `text` as the scenario file DIR/scen.yaml with --set overrides.
-  io::LoadedScenario load(const std::string& text, const std::vector<std::string>& sets = {}) {
+  scenario::LoadedScenario load(const std::string& text, const std::vector<std::string>& sets = {}) {
     path_ = write(text);
-    return io::load_scenario_file(path_, sets);
+    return scenario::load_scenario_file(path_, sets);
   }
   /// The expected error line for the scenario file.
   std::string at(const std::string& rest) const { return path_ + ":" + rest + "\n"; }

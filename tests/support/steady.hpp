@@ -21,10 +21,10 @@ namespace towsim::validation {
 
 /// A built-in example scenario compiled to a Model (the test fails if it does not compile).
 inline Model example_model(const std::string& name) {
-  const io::Example* e = io::find_example(name);
+  const scenario::Example* e = scenario::find_example(name);
   EXPECT_NE(e, nullptr) << name;
   if (!e) return Model{};
-  auto s = io::load_scenario_text(e->yaml, name + ".yaml", name, "");
+  auto s = scenario::load_scenario_text(e->yaml, name + ".yaml", name, "");
   EXPECT_TRUE(s.ok()) << s.diags.str();
   return s.ok() ? *s.model : Model{};
 }

@@ -15,7 +15,7 @@
 
 namespace fs = std::filesystem;
 using towsim::Sample;
-using towsim::io::AsyncSink;
+using towsim::output::AsyncSink;
 
 namespace {
 
@@ -99,20 +99,21 @@ TEST(AsyncSink, InnerErrorReachesTheCaller) {
 // A whole run (the default example, 30 s) written through the AsyncSink
 // gives the same bytes as written directly: the sink only moves the work.
 TEST(AsyncSink, RunFilesAreTheSameBytes) {
-  const towsim::io::Example* ex = nullptr;
-  for (const auto& e : towsim::io::examples())
-    if (e.name == towsim::io::kDefaultExample) ex = &e;
+  const towsim::scenario::Example* ex = nullptr;
+  for (const auto& e : towsim::scenario::examples())
+    if (e.name == towsim::scenario::kDefaultExample) ex = &e;
   ASSERT_NE(ex, nullptr);
-  const auto sc = towsim::io::load_scenario_text(ex->yaml, "example.yaml", ex->name, ".", {"simulation.duration=30"});
+  const auto sc = towsim::scenario::load_scenario_text(ex->yaml, "example.yaml", ex->name, ".",
+                                                       {"simulation.duration=30"});
   ASSERT_TRUE(sc.ok());
   const fs::path direct = towsim::testing::fresh_dir("async_direct");
   const fs::path async = towsim::testing::fresh_dir("async_thread");
   {
-    towsim::io::RunWriter w(direct.string(), *sc.model, true);
+    towsim::output::RunWriter w(direct.string(), *sc.model, true);
     EXPECT_EQ(towsim::simulate(*sc.model, w).status, "ok");
   }
   {
-    towsim::io::RunWriter w(async.string(), *sc.model, true);
+    towsim::output::RunWriter w(async.string(), *sc.model, true);
     AsyncSink sink(w);
     EXPECT_EQ(towsim::simulate(*sc.model, sink).status, "ok");
   }

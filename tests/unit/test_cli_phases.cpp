@@ -50,13 +50,13 @@ Scan scan(const Csv& ts, int col, double a, double b, double w, double duration,
   }
   if (v.empty()) return s;
   s.settled = v.back();
-  s.band = std::max({towsim::io::kSettleChangeFraction * std::abs(v.back() - v.front()),
-                     tension ? towsim::io::kSettleValueFraction * std::abs(v.back()) : 0.0,
-                     tension ? towsim::io::kSettleTensionFloor : towsim::io::kSettleDepthFloor});
+  s.band = std::max({towsim::output::kSettleChangeFraction * std::abs(v.back() - v.front()),
+                     tension ? towsim::output::kSettleValueFraction * std::abs(v.back()) : 0.0,
+                     tension ? towsim::output::kSettleTensionFloor : towsim::output::kSettleDepthFloor});
   std::size_t k = v.size() - 1;  // the first sample from which every later one is within the band
   while (k > 0 && std::abs(v[k - 1] - v.back()) <= s.band) --k;
   const double since = t[k];
-  if (v.size() >= 2 && t.back() - since >= towsim::io::kSettleHoldFraction * (t.back() - a)) s.settle = since - a;
+  if (v.size() >= 2 && t.back() - since >= towsim::output::kSettleHoldFraction * (t.back() - a)) s.settle = since - a;
   return s;
 }
 
@@ -105,13 +105,14 @@ json run_and_check(const std::string& args, const fs::path& out) {
       expect_same(number(j["max"]["value"]), s.max, what + " max");
       expect_same(number(j["max"]["time"]), s.max_t, what + " max time");
       expect_same(number(j["settled_value"]), s.settled, what + " settled value");
-      expect_same(number(j["band"]), towsim::io::tidy(s.band), what + " band");
-      expect_same(number(j["settle_time"]), towsim::io::tidy_time(s.settle), what + " settle time");
+      expect_same(number(j["band"]), towsim::output::tidy(s.band), what + " band");
+      expect_same(number(j["settle_time"]), towsim::output::tidy_time(s.settle), what + " settle time");
       if (q < 2) settle[q] = s.settle;
     }
     expect_same(number(p["settle_time"]),
-                std::isnan(settle[0]) || std::isnan(settle[1]) ? NAN
-                                                               : towsim::io::tidy_time(std::max(settle[0], settle[1])),
+                std::isnan(settle[0]) || std::isnan(settle[1])
+                    ? NAN
+                    : towsim::output::tidy_time(std::max(settle[0], settle[1])),
                 name + " settle time");
   }
   return sm;

@@ -40,10 +40,10 @@ using namespace towsim;
 
 /// A built-in example with --set overrides, compiled.
 Model example_model(const std::string& name, const std::vector<std::string>& sets) {
-  const io::Example* e = io::find_example(name);
+  const scenario::Example* e = scenario::find_example(name);
   EXPECT_NE(e, nullptr) << name;
   if (e == nullptr) return Model{};
-  io::LoadedScenario sc = io::load_scenario_text(e->yaml, name + ".yaml", name, "", sets);
+  scenario::LoadedScenario sc = scenario::load_scenario_text(e->yaml, name + ".yaml", name, "", sets);
   EXPECT_TRUE(sc.ok()) << sc.diags.str();
   return sc.ok() ? *sc.model : Model{};
 }
@@ -69,7 +69,7 @@ std::vector<double> flat(const Sample& s) {
 
 /// A scenario text, compiled.
 Model text_model(const std::string& yaml, const std::vector<std::string>& sets = {}) {
-  io::LoadedScenario sc = io::load_scenario_text(yaml, "test.yaml", "test", "", sets);
+  scenario::LoadedScenario sc = scenario::load_scenario_text(yaml, "test.yaml", "test", "", sets);
   EXPECT_TRUE(sc.ok()) << sc.diags.str();
   return sc.ok() ? *sc.model : Model{};
 }
@@ -547,7 +547,7 @@ simulation: {duration: 2, time_step: 0.01, integrator: rosenbrock, tolerance: 1.
   ASSERT_EQ(seabed.cable.attachments.size(), 1u);
   expect_same_runs(seabed);
   // two-part-tow's sections at 150 and 60 elements.
-  const io::Example* ex = io::find_example("two-part-tow");
+  const scenario::Example* ex = scenario::find_example("two-part-tow");
   ASSERT_NE(ex, nullptr);
   std::string two_yaml = ex->yaml;
   for (const auto& [from, to] : {std::pair<std::string, std::string>{"elements: 30,", "elements: 150,"},

@@ -18,18 +18,18 @@ TEST_F(CutRows, ReadersLeaveOutALastLineWithoutNewline) {
   const auto r = towsim::testing::run_towsim("run --example paper-3d-turn --set simulation.duration=1 --quiet --out " +
                                              towsim::testing::quoted(out));
   ASSERT_EQ(r.status, 0) << r.out;
-  towsim::io::CsvTable whole;
-  std::vector<towsim::io::NodeFrame> whole_frames;
+  towsim::cli::CsvTable whole;
+  std::vector<towsim::cli::NodeFrame> whole_frames;
   std::string error;
-  ASSERT_TRUE(towsim::io::read_csv_table((out / "timeseries.csv").string(), whole, error)) << error;
-  ASSERT_TRUE(towsim::io::read_node_frames((out / "nodes.csv").string(), {0.0, 1.0}, whole_frames, error)) << error;
+  ASSERT_TRUE(towsim::cli::read_csv_table((out / "timeseries.csv").string(), whole, error)) << error;
+  ASSERT_TRUE(towsim::cli::read_node_frames((out / "nodes.csv").string(), {0.0, 1.0}, whole_frames, error)) << error;
   // The start of a next row, cut in its numbers ("1.1,0.0" of "1.1,0.0123,...").
   std::ofstream(out / "timeseries.csv", std::ios::app) << "1.1,0.0";
   std::ofstream(out / "nodes.csv", std::ios::app) << "1,0,0.0";
-  towsim::io::CsvTable cut;
-  std::vector<towsim::io::NodeFrame> cut_frames;
-  ASSERT_TRUE(towsim::io::read_csv_table((out / "timeseries.csv").string(), cut, error)) << error;
-  ASSERT_TRUE(towsim::io::read_node_frames((out / "nodes.csv").string(), {0.0, 1.0}, cut_frames, error)) << error;
+  towsim::cli::CsvTable cut;
+  std::vector<towsim::cli::NodeFrame> cut_frames;
+  ASSERT_TRUE(towsim::cli::read_csv_table((out / "timeseries.csv").string(), cut, error)) << error;
+  ASSERT_TRUE(towsim::cli::read_node_frames((out / "nodes.csv").string(), {0.0, 1.0}, cut_frames, error)) << error;
   EXPECT_EQ(cut.rows, whole.rows);
   ASSERT_EQ(cut_frames.size(), whole_frames.size());
   EXPECT_EQ(cut_frames.back().x, whole_frames.back().x);

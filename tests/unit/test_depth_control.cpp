@@ -173,12 +173,12 @@ TEST_F(ScenarioFile, DepthControlOutputs) {
                           " settling_band: 0.5}}\n",
                       {"simulation.duration=0.5"});
   ASSERT_TRUE(s.ok()) << s.diags.str();
-  const auto cols = towsim::io::timeseries_columns(*s.model);
+  const auto cols = towsim::output::timeseries_columns(*s.model);
   ASSERT_GE(cols.size(), 3u);
   EXPECT_EQ(std::vector<std::string>(cols.end() - 3, cols.end()),
             (std::vector<std::string>{"body_surface1_deflection_deg", "body_surface1_deflection_rate_deg_s",
                                       "body_surface1_depth_error"}));
-  towsim::io::RunRecord record(*s.model);
+  towsim::output::RunRecord record(*s.model);
   const towsim::RunStats st = towsim::simulate(*s.model, record);
   ASSERT_EQ(st.status, "ok") << st.message;
   // Hanging at rest from z = 0 over 100 m: the body origin at 100 m, 1 m above the target.
@@ -188,7 +188,7 @@ TEST_F(ScenarioFile, DepthControlOutputs) {
   EXPECT_LT(e, 0);
   EXPECT_GE(defl, -10);
   EXPECT_LE(std::abs(rate), 4);
-  const auto j = towsim::io::make_summary(nlohmann::ordered_json::object(), "m", st, record, false);
+  const auto j = towsim::output::make_summary(nlohmann::ordered_json::object(), "m", st, record, false);
   ASSERT_TRUE(j.contains("depth_control"));
   const auto& dc = j["depth_control"].at(0);
   EXPECT_EQ(dc["body"], "body");

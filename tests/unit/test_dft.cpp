@@ -1,4 +1,4 @@
-// The discrete Fourier transform of spectra.csv (towsim::io::dft) and the
+// The discrete Fourier transform of spectra.csv (towsim::output::dft) and the
 // spectral estimate built on it, against the direct sum: twiddles from the
 // exact k n mod N, summed in long double (its own error ~1e-19 relative, far
 // below the tolerances), on random records of lengths that take each path
@@ -51,7 +51,7 @@ constexpr double kDftTol = 5e-14;
 TEST(Dft, EqualsTheDirectSumForEveryKindOfLength) {
   for (std::size_t N : {1u, 2u, 7u, 360u, 1000u, 997u, 2180u, 4096u}) {
     const auto x = random_record(N, N);
-    const auto X = towsim::io::dft(x);
+    const auto X = towsim::output::dft(x);
     const auto R = direct_dft(x);
     ASSERT_EQ(X.size(), N);
     double norm = 0, err = 0;
@@ -61,12 +61,12 @@ TEST(Dft, EqualsTheDirectSumForEveryKindOfLength) {
       err = std::max(err, std::abs(X[k] - std::complex<double>(static_cast<double>(R[k].real()),
                                                                static_cast<double>(R[k].imag()))));
     std::printf("[measured] N = %zu (%s): max |X - X_direct| / |X|_2 = %.2e\n", N,
-                towsim::io::has_small_factors(N) ? "FFT" : "Bluestein", err / norm);
+                towsim::output::has_small_factors(N) ? "FFT" : "Bluestein", err / norm);
     EXPECT_LE(err, kDftTol * norm) << "N = " << N;
   }
-  EXPECT_TRUE(towsim::io::dft({}).empty());
-  EXPECT_TRUE(towsim::io::has_small_factors(54000));
-  EXPECT_FALSE(towsim::io::has_small_factors(54500));  // 2^2 5^3 109
+  EXPECT_TRUE(towsim::output::dft({}).empty());
+  EXPECT_TRUE(towsim::output::has_small_factors(54000));
+  EXPECT_FALSE(towsim::output::has_small_factors(54500));  // 2^2 5^3 109
 }
 
 // spectral_density_estimate against its definition summed directly: S_j =
@@ -87,7 +87,7 @@ TEST(Dft, SpectralEstimateEqualsTheDirectEstimate) {
     for (std::size_t n = 0; n < N; ++n) d[n] = x[n] - mean;
     const auto R = direct_dft(d);
     const int band = 5;
-    const auto S = towsim::io::spectral_density_estimate(x, dt, band);
+    const auto S = towsim::output::spectral_density_estimate(x, dt, band);
     const double dw = 2 * std::numbers::pi / (static_cast<double>(N) * dt);
     ASSERT_EQ(S.size(), N / 2 / band);
     double peak = 0, err = 0;

@@ -12,7 +12,8 @@
 #include "towsim/scenario/scenario.hpp"
 
 namespace fs = std::filesystem;
-using namespace towsim::io;
+using namespace towsim::scenario;
+using namespace towsim::output;
 
 TEST(IoExamples, FourPaperAndCableExamplesAreBuiltIn) {
   for (const char* name : {"paper-planar-a", "paper-planar-b", "paper-3d-turn", "cable-tow"}) {

@@ -12,8 +12,8 @@
 #include "towsim/scenario/scenario.hpp"
 
 namespace fs = std::filesystem;
-using towsim::io::load_scenario_file;
-using towsim::io::LoadedScenario;
+using towsim::scenario::load_scenario_file;
+using towsim::scenario::LoadedScenario;
 
 namespace {
 
@@ -381,7 +381,7 @@ TEST_F(ScenarioFile, RosenbrockHasNoDefaultMaxStep) {
 TEST_F(ScenarioFile, EchoIsJsonAfterSet) {
   const auto s = load(kCable + kSim + "name: \"007\"\n", {"cable.elements=7"});
   ASSERT_TRUE(s.ok()) << s.diags.str();
-  const auto j = towsim::io::to_json(s.tree);
+  const auto j = towsim::scenario::to_json(s.tree);
   EXPECT_EQ(j["cable"]["elements"], 7);
   EXPECT_EQ(j["cable"]["diameter"], 0.019);
   EXPECT_EQ(j["name"], "007");

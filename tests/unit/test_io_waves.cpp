@@ -157,12 +157,12 @@ TEST_F(ScenarioFile, RaoCsvFileAndItsErrors) {
 
 // The built-in example's inline RAOs are the shipped CSV's rows.
 TEST_F(ScenarioFile, SeaStateExampleUsesTheShippedRaos) {
-  const auto* ex = towsim::io::find_example("sea-state-tow");
+  const auto* ex = towsim::scenario::find_example("sea-state-tow");
   ASSERT_NE(ex, nullptr);
-  const auto a = towsim::io::load_scenario_text(ex->yaml, "x.yaml", "x", "");
+  const auto a = towsim::scenario::load_scenario_text(ex->yaml, "x.yaml", "x", "");
   ASSERT_TRUE(a.ok()) << a.diags.str();
-  const auto b = towsim::io::load_scenario_text(ex->yaml, "x.yaml", "x", "",
-                                                {"vessel.raos=" TOWSIM_SOURCE_DIR "/scenarios/generic-raos.csv"});
+  const auto b = towsim::scenario::load_scenario_text(ex->yaml, "x.yaml", "x", "",
+                                                      {"vessel.raos=" TOWSIM_SOURCE_DIR "/scenarios/generic-raos.csv"});
   ASSERT_TRUE(b.ok()) << b.diags.str();
   const towsim::TowKinematics ka = towsim::tow_kinematics(a.model->tow, 123.4);
   const towsim::TowKinematics kb = towsim::tow_kinematics(b.model->tow, 123.4);
@@ -181,7 +181,7 @@ TEST(SeaStatistics, SineHasClosedFormStatistics) {
     t.push_back(i * T / 1000);
     x.push_back(m + A * std::sin(2 * std::numbers::pi * t.back() / T));
   }
-  const auto s = towsim::io::signal_stats(t, x);
+  const auto s = towsim::output::signal_stats(t, x);
   EXPECT_NEAR(s.mean, m, 1e-9);
   EXPECT_NEAR(s.std, A / std::sqrt(2.0), 1e-9);
   EXPECT_NEAR(s.max, m + A, 1e-9);
@@ -206,7 +206,7 @@ TEST(SeaStatistics, SpectralEstimateParsevalAndPeak) {
   for (std::size_t n = 0; n < N; ++n) x[n] = 2 * std::cos(w0 * n * dt) + 0.3 * ((g() >> 11) * 0x1.0p-53 - 0.5);
   for (double v : x) mean += v / N;
   for (double v : x) var += (v - mean) * (v - mean) / N;
-  const auto S = towsim::io::spectral_density_estimate(x, dt, 5);
+  const auto S = towsim::output::spectral_density_estimate(x, dt, 5);
   ASSERT_EQ(S.size(), 100u);
   const double dw = 2 * std::numbers::pi / (N * dt);
   double sum = 0, best = 0, wbest = 0;
@@ -235,7 +235,7 @@ TEST(SeaStatistics, TransferFunctionsOfKnownGains) {
   const std::vector<int> bins = {43, 68, 103, 153, 208};  // centre bins 3 + 5 j of bands j = 8, 13, 20, 30, 41
   auto G1 = [](double w) { return 0.8 / (1 + w * w); };   // tow heave per metre of wave [m/m]
   auto G2 = [](double w) { return 0.3 * std::exp(-w); };  // body depth per metre of wave [m/m]
-  towsim::io::SeaStatistics stats;
+  towsim::output::SeaStatistics stats;
   for (std::size_t n = 0; n < N; ++n) {
     towsim::Sample s;
     s.t = static_cast<double>(n) * dt;

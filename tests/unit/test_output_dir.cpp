@@ -92,13 +92,13 @@ TEST_F(OutputDir, SecondRunIntoABusyDirectoryIsRefused) {
 // A disk that takes no more: the batch that did not fit is cut back off the
 // file (whole rows only), and the cause is kept.
 TEST_F(OutputDir, RowFileOnAFullDiskKeepsWholeRowsAndTheCause) {
-  towsim::io::RowFile full("/dev/full");
+  towsim::output::RowFile full("/dev/full");
   EXPECT_FALSE(full.append("1,2\n"));
   EXPECT_EQ(full.error(), "cannot write /dev/full: No space left on device");
   EXPECT_FALSE(full.append("3,4\n"));  // nothing more after a failure
   // summary.json is whole or absent (written beside, then renamed).
   std::string why;
-  EXPECT_FALSE(towsim::io::write_summary((dir_ / "none").string(), nlohmann::ordered_json::object(), &why));
+  EXPECT_FALSE(towsim::output::write_summary((dir_ / "none").string(), nlohmann::ordered_json::object(), &why));
   EXPECT_EQ(why, "cannot create " + (dir_ / "none" / "summary.json.part").string() + ": No such file or directory");
 }
 

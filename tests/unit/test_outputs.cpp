@@ -121,18 +121,18 @@ TEST(RunOutputs, LaybackOfTheCableEndWithoutABodyAndTimesWithoutNoise) {
 }
 
 TEST(NumberFormat, RoundOffIsZeroAndTimesAreRoundedToTheNanosecond) {
-  EXPECT_EQ(towsim::io::tidy(1.57601e-145), 0.0);
-  EXPECT_EQ(towsim::io::tidy(-3e-12), 0.0);
-  EXPECT_EQ(towsim::io::tidy(2e-9), 2e-9);  // above the threshold: kept
-  EXPECT_EQ(towsim::io::tidy(1.0 / 3.0), 0.333333333333);
+  EXPECT_EQ(towsim::output::tidy(1.57601e-145), 0.0);
+  EXPECT_EQ(towsim::output::tidy(-3e-12), 0.0);
+  EXPECT_EQ(towsim::output::tidy(2e-9), 2e-9);  // above the threshold: kept
+  EXPECT_EQ(towsim::output::tidy(1.0 / 3.0), 0.333333333333);
   std::string s;
-  towsim::io::put_time(s, 70884 * 0.1);  // 7088.400000000001 in binary arithmetic
+  towsim::output::put_time(s, 70884 * 0.1);  // 7088.400000000001 in binary arithmetic
   EXPECT_EQ(s, "7088.4");
   s.clear();
-  towsim::io::put_time(s, 123456.123456789);  // nanoseconds kept for long runs
+  towsim::output::put_time(s, 123456.123456789);  // nanoseconds kept for long runs
   EXPECT_EQ(s, "123456.123456789");
   s.clear();
-  towsim::io::put_number(s, 1.57601e-145);
+  towsim::output::put_number(s, 1.57601e-145);
   EXPECT_EQ(s, "0");
 }
 
@@ -146,25 +146,25 @@ TEST(NumberFormat, TwelveDigitsAreTheBytesOfToChars) {
   std::uniform_real_distribution<double> u(0, 1);
   auto reference = [](double v) {
     char b[64];
-    const auto r = std::to_chars(b, b + sizeof b, std::abs(v) < towsim::io::kZeroBelow ? 0.0 : v,
+    const auto r = std::to_chars(b, b + sizeof b, std::abs(v) < towsim::output::kZeroBelow ? 0.0 : v,
                                  std::chars_format::general, 12);
     return std::string(b, r.ptr);
   };
   int mismatches = 0;
   auto check = [&](double v) {
     std::string s;
-    towsim::io::put_number(s, v);
+    towsim::output::put_number(s, v);
     if (s != reference(v) && ++mismatches <= 5) ADD_FAILURE() << "value " << v << ": " << s << " vs " << reference(v);
     // tidy: the double nearest to those digits, as std::from_chars reads them back.
     const std::string r = reference(v);
     double back = 0;
     std::from_chars(r.data(), r.data() + r.size(), back);
-    const double t = towsim::io::tidy(v);
+    const double t = towsim::output::tidy(v);
     if (std::isfinite(v) && !(t == back && std::signbit(t) == std::signbit(back)) && ++mismatches <= 5)
       ADD_FAILURE() << "tidy " << v << ": " << t << " vs " << back;
     // Writing needs no tidy first (nodes.csv writes values unrounded): the same bytes.
     std::string st;
-    towsim::io::put_number(st, t);
+    towsim::output::put_number(st, t);
     if (st != s && ++mismatches <= 5) ADD_FAILURE() << "put_number(tidy(" << v << ")): " << st << " vs " << s;
   };
   for (int i = 0; i < 200000; ++i) check((rng() & 1 ? -1 : 1) * std::pow(10.0, -14 + 30 * u(rng)));

@@ -13,7 +13,7 @@
 namespace {
 
 using namespace towsim;
-using namespace towsim::io;
+using namespace towsim::scenario;
 using towsim::testing::CliResult;
 using towsim::testing::run_towsim;
 

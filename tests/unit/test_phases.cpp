@@ -13,16 +13,16 @@
 #include "towsim/sim/phases.hpp"
 
 using namespace towsim;
-using towsim::io::Settling;
-using towsim::io::TransientRecord;
+using towsim::output::Settling;
+using towsim::output::TransientRecord;
 
 namespace {
 
 /// An example's compiled model.
 Model example(const char* name) {
-  const io::Example* e = io::find_example(name);
+  const scenario::Example* e = scenario::find_example(name);
   EXPECT_NE(e, nullptr) << name;
-  const auto s = io::load_scenario_text(e->yaml, std::string(name) + ".yaml", name, "");
+  const auto s = scenario::load_scenario_text(e->yaml, std::string(name) + ".yaml", name, "");
   EXPECT_TRUE(s.ok()) << s.diags.str();
   return *s.model;
 }
@@ -121,8 +121,8 @@ namespace {
 
 /// The band parameters of a tension (summary.json `phases`).
 Settling::Result tension_result(const Settling& s, double window_start) {
-  return s.result(io::kSettleChangeFraction, io::kSettleValueFraction, io::kSettleTensionFloor, io::kSettleHoldFraction,
-                  window_start);
+  return s.result(output::kSettleChangeFraction, output::kSettleValueFraction, output::kSettleTensionFloor,
+                  output::kSettleHoldFraction, window_start);
 }
 
 }  // namespace
@@ -136,7 +136,7 @@ TEST(Settling, AFirstOrderApproachSettlesAtTauLnOfChangeOverBand) {
   TransientRecord rec({phase}, 250, false);
   Settling alone;
   for (int k = 0; k <= 2000; ++k) {
-    const double t = io::tidy_time(50 + k * dt), x = 1000 * (1 - std::exp(-(t - 50) / tau));
+    const double t = output::tidy_time(50 + k * dt), x = 1000 * (1 - std::exp(-(t - 50) / tau));
     rec.add(t, x, 100, std::nan(""));
     alone.add(t, x);
   }
@@ -152,18 +152,18 @@ TEST(Settling, AFirstOrderApproachSettlesAtTauLnOfChangeOverBand) {
   EXPECT_NEAR(r.since - 50, 39.2, 1e-9);
   const auto j = rec.json(250);
   ASSERT_EQ(j.size(), 1u);
-  EXPECT_EQ(j[0]["tow_tension"]["settle_time"].get<double>(), io::tidy_time(r.since - 50));
-  EXPECT_EQ(j[0]["tow_tension"]["band"].get<double>(), io::tidy(r.band));
+  EXPECT_EQ(j[0]["tow_tension"]["settle_time"].get<double>(), output::tidy_time(r.since - 50));
+  EXPECT_EQ(j[0]["tow_tension"]["band"].get<double>(), output::tidy(r.band));
   EXPECT_EQ(j[0]["tow_tension"]["settled_value"].get<double>(),
-            1000 * (1 - std::exp(-(io::tidy_time(250) - 50) / tau)));
+            1000 * (1 - std::exp(-(output::tidy_time(250) - 50) / tau)));
   EXPECT_EQ(j[0]["depth"]["settle_time"].get<double>(), 0);  // constant: settled from the start
-  EXPECT_EQ(j[0]["depth"]["band"].get<double>(), io::kSettleDepthFloor);
-  EXPECT_EQ(j[0]["settle_time"].get<double>(), io::tidy_time(r.since - 50));  // the later of the two
+  EXPECT_EQ(j[0]["depth"]["band"].get<double>(), output::kSettleDepthFloor);
+  EXPECT_EQ(j[0]["settle_time"].get<double>(), output::tidy_time(r.since - 50));  // the later of the two
   EXPECT_FALSE(j[0].contains("link_tension"));
   // Extremes over [start, end) = [50, 60) only.
   EXPECT_EQ(j[0]["tow_tension"]["max"]["time"].get<double>(), 59.9);
   EXPECT_EQ(j[0]["tow_tension"]["max"]["value"].get<double>(),
-            1000 * (1 - std::exp(-(io::tidy_time(50 + 99 * dt) - 50) / tau)));
+            1000 * (1 - std::exp(-(output::tidy_time(50 + 99 * dt) - 50) / tau)));
   EXPECT_EQ(j[0]["tow_tension"]["min"]["value"].get<double>(), 0);
   EXPECT_EQ(j[0]["tow_tension"]["min"]["time"].get<double>(), 50);
 }
@@ -194,7 +194,7 @@ TEST(Settling, ASignalThatNeverFlattensDoesNotSettle) {
   EXPECT_EQ(r.band, 2);
   EXPECT_TRUE(std::isnan(r.since));
   // Held for exactly a fifth of the window (from 80 s of 100 s, band 20): settled at 80 s.
-  EXPECT_EQ(s.result(0, 0, 20, io::kSettleHoldFraction, 0).since, 80);
+  EXPECT_EQ(s.result(0, 0, 20, output::kSettleHoldFraction, 0).since, 80);
 }
 
 TEST(TransientRecord, ABoundarySampleBelongsToThePhaseStartingThere) {

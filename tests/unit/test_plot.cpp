@@ -16,8 +16,8 @@
 #include "plot.hpp"
 
 namespace fs = std::filesystem;
-using towsim::io::plot_names;
-using towsim::io::plot_run;
+using towsim::cli::plot_names;
+using towsim::cli::plot_run;
 
 namespace {
 
@@ -277,7 +277,7 @@ TEST_F(PlotRun, StaleFiguresOfAnEarlierPlotAreRemoved) {
 
 // ------------------------------------------------- readable axes (issue 30)
 
-using towsim::io::axis_ticks;
+using towsim::cli::axis_ticks;
 
 // The tick step follows the span AND the pixels the axis gets: a 2910 m wide
 // x axis drawn 226 pixels wide (a tall equal-scale plan view, 13 point font:

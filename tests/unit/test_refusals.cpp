@@ -18,8 +18,8 @@
 #include "towsim/scenario/scenario.hpp"
 
 namespace fs = std::filesystem;
-using towsim::io::load_scenario_file;
-using towsim::io::LoadedScenario;
+using towsim::scenario::load_scenario_file;
+using towsim::scenario::LoadedScenario;
 
 namespace {
 

@@ -81,11 +81,11 @@ TEST(Report, WithoutTheViewerThePageSaysWhyAndKeepsTheRest) {
   // The path of a build without npm: no bundle, a note instead of the view.
   const fs::path dir = fresh_dir("report");
   short_run(dir);
-  towsim::io::ReportOptions opt;
+  towsim::cli::ReportOptions opt;
   opt.viewer_note = "npm was not found when towsim was built (test)";
   opt.plots = false;
   std::ostringstream log;
-  ASSERT_EQ(towsim::io::report_run(dir.string(), log, opt), 0) << log.str();
+  ASSERT_EQ(towsim::cli::report_run(dir.string(), log, opt), 0) << log.str();
   const std::string page = slurp(dir / "report.html");
   EXPECT_NE(page.find("id=\"no3d\""), std::string::npos);
   EXPECT_NE(page.find("npm was not found when towsim was built (test)"), std::string::npos);
@@ -141,8 +141,8 @@ namespace {
 void expect_renders_in_chromium(const std::string& name, const std::string& run_settings,
                                 std::string* page_dom = nullptr,
                                 const std::string& example = "paper-3d-turn --set simulation.duration=20") {
-  if (towsim::io::embedded_viewer_js().empty())
-    GTEST_SKIP() << "this towsim was built without the 3-D view: " << towsim::io::embedded_viewer_note();
+  if (towsim::cli::embedded_viewer_js().empty())
+    GTEST_SKIP() << "this towsim was built without the 3-D view: " << towsim::cli::embedded_viewer_note();
   const std::string browser = chromium();
   if (browser.empty()) GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs it)";
   const fs::path dir = fs::path(TOWSIM_TEST_OUTPUT_DIR) / name;
@@ -193,7 +193,7 @@ TEST(ReportInBrowser, TheChordViewOfARunWithoutNodesRenders) {
 // ------------------------------------------- units, framing, body (issue 30)
 
 TEST(Report, EverySummaryKeyHasItsUnit) {
-  using towsim::io::summary_unit;
+  using towsim::cli::summary_unit;
   EXPECT_EQ(summary_unit("max_tow_tension"), "N");
   EXPECT_EQ(summary_unit("min_axial_force"), "N");
   EXPECT_EQ(summary_unit("max_depressor_lower_link_force"), "N");

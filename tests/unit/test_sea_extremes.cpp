@@ -1,4 +1,4 @@
-// Extreme-value statistics of summary.json's "statistics" (towsim::io::signal_stats,
+// Extreme-value statistics of summary.json's "statistics" (towsim::output::signal_stats,
 // weibull_fit) against analytic cases: a Gaussian record's moments, a
 // Weibull fit to Rayleigh values and to their upper tail, the Rayleigh and Weibull most probable
 // maxima of a narrow-band Gaussian process, and the flag of a record whose
@@ -31,13 +31,13 @@ TEST(SeaExtremes, GaussianRecordHasSkewness0Kurtosis3) {
   std::mt19937_64 g(5);
   std::vector<double> t, x;
   for (int i = 0; i < 200000; ++i) t.push_back(0.1 * i), x.push_back(4 + 2 * normal(g));
-  const auto s = towsim::io::signal_stats(t, x);
+  const auto s = towsim::output::signal_stats(t, x);
   std::printf("[measured] Gaussian record: skewness %.4f (0), kurtosis %.4f (3)\n", s.skewness, s.kurtosis);
   EXPECT_NEAR(s.skewness, 0, 0.03);
   EXPECT_NEAR(s.kurtosis, 3, 0.06);
   // A uniform record: skewness 0, kurtosis 9/5 (exact moments of the law; same sampling tolerances).
   for (auto& v : x) v = unit(g);
-  const auto u = towsim::io::signal_stats(t, x);
+  const auto u = towsim::output::signal_stats(t, x);
   EXPECT_NEAR(u.skewness, 0, 0.03);
   EXPECT_NEAR(u.kurtosis, 1.8, 0.06);
 }
@@ -53,8 +53,8 @@ TEST(SeaExtremes, WeibullFitOfRayleighValuesHasShape2) {
   std::vector<double> y(20000), e(20000);
   for (auto& v : y) v = sigma * std::sqrt(-2 * std::log(unit(g)));
   for (auto& v : e) v = -5.0 * std::log(unit(g));
-  const auto [shape, scale] = towsim::io::weibull_fit(y);
-  const auto [shape_e, scale_e] = towsim::io::weibull_fit(e);
+  const auto [shape, scale] = towsim::output::weibull_fit(y);
+  const auto [shape_e, scale_e] = towsim::output::weibull_fit(e);
   std::printf("[measured] Rayleigh: shape %.4f (2), scale %.4f (%.4f); exponential: shape %.4f (1), scale %.4f (5)\n",
               shape, scale, std::sqrt(2.0) * sigma, shape_e, scale_e);
   EXPECT_NEAR(shape, 2, 0.06);
@@ -62,8 +62,8 @@ TEST(SeaExtremes, WeibullFitOfRayleighValuesHasShape2) {
   EXPECT_NEAR(shape_e, 1, 0.03);
   EXPECT_NEAR(scale_e, 5, 0.025 * 5);
   // Too few or equal values: no fit.
-  EXPECT_TRUE(std::isnan(towsim::io::weibull_fit({1.0}).first));
-  EXPECT_TRUE(std::isnan(towsim::io::weibull_fit({2.0, 2.0, 2.0}).first));
+  EXPECT_TRUE(std::isnan(towsim::output::weibull_fit({1.0}).first));
+  EXPECT_TRUE(std::isnan(towsim::output::weibull_fit({2.0, 2.0, 2.0}).first));
 }
 
 // The fit to the upper tail: Rayleigh values y = sigma sqrt(-2 ln U) above
@@ -84,11 +84,11 @@ TEST(SeaExtremes, TailFitOfRayleighPeaksHasShape2) {
   for (auto& v : mix) v = unit(g) < 0.6 ? 0.9 * unit(g) : sigma * std::sqrt(-2 * std::log(unit(g)));
   auto threshold = [&](std::vector<double> v) {  // the largest value not in the top third
     std::sort(v.begin(), v.end());
-    return v[n - static_cast<std::size_t>(static_cast<double>(n) * towsim::io::kWeibullTail) - 1];
+    return v[n - static_cast<std::size_t>(static_cast<double>(n) * towsim::output::kWeibullTail) - 1];
   };
-  const auto [shape, sc] = towsim::io::weibull_fit(y, threshold(y));
-  const auto [shape_all, sc_all] = towsim::io::weibull_fit(mix);
-  const auto [shape_mix, sc_mix] = towsim::io::weibull_fit(mix, threshold(mix));
+  const auto [shape, sc] = towsim::output::weibull_fit(y, threshold(y));
+  const auto [shape_all, sc_all] = towsim::output::weibull_fit(mix);
+  const auto [shape_mix, sc_mix] = towsim::output::weibull_fit(mix, threshold(mix));
   std::printf(
       "[measured] tail fit, Rayleigh: shape %.4f (2), scale %.4f (%.4f); mixture: every value %.4f, top third "
       "%.4f, scale %.4f\n",
@@ -99,7 +99,7 @@ TEST(SeaExtremes, TailFitOfRayleighPeaksHasShape2) {
   EXPECT_NEAR(shape_mix, 2, 0.15);
   EXPECT_NEAR(sc_mix, scale, 0.06 * scale);
   // Above a threshold no value exceeds: no fit.
-  EXPECT_TRUE(std::isnan(towsim::io::weibull_fit(y, 1e9).first));
+  EXPECT_TRUE(std::isnan(towsim::output::weibull_fit(y, 1e9).first));
 }
 
 // A narrow-band Gaussian process (200 random-phase harmonics of equal
@@ -124,7 +124,7 @@ TEST(SeaExtremes, NarrowBandProcessWeibullMpmIsTheRayleighOne) {
     for (int i = 0; i < n; ++i) v += std::cos(w[i] * tk + ph[i]);
     t.push_back(tk), x.push_back(10 + v * std::sqrt(2.0 / n));  // std 1
   }
-  const auto s = towsim::io::signal_stats(t, x);
+  const auto s = towsim::output::signal_stats(t, x);
   std::printf("[measured] narrow band: %ld peaks, shape %.4f, mpm %.4f, weibull_mpm %.4f\n", s.peaks, s.weibull_shape,
               s.mpm, s.weibull_mpm);
   EXPECT_GT(s.peaks, 3000);
@@ -139,15 +139,15 @@ TEST(SeaExtremes, MaximumAboveTheRayleighMpmIsFlagged) {
   std::vector<double> t, x;
   for (int k = 0; k < 20000; ++k)
     t.push_back(0.05 * k), x.push_back(std::sin(0.7 * t.back()) + 0.3 * std::sin(2.3 * t.back()));
-  auto s = towsim::io::signal_stats(t, x);
+  auto s = towsim::output::signal_stats(t, x);
   EXPECT_FALSE(s.max_above_mpm);
   x[12345] = s.mpm + 0.5;
-  s = towsim::io::signal_stats(t, x);
+  s = towsim::output::signal_stats(t, x);
   EXPECT_TRUE(s.max_above_mpm);
-  EXPECT_GE(s.peaks, towsim::io::kMinPeaks);
+  EXPECT_GE(s.peaks, towsim::output::kMinPeaks);
   t.resize(1000), x.resize(1000);  // 50 s: 5 cycles
-  s = towsim::io::signal_stats(t, x);
-  EXPECT_LT(s.peaks, towsim::io::kMinPeaks);
+  s = towsim::output::signal_stats(t, x);
+  EXPECT_LT(s.peaks, towsim::output::kMinPeaks);
   EXPECT_TRUE(std::isnan(s.weibull_mpm));
 }
 

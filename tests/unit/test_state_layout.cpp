@@ -14,10 +14,10 @@ namespace {
 
 /// A built-in example with --set overrides, compiled.
 Model example_model(const std::string& name, const std::vector<std::string>& sets = {}) {
-  const io::Example* e = io::find_example(name);
+  const scenario::Example* e = scenario::find_example(name);
   EXPECT_NE(e, nullptr) << name;
   if (e == nullptr) return Model{};
-  io::LoadedScenario sc = io::load_scenario_text(e->yaml, name + ".yaml", name, "", sets);
+  scenario::LoadedScenario sc = scenario::load_scenario_text(e->yaml, name + ".yaml", name, "", sets);
   EXPECT_TRUE(sc.ok()) << sc.diags.str();
   return sc.ok() ? *sc.model : Model{};
 }

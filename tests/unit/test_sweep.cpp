@@ -10,7 +10,9 @@
 #include "sweep.hpp"
 #include "towsim/output/output.hpp"
 
-using namespace towsim::io;
+using namespace towsim::cli;
+using namespace towsim::scenario;
+using namespace towsim::output;
 
 namespace {
 

@@ -73,7 +73,7 @@ std::string linear_plant_yaml() {
 }
 
 towsim::Model load(const std::string& yaml, const std::vector<std::string>& sets = {}) {
-  auto s = towsim::io::load_scenario_text(yaml, "test.yaml", "test", ".", sets);
+  auto s = towsim::scenario::load_scenario_text(yaml, "test.yaml", "test", ".", sets);
   if (!s.ok()) throw std::runtime_error(s.diags.str());
   return *s.model;
 }
@@ -155,12 +155,12 @@ TEST(DepthControlLoop, Deterministic) {
 // never exceeds max_rate_deg_s (the rate column and the change between rows),
 // and both limits are reached (the check is not vacuous).
 TEST(DepthControlFish, ReachesAndHoldsTheTargetDepthWithinTheLimits) {
-  const towsim::io::Example* ex = towsim::io::find_example("fish-depth-control");
+  const towsim::scenario::Example* ex = towsim::scenario::find_example("fish-depth-control");
   ASSERT_NE(ex, nullptr);
   const towsim::Model m = load(ex->yaml);
   const towsim::DepthControl& dc = *m.bodies.back().surfaces.at(0).depth_control;
   const double max_deg = dc.max_deflection / kDeg, rate_deg = dc.max_rate / kDeg;
-  towsim::io::RunRecord record(m);
+  towsim::output::RunRecord record(m);
   towsim::MemorySink sink;
   struct Both : towsim::OutputSink {
     towsim::OutputSink *a, *b;
@@ -191,7 +191,7 @@ TEST(DepthControlFish, ReachesAndHoldsTheTargetDepthWithinTheLimits) {
   EXPECT_NEAR(max_defl, max_deg, 1e-9);   // saturated at some time
   EXPECT_NEAR(max_rate, rate_deg, 1e-9);  // rate-limited at some time
   // Settled within 1 % of the step and held to the end.
-  const towsim::io::ControlExtremes& ce = record.extremes().controls.at(0);
+  const towsim::output::ControlExtremes& ce = record.extremes().controls.at(0);
   EXPECT_NEAR(ce.band, 0.2, 0.01);
   ASSERT_FALSE(std::isnan(ce.settled_since)) << "not settled at the end; final error " << ce.final_error;
   std::cout << "[measured] fish: settling time " << ce.settled_since << " s, final error " << ce.final_error

@@ -21,16 +21,16 @@ namespace {
 
 /// A built-in example compiled with `sets`.
 Model example(const std::string& name, const std::vector<std::string>& sets = {}) {
-  const io::Example* ex = io::find_example(name);
+  const scenario::Example* ex = scenario::find_example(name);
   EXPECT_NE(ex, nullptr) << name;
-  const io::LoadedScenario sc = io::load_scenario_text(ex->yaml, name + ".yaml", name, ".", sets);
+  const scenario::LoadedScenario sc = scenario::load_scenario_text(ex->yaml, name + ".yaml", name, ".", sets);
   EXPECT_TRUE(sc.ok()) << sc.diags.str();
   return *sc.model;
 }
 
 /// A scenario file of the source tree compiled with `sets`.
 Model scenario_file(const std::string& path, const std::vector<std::string>& sets = {}) {
-  const io::LoadedScenario sc = io::load_scenario_file(std::string(TOWSIM_SOURCE_DIR) + "/" + path, sets);
+  const scenario::LoadedScenario sc = scenario::load_scenario_file(std::string(TOWSIM_SOURCE_DIR) + "/" + path, sets);
   EXPECT_TRUE(sc.ok()) << sc.diags.str();
   return *sc.model;
 }

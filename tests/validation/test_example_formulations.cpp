@@ -16,9 +16,9 @@ class ExampleFormulations : public ::testing::TestWithParam<std::string> {};
 /// Run an example with a formulation, the adaptive integrator at a tight
 /// tolerance, over `duration` seconds.
 std::vector<Sample> run(const std::string& name, Formulation f, double duration) {
-  const io::Example* ex = io::find_example(name);
+  const scenario::Example* ex = scenario::find_example(name);
   EXPECT_NE(ex, nullptr);
-  io::LoadedScenario sc = io::load_scenario_text(ex->yaml, name + ".yaml", name, ".");
+  scenario::LoadedScenario sc = scenario::load_scenario_text(ex->yaml, name + ".yaml", name, ".");
   EXPECT_TRUE(sc.ok());
   Model m = *sc.model;
   m.sim.formulation = f;

@@ -66,7 +66,7 @@ TEST(FairedCableSteady, CriticalAngleAndTopTension) {
                            "}\n  tangential_drag: {law: table, ft: " + kFt.yaml() +
                            "}\ntow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: " + std::to_string(kV) +
                            ", ramp_time: 0}\ninitial: steady\nsimulation:\n  duration: 1\n";
-  const auto s = towsim::io::load_scenario_text(yaml, "faired.yaml", "faired", ".");
+  const auto s = towsim::scenario::load_scenario_text(yaml, "faired.yaml", "faired", ".");
   ASSERT_TRUE(s.ok()) << s.diags.str();
   const towsim::StaticsResult r = towsim::steady_state(*s.model);
   ASSERT_TRUE(r.converged) << r.message;
@@ -104,7 +104,7 @@ TEST(FairedCableSteady, DefaultLawGivesTheClassicCriticalAngle) {
                            "\n  added_mass: 0\n  normal_drag: " + std::to_string(kCd) +
                            "\ntow:\n  motion:\n    - {type: ramp, direction: [1, 0, 0], speed: " + std::to_string(kV) +
                            ", ramp_time: 0}\ninitial: steady\nsimulation:\n  duration: 1\n";
-  const auto s = towsim::io::load_scenario_text(yaml, "bare.yaml", "bare", ".");
+  const auto s = towsim::scenario::load_scenario_text(yaml, "bare.yaml", "bare", ".");
   ASSERT_TRUE(s.ok()) << s.diags.str();
   const towsim::StaticsResult r = towsim::steady_state(*s.model);
   ASSERT_TRUE(r.converged) << r.message;

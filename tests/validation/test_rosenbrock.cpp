@@ -248,9 +248,9 @@ TEST(RosenbrockForceMode, PaperFormulationIsRefused) {
 class RosenbrockExamples : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RosenbrockExamples, AgreeWithConvergedRk4) {
-  const io::Example* ex = io::find_example(GetParam());
+  const scenario::Example* ex = scenario::find_example(GetParam());
   ASSERT_NE(ex, nullptr);
-  io::LoadedScenario sc = io::load_scenario_text(ex->yaml, GetParam() + ".yaml", GetParam(), ".");
+  scenario::LoadedScenario sc = scenario::load_scenario_text(ex->yaml, GetParam() + ".yaml", GetParam(), ".");
   ASSERT_TRUE(sc.ok());
   Model m = *sc.model;
   m.sim.duration = 40;  // the ramp, and the start of the heave (planar-b) or of the turn (3d-turn)
@@ -480,8 +480,8 @@ TEST(Rk4StabilityLimit, ShippedExamplesDoNotWarn) {
   // time_step its first step) ran rk4 at that step before it became the
   // default, and `integrator: rk4` must still run them; an example that
   // names rosenbrock itself (fish-depth-change: stiff for rk4) is skipped.
-  for (const auto& ex : io::examples()) {
-    io::LoadedScenario sc = io::load_scenario_text(ex.yaml, ex.name + ".yaml", ex.name, ".");
+  for (const auto& ex : scenario::examples()) {
+    scenario::LoadedScenario sc = scenario::load_scenario_text(ex.yaml, ex.name + ".yaml", ex.name, ".");
     ASSERT_TRUE(sc.ok()) << ex.name;
     if (sc.spec.simulation.integrator.given && sc.spec.simulation.integrator.value != "rk4") continue;
     Model m = *sc.model;

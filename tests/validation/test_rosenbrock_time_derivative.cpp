@@ -196,10 +196,10 @@ TEST(RosenbrockTimeDerivative, RejectedExtrapolatedColumnIsRetriedWithADifferenc
 /// Rosenbrock-W at fixed steps h (dividing 0.5 s: steps land on the
 /// schedule's breakpoints 60 and 70 s), with or without f_t, or RK4 at h.
 std::vector<double> winch_link_tension(double h, RosenbrockW::TimeDerivative td, bool rk4 = false) {
-  const io::Example* ex = io::find_example("fish-depth-change");
+  const scenario::Example* ex = scenario::find_example("fish-depth-change");
   EXPECT_NE(ex, nullptr);
   if (!ex) return {};
-  const io::LoadedScenario sc = io::load_scenario_text(ex->yaml, "fish-depth-change.yaml", ex->name, ".");
+  const scenario::LoadedScenario sc = scenario::load_scenario_text(ex->yaml, "fish-depth-change.yaml", ex->name, ".");
   EXPECT_TRUE(sc.ok());
   const Model& m = *sc.model;
   const StaticsResult st = steady_state(m);

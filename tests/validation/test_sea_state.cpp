@@ -18,7 +18,7 @@ using towsim::MemorySink;
 using towsim::Sample;
 
 std::vector<Sample> run(const std::string& yaml) {
-  const auto s = towsim::io::load_scenario_text(yaml, "sea.yaml", "sea", "");
+  const auto s = towsim::scenario::load_scenario_text(yaml, "sea.yaml", "sea", "");
   EXPECT_TRUE(s.ok()) << s.diags.str();
   if (!s.ok()) return {};
   MemorySink sink;
@@ -107,7 +107,7 @@ TEST(SeaState, CableInIrregularSeaRuns) {
   y.replace(y.find("regular: {height: 2, period: 8, heading_deg: 180.000000}"),
             std::string("regular: {height: 2, period: 8, heading_deg: 180.000000}").size(),
             "spectrum: {type: jonswap, hs: 3, tp: 9, components: 100, seed: 4}");
-  const auto s = towsim::io::load_scenario_text(y, "sea.yaml", "sea", "");
+  const auto s = towsim::scenario::load_scenario_text(y, "sea.yaml", "sea", "");
   ASSERT_TRUE(s.ok()) << s.diags.str();
   MemorySink sink;
   const auto st = towsim::simulate(*s.model, sink);

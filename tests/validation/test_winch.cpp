@@ -389,9 +389,10 @@ namespace {
 // discretisation (30 elements of 30 m in the run) and of settling (the run
 // has held 330 s, the slowest decay time of the fish's depth is ~60 s).
 TEST(Winch, TargetDepthMatchesTheHeldRun) {
-  const io::Example* ex = io::find_example("fish-depth-change");
+  const scenario::Example* ex = scenario::find_example("fish-depth-change");
   ASSERT_NE(ex, nullptr);
-  io::LoadedScenario sc = io::load_scenario_text(ex->yaml, "fish-depth-change.yaml", "fish-depth-change", ".");
+  scenario::LoadedScenario sc = scenario::load_scenario_text(ex->yaml, "fish-depth-change.yaml", "fish-depth-change",
+                                                             ".");
   ASSERT_TRUE(sc.ok()) << sc.diags.str();
   Model m = *sc.model;
   m.sim.duration = 700;
@@ -497,9 +498,10 @@ TEST(Winch, TensionControlHoldsStaticTensionAtItsStops) {
 // 500 N s/m) pays out and hauls in ~2 m and cuts the tension's standard
 // deviation by more than half (measured 448 -> 142 N).
 TEST(Winch, TensionControlCompensatesHeave) {
-  const io::Example* ex = io::find_example("fish-depth-change");
+  const scenario::Example* ex = scenario::find_example("fish-depth-change");
   ASSERT_NE(ex, nullptr);
-  io::LoadedScenario sc = io::load_scenario_text(ex->yaml, "fish-depth-change.yaml", "fish-depth-change", ".");
+  scenario::LoadedScenario sc = scenario::load_scenario_text(ex->yaml, "fish-depth-change.yaml", "fish-depth-change",
+                                                             ".");
   ASSERT_TRUE(sc.ok()) << sc.diags.str();
   Model fixed = *sc.model;
   fixed.sim.duration = 300;

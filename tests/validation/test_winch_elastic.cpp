@@ -288,9 +288,10 @@ TEST(ElasticWinch, TensionControlHoldsTheTopElementsTension) {
 // the deployed (stretched) length exceeds the schedule's by 0..0.28 m and
 // the fish rides at most that much deeper.
 TEST(ElasticWinch, FishDepthChangeAgreesWithTheInextensibleRun) {
-  const io::Example* ex = io::find_example("fish-depth-change");
+  const scenario::Example* ex = scenario::find_example("fish-depth-change");
   ASSERT_NE(ex, nullptr);
-  io::LoadedScenario sc = io::load_scenario_text(ex->yaml, "fish-depth-change.yaml", "fish-depth-change", ".");
+  scenario::LoadedScenario sc = scenario::load_scenario_text(ex->yaml, "fish-depth-change.yaml", "fish-depth-change",
+                                                             ".");
   ASSERT_TRUE(sc.ok()) << sc.diags.str();
   const Model rigid = *sc.model;
   Model elastic = rigid;

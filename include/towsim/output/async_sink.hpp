@@ -12,7 +12,7 @@
 
 #include "towsim/sim/simulate.hpp"
 
-namespace towsim::io {
+namespace towsim::output {
 
 /// Passes every sample, in order, to `inner` on a writer thread, so that
 /// formatting and writing the files (RunWriter: a sixth of paper-3d-turn's
@@ -73,4 +73,4 @@ class AsyncSink final : public OutputSink {
   std::thread thread_;               // started last: every member above exists
 };
 
-}  // namespace towsim::io
+}  // namespace towsim::output

@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace towsim::io {
+namespace towsim::output {
 
 class DirLock {
  public:
@@ -21,4 +21,4 @@ class DirLock {
   int fd_ = -1;
 };
 
-}  // namespace towsim::io
+}  // namespace towsim::output

@@ -13,7 +13,7 @@
 #include "towsim/output/row_file.hpp"
 #include "towsim/sim/simulate_network.hpp"
 
-namespace towsim::io {
+namespace towsim::output {
 
 /// The columns of a network's timeseries.csv, in order: time; per line
 /// (tree order) <line>_top_x/y/z, <line>_top_force_x/y/z, <line>_top_tension,
@@ -78,4 +78,4 @@ class NetworkWriter : public NetworkRecord {
 nlohmann::ordered_json make_network_summary(const nlohmann::ordered_json& scenario, const RunStats& stats,
                                             const NetworkRecord& record, bool write_nodes);
 
-}  // namespace towsim::io
+}  // namespace towsim::output

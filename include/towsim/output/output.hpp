@@ -24,7 +24,7 @@
 #include "towsim/output/transients.hpp"
 #include "towsim/sim/simulate.hpp"
 
-namespace towsim::io {
+namespace towsim::output {
 
 /// A maximum (or minimum) over the run and the time it was reached.
 struct Extreme {
@@ -247,4 +247,4 @@ nlohmann::ordered_json make_summary(const nlohmann::ordered_json& scenario, cons
 /// given) set to "cannot write PATH: cause".
 bool write_summary(const std::string& dir, const nlohmann::ordered_json& summary, std::string* error = nullptr);
 
-}  // namespace towsim::io
+}  // namespace towsim::output

@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace towsim::io {
+namespace towsim::output {
 
 class RowFile {
  public:
@@ -28,4 +28,4 @@ class RowFile {
   std::string error_;
 };
 
-}  // namespace towsim::io
+}  // namespace towsim::output

@@ -11,7 +11,7 @@
 
 #include "towsim/sim/simulate.hpp"
 
-namespace towsim::io {
+namespace towsim::output {
 
 /// Duration of the most probable maximum [s] (a 3-hour storm).
 inline constexpr double kMpmDuration = 3 * 3600.0;
@@ -95,4 +95,4 @@ class SeaStatistics {
   std::vector<double> t_, eta_, tension_, link_, depth_, tow_heave_;  // tow_heave_: Sample::tow_wave.z [m]
 };
 
-}  // namespace towsim::io
+}  // namespace towsim::output

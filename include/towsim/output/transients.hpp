@@ -10,7 +10,7 @@
 
 #include "towsim/sim/phases.hpp"
 
-namespace towsim::io {
+namespace towsim::output {
 
 /// The settling band is the largest of: this fraction of the change over the
 /// window (settled value - first value) [-] ...
@@ -99,4 +99,4 @@ class TransientRecord {
   bool link_ = false;
 };
 
-}  // namespace towsim::io
+}  // namespace towsim::output

@@ -8,7 +8,7 @@
 #include "towsim/scenario/diagnostics.hpp"
 #include "towsim/scenario/spec.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// Check every value of `spec` (ranges, unit vectors, inertia, tables, tow
 /// pieces) and report all problems to `diags`. When there are none, build and
@@ -27,4 +27,4 @@ std::optional<Model> compile(const ScenarioSpec& spec, Diagnostics& diags);
 /// nothing when there is an error.
 std::optional<Network> compile_network(const ScenarioSpec& spec, Diagnostics& diags);
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// A position in an input: a file name (or "--set"), 1-based line and column.
 /// For a `--set` option, LINE is its rank among the --set options (1 = first)
@@ -63,4 +63,4 @@ std::string closest_match(const std::string& word, const std::vector<std::string
 /// A number as written in messages and outputs ("%.10g").
 std::string fmt_num(double v);
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// One built-in scenario.
 struct Example {
@@ -22,4 +22,4 @@ const std::vector<Example>& examples();
 /// The example called `name`, or nullptr.
 const Example* find_example(const std::string& name);
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -8,7 +8,7 @@
 #include "towsim/scenario/spec.hpp"
 #include "towsim/scenario/yaml_tree.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// Read a scenario tree into a spec. Every problem found is added to `diags`
 /// (reading goes on after an error, so that all are reported). Track CSV files
@@ -20,4 +20,4 @@ ScenarioSpec parse_scenario(const YNode& root, const std::string& base_dir, Diag
 /// file cannot be opened; errors inside name the CSV file and its line.
 std::vector<RowSpec> read_track_csv(const std::string& file, const Where& where, Diagnostics& diags);
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -11,7 +11,7 @@
 #include "towsim/scenario/spec.hpp"
 #include "towsim/scenario/yaml_tree.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// A scenario read, overridden, checked and (when valid) compiled.
 struct LoadedScenario {
@@ -42,4 +42,4 @@ LoadedScenario load_scenario_file(const std::string& path, const std::vector<std
 LoadedScenario load_scenario_text(const std::string& text, const std::string& file, const std::string& name,
                                   const std::string& base_dir, const std::vector<std::string>& sets = {});
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

@@ -9,7 +9,7 @@
 #include "towsim/model/model.hpp"
 #include "towsim/scenario/diagnostics.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// Where a value came from: its source location and dotted key path.
 struct Where {
@@ -398,4 +398,4 @@ struct ScenarioSpec {
   bool is_network() const { return network; }
 };
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario

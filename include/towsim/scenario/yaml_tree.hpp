@@ -9,7 +9,7 @@
 
 #include "towsim/scenario/diagnostics.hpp"
 
-namespace towsim::io {
+namespace towsim::scenario {
 
 /// One YAML node: null, scalar, sequence or mapping, with its location.
 struct YNode {
@@ -52,4 +52,4 @@ void apply_set(YNode& root, const std::string& assignment, int rank, Diagnostics
 /// read as such, quoted scalars stay strings; mappings keep their order.
 nlohmann::ordered_json to_json(const YNode& node);
 
-}  // namespace towsim::io
+}  // namespace towsim::scenario
