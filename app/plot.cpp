@@ -20,6 +20,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "plot_network.hpp"
+#include "plot_render.hpp"
 #include "run_files.hpp"
 
 extern char** environ;
@@ -946,6 +948,8 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
     log << "towsim plot: " << (root / "timeseries.csv").string() << ": cannot read it or it has no header\n";
     return kInvalid;
   }
+  // A network's run (a line column in nodes.csv, no single tow point): its own figures.
+  if (!ts.has("tow_x") && is_network_run(root)) return plot_network_run(root, ts, run.model, opt, log);
   run.cut_series = ends_cut(root / "timeseries.csv");
   run.has_body = ts.has("body_x");
   run.has_winch = ts.has("payout_speed");
@@ -1153,5 +1157,19 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
   }
   return render_scripts(plots, scripts, prog, log);
 }
+
+namespace plot_render {
+
+std::string quote(const std::string& s) { return cli::quote(s); }
+std::string render(const std::string& name, const std::string& plot_cmd, const PlotOptions& o) {
+  return cli::render(name, plot_cmd, o);
+}
+std::string usable_gnuplot(std::ostream& log) { return cli::usable_gnuplot(log); }
+int render_scripts(const fs::path& plots, const std::vector<std::pair<std::string, std::string>>& scripts,
+                   const std::string& prog, std::ostream& log) {
+  return cli::render_scripts(plots, scripts, prog, log);
+}
+
+}  // namespace plot_render
 
 }  // namespace towsim::cli

@@ -1,4 +1,4 @@
-// `towsim plot`: figures from a run's output directory (io/plot.hpp), on a
+// `towsim plot`: figures from a run's output directory (app/plot.hpp), on a
 // tiny synthetic output directory.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -284,6 +284,42 @@ using towsim::cli::axis_ticks;
 // 5-character labels of 52 px need 73 px from tick to tick) takes 1000 m,
 // not gnuplot's 500 m (39 px: "-1500-1000-500" ran together); 901 pixels wide,
 // 500 m; labels that do not fit twice side by side stand upright.
+// A network's run (nodes.csv starting with its `line` column): each line's
+// top tension, each body's and junction's depth (not a line end's), and the
+// lines' shapes at the last output time, one block per line.
+TEST_F(PlotRun, NetworkRunGetsItsLinesBodiesAndJunctions) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
+  {
+    std::ofstream ts(dir_ / "timeseries.csv");
+    ts << "time,main_top_tension,main_end_depth,leg_top_tension,fish_depth,fish_link_tension,shackle_depth\n";
+    std::ofstream nd(dir_ / "nodes.csv");
+    nd << "line,time,node,x,y,z,vx,vy,vz,tension,axial_force,strain\n";
+    for (int k = 0; k <= 2; ++k) {
+      const double t = k;
+      ts << t << ',' << 100 + t << ',' << 10 + t << ',' << 50 + t << ',' << 12 + t << ",40," << 10 + t << '\n';
+      for (int j = 0; j <= 2; ++j)
+        nd << "main," << t << ',' << j << ',' << -j << ",0," << -5 * j << ",0,0,0,100,100,0\n";
+      for (int j = 0; j <= 1; ++j)
+        nd << "leg," << t << ',' << j << ',' << -2 - 0.5 * j << ",0," << -10 - j << ",0,0,0,50,50,0\n";
+    }
+    std::ofstream(dir_ / "summary.json") << "{\"model\": \"net\", \"status\": \"ok\"}\n";
+  }
+  std::ostringstream log;
+  ASSERT_EQ(plot_run(dir_.string(), log), 0) << log.str();
+  for (const char* n : {"line_tensions", "depths", "network_shape_xz", "network_shape_xy"})
+    EXPECT_TRUE(fs::exists(dir_ / "plots" / (std::string(n) + ".png"))) << n;
+  const std::string tensions = towsim::testing::slurp(dir_ / "plots" / "line_tensions.gp");
+  EXPECT_NE(tensions.find("'main_top_tension'"), std::string::npos);
+  EXPECT_NE(tensions.find("'leg_top_tension'"), std::string::npos);
+  const std::string depths = towsim::testing::slurp(dir_ / "plots" / "depths.gp");
+  EXPECT_NE(depths.find("'fish_depth'"), std::string::npos);
+  EXPECT_NE(depths.find("'shackle_depth'"), std::string::npos);
+  EXPECT_EQ(depths.find("main_end_depth"), std::string::npos);
+  // The last time's rows, a block per line (the leg's two nodes after two blank lines).
+  EXPECT_EQ(towsim::testing::slurp(dir_ / "plots" / "network_shapes.dat"),
+            "0 0 0 100\n-1 0 -5 100\n-2 0 -10 100\n\n\n-2 0 -10 50\n-2.5 0 -11 50\n");
+}
+
 TEST(AxisTicks, StepFromTheSpanAndThePixels) {
   EXPECT_EQ(axis_ticks(-1556.2, 2910.3, 226, 13, true).step, 1000);
   EXPECT_FALSE(axis_ticks(-1556.2, 2910.3, 226, 13, true).rotate);

@@ -1,0 +1,152 @@
+#include "plot_network.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+#include <vector>
+
+#include "plot_render.hpp"
+
+namespace towsim::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using plot_render::quote;
+
+/// Names whose column `<name><suffix>` the header has, in header order.
+std::vector<std::string> prefixes(const CsvTable& ts, const std::string& suffix) {
+  std::vector<std::string> out;
+  for (const std::string& c : ts.names)
+    if (c.size() > suffix.size() && c.compare(c.size() - suffix.size(), suffix.size(), suffix) == 0)
+      out.push_back(c.substr(0, c.size() - suffix.size()));
+  return out;
+}
+
+/// Script text common to the network's figures.
+std::string preamble(const std::string& model, const std::string& name, const std::string& what) {
+  std::ostringstream s;
+  s << "# " << name << ".gp: " << what << " (" << model << ").\n"
+    << "# Written by `towsim plot`; re-render from this directory with: gnuplot " << name << ".gp\n"
+    << "set datafile separator comma\n"
+    << "set datafile columnheaders\n"
+    << "set encoding utf8\n"
+    << "set style line 100 lt 1 lw 0.6 lc rgb '#d4d4d4'\n"
+    << "set grid ls 100\n"
+    << "set key outside right top vertical reverse Left samplen 2 spacing 1.1 width 1\n"
+    << "set border lw 1.2\n"
+    << "set title " << quote(model + ": " + what) << "\n";
+  return s.str();
+}
+
+/// One curve per column name over time, from ../timeseries.csv.
+std::string time_figure(const std::string& model, const std::string& name, const std::string& what,
+                        const std::string& ylabel, const std::vector<std::pair<std::string, std::string>>& curves,
+                        bool reverse_y, const PlotOptions& o) {
+  std::ostringstream s;
+  s << preamble(model, name, what) << "set xlabel 'time [s]'\nset ylabel " << quote(ylabel) << "\n";
+  if (reverse_y) s << "set yrange [*:*] reverse\n";
+  std::ostringstream cmd;
+  cmd << "plot ";
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    cmd << (i ? ", \\\n     " : "") << "'../timeseries.csv' using 'time':" << quote(curves[i].first)
+        << " with lines lw 1.5 title " << quote(curves[i].second);
+  s << plot_render::render(name, cmd.str(), o);
+  return s.str();
+}
+
+/// The shape of every line at the last time of nodes.csv into `dat` (one
+/// block per line, two blank lines apart: x y z tension). A line starts where
+/// the node number goes back to 0. Returns the number of blocks (0: none).
+std::size_t write_last_shapes(const fs::path& nodes, const fs::path& dat, std::string& error) {
+  CsvTable nt;
+  if (!read_csv_table(nodes.string(), nt, error)) return 0;
+  const int ct = nt.col("time"), cn = nt.col("node"), cx = nt.col("x"), cy = nt.col("y"), cz = nt.col("z");
+  if (ct < 0 || cn < 0 || cx < 0 || cy < 0 || cz < 0 || nt.rows.empty()) {
+    error = nodes.string() + ": no time, node, x, y and z rows";
+    return 0;
+  }
+  const double last = nt.at(nt.rows.size() - 1, ct);
+  std::ofstream out(dat, std::ios::trunc);
+  std::size_t blocks = 0;
+  for (std::size_t r = 0; r < nt.rows.size(); ++r) {
+    if (nt.at(r, ct) != last) continue;
+    if (nt.at(r, cn) == 0) out << (blocks++ ? "\n\n" : "");
+    out << nt.at(r, cx) << ' ' << nt.at(r, cy) << ' ' << nt.at(r, cz) << ' ' << nt.at(r, "tension") << '\n';
+  }
+  if (!out) error = "cannot write " + dat.string();
+  return out ? blocks : 0;
+}
+
+/// The network's lines at the last output time: x-z (side) or x-y (plan).
+std::string shape_figure(const std::string& model, const std::vector<std::string>& lines, std::size_t blocks, bool plan,
+                         const PlotOptions& o) {
+  const std::string name = plan ? "network_shape_xy" : "network_shape_xz";
+  std::ostringstream s;
+  s << preamble(model, name, std::string("lines at the last output time, ") + (plan ? "plan view" : "side view"))
+    << "set xlabel 'x [m]'\nset ylabel " << (plan ? "'y [m]'" : "'z [m]'") << "\nset size ratio -1\n"
+    << "set datafile separator whitespace\nunset datafile columnheaders\n";
+  std::ostringstream cmd;
+  cmd << "plot ";
+  for (std::size_t i = 0; i < blocks; ++i)
+    cmd << (i ? ", \\\n     " : "") << "'network_shapes.dat' index " << i << " using 1:" << (plan ? 2 : 3)
+        << " with linespoints pt 7 ps 0.4 lw 1.5 title " << quote(i < lines.size() ? lines[i] : "line");
+  s << plot_render::render(name, cmd.str(), o);
+  return s.str();
+}
+
+}  // namespace
+
+bool is_network_run(const fs::path& root) {
+  std::vector<std::string> names;
+  std::string error;
+  return read_csv_header((root / "nodes.csv").string(), names, error) && !names.empty() && names[0] == "line";
+}
+
+int plot_network_run(const fs::path& root, const CsvTable& ts, const std::string& model, const PlotOptions& opt,
+                     std::ostream& log) {
+  // 1. What the network is: its lines, bodies and junctions, from the columns.
+  const std::vector<std::string> lines = prefixes(ts, "_top_tension");
+  std::vector<std::pair<std::string, std::string>> tensions, depths;
+  for (const std::string& l : lines) tensions.emplace_back(l + "_top_tension", l);
+  for (const std::string& d : prefixes(ts, "_depth")) {
+    const bool line_end = d.size() > 4 && d.compare(d.size() - 4, 4, "_end") == 0 &&
+                          std::find(lines.begin(), lines.end(), d.substr(0, d.size() - 4)) != lines.end();
+    if (!line_end) depths.emplace_back(d + "_depth", d);
+  }
+  if (lines.empty() || ts.rows.empty() || !ts.has("time")) {
+    log << "towsim plot: " << (root / "timeseries.csv").string() << ": no line's top tension or no data rows\n";
+    return plot_render::kInvalid;
+  }
+  // 2. gnuplot, before writing anything; then the figures' folder.
+  const std::string prog = plot_render::usable_gnuplot(log);
+  if (prog.empty()) return plot_render::kInvalid;
+  const fs::path plots = root / "plots";
+  std::error_code ec;
+  fs::remove_all(plots, ec);  // towsim's folder: no stale figure of an earlier run
+  fs::create_directories(plots, ec);
+  if (ec) {
+    log << "towsim plot: cannot create " << plots.string() << ": " << ec.message() << "\n";
+    return plot_render::kGnuplotFailed;
+  }
+  // 3. Scripts, then figures.
+  std::vector<std::pair<std::string, std::string>> scripts;
+  scripts.emplace_back("line_tensions", time_figure(model, "line_tensions", "top tension of every line",
+                                                    "top tension [N]", tensions, false, opt));
+  if (!depths.empty())
+    scripts.emplace_back("depths", time_figure(model, "depths", "depth of every body and junction", "depth [m]", depths,
+                                               true, opt));
+  std::string error;
+  const std::size_t blocks = write_last_shapes(root / "nodes.csv", plots / "network_shapes.dat", error);
+  if (blocks == 0) {
+    log << "towsim plot: skipped the network's shapes (" << error << ")\n";
+  } else {
+    scripts.emplace_back("network_shape_xz", shape_figure(model, lines, blocks, false, opt));
+    scripts.emplace_back("network_shape_xy", shape_figure(model, lines, blocks, true, opt));
+  }
+  return plot_render::render_scripts(plots, scripts, prog, log);
+}
+
+}  // namespace towsim::cli
