@@ -192,13 +192,7 @@ std::string preamble(const Run& run, const std::string& name, const std::string&
   s << "# " << name << ".gp: " << what << " (" << run.model << ").\n"
     << "# Written by `towsim plot`; re-render from this directory with: gnuplot " << name << ".gp\n"
     << "# Data: the run's CSV files in the parent directory, read by column name.\n"
-    << "set datafile separator comma\n"
-    << "set datafile columnheaders\n"
-    << "set encoding utf8\n"
-    << "set style line 100 lt 1 lw 0.6 lc rgb '#d4d4d4'\n"
-    << "set grid ls 100\n"
-    << "set key outside right top vertical reverse Left samplen 2 spacing 1.1 width 1\n"
-    << "set border lw 1.2\n"
+    << plot_render::style()
     << (run.cut_series ? "ts = 'timeseries.csv'  # the whole rows of ../timeseries.csv (its last one cut off)\n"
                        : "ts = '../timeseries.csv'\n")
     << "# Node data: cable_shapes.dat and tension_map.dat beside this script, extracted\n"
@@ -1160,6 +1154,15 @@ int plot_run(const std::string& dir, std::ostream& log, const PlotOptions& opt) 
 
 namespace plot_render {
 
+std::string style() {
+  return "set datafile separator comma\n"
+         "set datafile columnheaders\n"
+         "set encoding utf8\n"
+         "set style line 100 lt 1 lw 0.6 lc rgb '#d4d4d4'\n"
+         "set grid ls 100\n"
+         "set key outside right top vertical reverse Left samplen 2 spacing 1.1 width 1\n"
+         "set border lw 1.2\n";
+}
 std::string quote(const std::string& s) { return cli::quote(s); }
 std::string render(const std::string& name, const std::string& plot_cmd, const PlotOptions& o) {
   return cli::render(name, plot_cmd, o);

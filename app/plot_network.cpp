@@ -30,14 +30,7 @@ std::string preamble(const std::string& model, const std::string& name, const st
   std::ostringstream s;
   s << "# " << name << ".gp: " << what << " (" << model << ").\n"
     << "# Written by `towsim plot`; re-render from this directory with: gnuplot " << name << ".gp\n"
-    << "set datafile separator comma\n"
-    << "set datafile columnheaders\n"
-    << "set encoding utf8\n"
-    << "set style line 100 lt 1 lw 0.6 lc rgb '#d4d4d4'\n"
-    << "set grid ls 100\n"
-    << "set key outside right top vertical reverse Left samplen 2 spacing 1.1 width 1\n"
-    << "set border lw 1.2\n"
-    << "set title " << quote(model + ": " + what) << "\n";
+    << plot_render::style() << "set title " << quote(model + ": " + what) << "\n";
   return s.str();
 }
 

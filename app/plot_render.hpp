@@ -16,6 +16,8 @@ constexpr int kOk = 0;             // every figure written
 constexpr int kGnuplotFailed = 1;  // a figure failed (gnuplot's messages in the log)
 constexpr int kInvalid = 2;        // not a run's directory, or no usable gnuplot
 
+/// The settings every figure starts with: CSV read by column name, grid, key, border.
+std::string style();
 /// s as a gnuplot string literal.
 std::string quote(const std::string& s);
 /// Script text that renders the current plot (`plot_cmd`) as NAME.png and NAME.svg.
