@@ -255,13 +255,26 @@ bool chord_frames(const CsvTable& ts, const std::vector<std::size_t>& pick, cons
   for (std::size_t i : pick) {
     const std::size_t r = rows[i];
     const double T = tT >= 0 ? ts.at(r, tT) : std::numeric_limits<double>::quiet_NaN();
-    frames.push_back(
-        {times[i], {ts.at(r, tx), ts.at(r, ex)}, {ts.at(r, ty), ts.at(r, ey)}, {ts.at(r, tz), ts.at(r, ez)}, {T, T}});
+    frames.push_back({times[i],
+                      {ts.at(r, tx), ts.at(r, ex)},
+                      {ts.at(r, ty), ts.at(r, ey)},
+                      {ts.at(r, tz), ts.at(r, ez)},
+                      {T, T},
+                      {}});
   }
   return true;
 }
 
 /// The animation data: frames of node positions and tensions, body pose.
+/// A network's line starts (NodeFrame::line_starts) when every frame has
+/// the same joints and lines; empty for a chain (or frames that differ).
+std::vector<std::size_t> network_starts(const std::vector<NodeFrame>& frames) {
+  const NodeFrame& f0 = frames.front();
+  for (const NodeFrame& f : frames)
+    if (f.x.size() != f0.x.size() || f.line_starts != f0.line_starts) return {};
+  return f0.line_starts;
+}
+
 bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, const ReportOptions& opt, json& data,
                     std::string& error) {
   const int ct = ts.col("time");
@@ -291,6 +304,21 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
   std::size_t n = frames.front().x.size();
   for (const auto& f : frames) n = std::min(n, f.x.size());
   const std::size_t n_keep = spread_indices(n, static_cast<std::size_t>(std::max(2, opt.max_nodes))).size();
+  // A network's lines (the same joints in every frame): each line's joints
+  // spread on their own, and the viewer breaks the drawn line between lines.
+  const std::vector<std::size_t> starts = network_starts(frames);
+  std::vector<std::size_t> network_keep;
+  if (!starts.empty()) {
+    const std::size_t per_line = std::max<std::size_t>(2,
+                                                       static_cast<std::size_t>(opt.max_nodes) / (starts.size() + 1));
+    json breaks = json::array();
+    for (std::size_t i = 0; i <= starts.size(); ++i) {
+      const std::size_t a = i == 0 ? 0 : starts[i - 1], b = i < starts.size() ? starts[i] : n;
+      if (i > 0) breaks.push_back(network_keep.size());
+      for (std::size_t k : spread_indices(b - a, per_line)) network_keep.push_back(a + k);
+    }
+    data["breaks"] = breaks;
+  }
   const bool body = ts.col("body_x") >= 0;
   const int bx = ts.col("body_x"), by = ts.col("body_y"), bz = ts.col("body_z"), br = ts.col("body_roll_deg"),
             bp = ts.col("body_pitch_deg"), byaw = ts.col("body_yaw_deg"), cl = ts.col("layback"),
@@ -300,7 +328,7 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
   double tmax = 0;
   std::size_t w = 0;  // index into `pick` of the frame's timeseries row
   for (const auto& f : frames) {
-    const auto keep = spread_indices(f.x.size(), n_keep);
+    const auto keep = starts.empty() ? spread_indices(f.x.size(), n_keep) : network_keep;
     while (w < pick.size() && std::abs(times[pick[w]] - f.t) > 1e-9 * std::max(1.0, std::abs(f.t))) ++w;
     const std::size_t r = w < pick.size() ? rows[pick[w]] : rows.back();
     json p = json::array(), T = json::array();

@@ -108,7 +108,8 @@ bool read_node_frames(const std::string& path, const std::vector<double>& wanted
       if (f[i] == name) return static_cast<int>(i);
     return -1;
   };
-  const int ct = col("time"), cx = col("x"), cy = col("y"), cz = col("z"), cT = col("tension");
+  const int ct = col("time"), cx = col("x"), cy = col("y"), cz = col("z"), cT = col("tension"), cn = col("node");
+  const bool network = col("line") == 0;  // lines one after the other, each from node 0
   if (ct < 0 || cx < 0 || cy < 0 || cz < 0 || col("node") < 0) {
     error = path + ": no column time, node, x, y or z in its header";
     return false;
@@ -134,13 +135,15 @@ bool read_node_frames(const std::string& path, const std::vector<double>& wanted
       if (keep) ++w;
       while (w < wanted.size() && wanted[w] < t && !same_time(t, wanted[w])) ++w;
       keep = w < wanted.size() && same_time(t, wanted[w]);
-      if (keep) frames.push_back(NodeFrame{t, {}, {}, {}, {}});
+      if (keep) frames.push_back(NodeFrame{t, {}, {}, {}, {}, {}});
       if (w >= wanted.size()) break;
     }
     if (!keep) continue;
     split_views(line, f);
     if (static_cast<int>(f.size()) <= last && static_cast<int>(f.size()) <= std::max({ct, cx, cy, cz})) continue;
     NodeFrame& fr = frames.back();
+    if (network && !fr.x.empty() && static_cast<int>(f.size()) > cn && to_double(f[static_cast<std::size_t>(cn)]) == 0)
+      fr.line_starts.push_back(fr.x.size());
     fr.x.push_back(to_double(f[static_cast<std::size_t>(cx)]));
     fr.y.push_back(to_double(f[static_cast<std::size_t>(cy)]));
     fr.z.push_back(to_double(f[static_cast<std::size_t>(cz)]));

@@ -40,6 +40,10 @@ struct NodeFrame {
   double t = 0;                 // [s]
   std::vector<double> x, y, z;  // joint positions [m, R_g]
   std::vector<double> tension;  // [N] (NaN when the file has no tension column)
+  /// A network's frame (nodes.csv with a `line` column): the index of each
+  /// line's first joint after the first line's, where the node number goes
+  /// back to 0 (empty for a chain).
+  std::vector<std::size_t> line_starts;
 };
 
 /// Read `path` (nodes.csv: header with at least time, node, x, y, z) in one

@@ -116,7 +116,21 @@ function main() {
   const cableGeom = new THREE.BufferGeometry();
   cableGeom.setAttribute('position', new THREE.BufferAttribute(pos, 3));
   cableGeom.setAttribute('color', new THREE.BufferAttribute(col, 3));
-  scene.add(new THREE.Line(cableGeom, new THREE.LineBasicMaterial({ vertexColors: true })));
+  // A network's lines one after the other: segments, broken where a line starts.
+  const cableMaterial = new THREE.LineBasicMaterial({ vertexColors: true });
+  if (data.breaks && data.breaks.length) {
+    const starts = new Set(data.breaks), segments = [];
+    for (let k = 0; k + 1 < N; k++) if (!starts.has(k + 1)) segments.push(k, k + 1);
+    const lines = new THREE.BufferGeometry();
+    lines.setAttribute('position', cableGeom.attributes.position);
+    lines.setAttribute('color', cableGeom.attributes.color);
+    lines.setIndex(segments);
+    const drawn = new THREE.LineSegments(lines, cableMaterial);
+    drawn.frustumCulled = false;  // its positions move with every frame
+    scene.add(drawn);
+  } else {
+    scene.add(new THREE.Line(cableGeom, cableMaterial));
+  }
   scene.add(new THREE.Points(cableGeom, new THREE.PointsMaterial({ vertexColors: true, size: 4,
     sizeAttenuation: false })));
   const tow = new THREE.Mesh(new THREE.SphereGeometry(cableExtent * 0.008, 16, 12),

@@ -148,7 +148,9 @@ void expect_renders_in_chromium(const std::string& name, const std::string& run_
   const fs::path dir = fs::path(TOWSIM_TEST_OUTPUT_DIR) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const auto [rs, ro] = towsim_cli("run --example " + example + " " + run_settings + " --out '" + dir.string() + "'");
+  // `example`: a built-in example's name, or a scenario file's absolute path.
+  const std::string input = example.front() == '/' ? "'" + example + "'" : "--example " + example;
+  const auto [rs, ro] = towsim_cli("run " + input + " " + run_settings + " --out '" + dir.string() + "'");
   ASSERT_EQ(rs, 0) << ro;
   const auto [status, out] = towsim_cli("report '" + dir.string() + "'");
   ASSERT_EQ(status, 0) << out;
@@ -288,6 +290,38 @@ TEST(Report, ALongTrackFramesTheCableAndTheBodyAtItsSize) {
     EXPECT_NEAR(view.at("cable_centres").at(0).at(d).get<double>(), 0.5 * (lo[d] + hi[d]), 1e-3) << d;
   EXPECT_EQ(view.at("cable_centres").size(), data.at("times").size());
   fs::remove_all(dir);
+}
+
+// A network's run (examples/bridled-towfish.yaml: main line, then the two
+// bridle legs from the shackle at its end): the viewer's data breaks the drawn
+// line where each leg starts, and each leg starts at the shackle, the main
+// line's last joint (1e-3 m: the page's 7 significant digits).
+TEST(Report, ANetworkRunBreaksTheDrawnLineBetweenLines) {
+  const fs::path dir = fresh_dir("report");
+  const auto [rs, ro] = towsim_cli("run '" + std::string(TOWSIM_SOURCE_DIR) +
+                                   "/examples/bridled-towfish.yaml' --set simulation.duration=20 --quiet --out '" +
+                                   dir.string() + "'");
+  ASSERT_EQ(rs, 0) << ro;
+  const auto [status, out] = towsim_cli("report --no-plots '" + dir.string() + "'");
+  ASSERT_EQ(status, 0) << out;
+  const auto data = page_data(slurp(dir / "report.html"));
+  ASSERT_TRUE(data.is_object());
+  const auto& breaks = data.at("breaks");
+  ASSERT_EQ(breaks.size(), 2u);  // leg_fwd and leg_aft after main
+  for (const auto& p : data.at("nodes")) {
+    const std::size_t legs = breaks[0].get<std::size_t>(), aft = breaks[1].get<std::size_t>();
+    ASSERT_GT(aft, legs);
+    ASSERT_GT(p.size() / 3, aft);
+    for (const std::size_t start : {legs, aft})
+      for (std::size_t d = 0; d < 3; ++d)
+        EXPECT_NEAR(p[3 * start + d].get<double>(), p[3 * (legs - 1) + d].get<double>(), 1e-3) << start << " " << d;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(ReportInBrowser, ANetworkRunRenders) {
+  expect_renders_in_chromium("report_network", "--set simulation.duration=20", nullptr,
+                             std::string(TOWSIM_SOURCE_DIR) + "/examples/bridled-towfish.yaml");
 }
 
 // A 3 m fish on a 2.7 km track (fish-depth-change): the view opens on the
