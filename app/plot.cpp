@@ -32,9 +32,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kOk = 0;
-constexpr int kGnuplotFailed = 1;
-constexpr int kInvalid = 2;
+using plot_render::kGnuplotFailed;
+using plot_render::kInvalid;
+using plot_render::kOk;
+using plot_render::quote;
+using plot_render::render;
+using plot_render::render_scripts;
+using plot_render::usable_gnuplot;
 
 // ---------------------------------------------------------------- reading
 
@@ -55,18 +59,6 @@ bool ends_cut(const fs::path& path) {
 }
 
 // --------------------------------------------------------------- gnuplot
-
-/// A gnuplot single-quoted string literal.
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'')
-      out += "''";
-    else
-      out += c;
-  }
-  return out + "'";
-}
 
 std::string num(double v) {
   char b[40];
@@ -197,22 +189,6 @@ std::string preamble(const Run& run, const std::string& name, const std::string&
                        : "ts = '../timeseries.csv'\n")
     << "# Node data: cable_shapes.dat and tension_map.dat beside this script, extracted\n"
     << "# from ../nodes.csv in one pass by `towsim plot` (gnuplot never reads nodes.csv).\n";
-  return s.str();
-}
-
-/// Script text that renders the current plot (`plot_cmd`) as PNG and SVG.
-std::string render(const std::string& name, const std::string& plot_cmd, const PlotOptions& o) {
-  std::ostringstream s;
-  const int font = font_points(o.width);
-  s << "set terminal pngcairo size " << o.width << "," << o.height << " noenhanced font 'Sans," << font
-    << "' linewidth 1.5\n"
-    << "set output '" << name << ".png'\n"
-    << plot_cmd << "\n"
-    << "set terminal svg size " << o.width << "," << o.height << " noenhanced font 'Sans," << font
-    << "' linewidth 1.5 background '#ffffff'\n"
-    << "set output '" << name << ".svg'\n"
-    << "replot\n"
-    << "unset output\n";
   return s.str();
 }
 
@@ -723,68 +699,6 @@ std::string join(const std::vector<std::string>& v, const std::string& sep, cons
   return out;
 }
 
-/// The gnuplot program, checked for its pngcairo and svg terminals; "" (the
-/// reason in `log`) when it cannot draw.
-std::string usable_gnuplot(std::ostream& log) {
-  std::string prog = gnuplot_program();  // returned: moved
-  int err = 0;
-  const int probe = spawn(prog, {"-e", "set terminal pngcairo; set terminal svg"}, "", err);
-  if (probe < 0) {
-    log << "towsim plot: cannot run the gnuplot program ('" << prog << "': " << std::strerror(err)
-        << "); install it (Debian/Ubuntu: apt-get install gnuplot-nox) or set TOWSIM_GNUPLOT to its path\n";
-    return "";
-  }
-  if (probe != 0) {
-    log << "towsim plot: '" << prog
-        << "' lacks the pngcairo or svg terminal; install a full gnuplot (Debian/Ubuntu: apt-get install "
-           "gnuplot-nox)\n";
-    return "";
-  }
-  return prog;
-}
-
-/// Write each (name, script) into `plots` and render it with `prog`; gnuplot's
-/// messages go to plots/gnuplot.log (and `log` on a failure). Returns kOk or kGnuplotFailed.
-int render_scripts(const fs::path& plots, const std::vector<std::pair<std::string, std::string>>& scripts,
-                   const std::string& prog, std::ostream& log) {
-  std::error_code ec;
-  const std::string gp_log = (plots / "gnuplot.log").string();
-  std::ofstream(gp_log, std::ios::trunc).close();
-  const std::string plots_abs = fs::absolute(plots, ec).string();
-  int status = kOk;
-  for (const auto& [name, text] : scripts) {
-    const fs::path script = plots / (name + ".gp");
-    {
-      std::ofstream out(script, std::ios::trunc);
-      out << text;
-      if (!out) {
-        log << "towsim plot: cannot write " << script.string() << "\n";
-        return kGnuplotFailed;
-      }
-    }
-    const auto before = fs::file_size(gp_log, ec);
-    int err = 0;
-    const int rc = spawn(prog, {"-e", "cd " + quote(plots_abs), name + ".gp"}, gp_log, err);
-    const bool png = exists_file(plots / (name + ".png")) && fs::file_size(plots / (name + ".png"), ec) > 0;
-    const bool svg = exists_file(plots / (name + ".svg")) && fs::file_size(plots / (name + ".svg"), ec) > 0;
-    if (rc != 0 || !png || !svg) {
-      log << "towsim plot: gnuplot failed on " << script.string();
-      if (rc < 0)
-        log << " (" << std::strerror(err) << ")";
-      else if (rc != 0)
-        log << " (exit status " << rc << ")";
-      log << ":\n";
-      std::ifstream in(gp_log);
-      in.seekg(static_cast<std::streamoff>(before));
-      log << in.rdbuf();
-      status = kGnuplotFailed;
-      continue;
-    }
-    log << "towsim plot: wrote " << (plots / (name + ".png")).string() << " and .svg\n";
-  }
-  return status;
-}
-
 /// A sweep's towing table (DIR/towing_table.csv of `towsim sweep`): depth
 /// against layback, one point per case labelled with its case number and tow
 /// speed, into DIR/plots/towing_table.png and .svg.
@@ -1163,14 +1077,94 @@ std::string style() {
          "set key outside right top vertical reverse Left samplen 2 spacing 1.1 width 1\n"
          "set border lw 1.2\n";
 }
-std::string quote(const std::string& s) { return cli::quote(s); }
-std::string render(const std::string& name, const std::string& plot_cmd, const PlotOptions& o) {
-  return cli::render(name, plot_cmd, o);
+/// A gnuplot single-quoted string literal.
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'')
+      out += "''";
+    else
+      out += c;
+  }
+  return out + "'";
 }
-std::string usable_gnuplot(std::ostream& log) { return cli::usable_gnuplot(log); }
+
+/// Script text that renders the current plot (`plot_cmd`) as PNG and SVG.
+std::string render(const std::string& name, const std::string& plot_cmd, const PlotOptions& o) {
+  std::ostringstream s;
+  const int font = font_points(o.width);
+  s << "set terminal pngcairo size " << o.width << "," << o.height << " noenhanced font 'Sans," << font
+    << "' linewidth 1.5\n"
+    << "set output '" << name << ".png'\n"
+    << plot_cmd << "\n"
+    << "set terminal svg size " << o.width << "," << o.height << " noenhanced font 'Sans," << font
+    << "' linewidth 1.5 background '#ffffff'\n"
+    << "set output '" << name << ".svg'\n"
+    << "replot\n"
+    << "unset output\n";
+  return s.str();
+}
+
+/// The gnuplot program, checked for its pngcairo and svg terminals; "" (the
+/// reason in `log`) when it cannot draw.
+std::string usable_gnuplot(std::ostream& log) {
+  std::string prog = gnuplot_program();  // returned: moved
+  int err = 0;
+  const int probe = spawn(prog, {"-e", "set terminal pngcairo; set terminal svg"}, "", err);
+  if (probe < 0) {
+    log << "towsim plot: cannot run the gnuplot program ('" << prog << "': " << std::strerror(err)
+        << "); install it (Debian/Ubuntu: apt-get install gnuplot-nox) or set TOWSIM_GNUPLOT to its path\n";
+    return "";
+  }
+  if (probe != 0) {
+    log << "towsim plot: '" << prog
+        << "' lacks the pngcairo or svg terminal; install a full gnuplot (Debian/Ubuntu: apt-get install "
+           "gnuplot-nox)\n";
+    return "";
+  }
+  return prog;
+}
+
+/// Write each (name, script) into `plots` and render it with `prog`; gnuplot's
+/// messages go to plots/gnuplot.log (and `log` on a failure). Returns kOk or kGnuplotFailed.
 int render_scripts(const fs::path& plots, const std::vector<std::pair<std::string, std::string>>& scripts,
                    const std::string& prog, std::ostream& log) {
-  return cli::render_scripts(plots, scripts, prog, log);
+  std::error_code ec;
+  const std::string gp_log = (plots / "gnuplot.log").string();
+  std::ofstream(gp_log, std::ios::trunc).close();
+  const std::string plots_abs = fs::absolute(plots, ec).string();
+  int status = kOk;
+  for (const auto& [name, text] : scripts) {
+    const fs::path script = plots / (name + ".gp");
+    {
+      std::ofstream out(script, std::ios::trunc);
+      out << text;
+      if (!out) {
+        log << "towsim plot: cannot write " << script.string() << "\n";
+        return kGnuplotFailed;
+      }
+    }
+    const auto before = fs::file_size(gp_log, ec);
+    int err = 0;
+    const int rc = spawn(prog, {"-e", "cd " + quote(plots_abs), name + ".gp"}, gp_log, err);
+    const bool png = exists_file(plots / (name + ".png")) && fs::file_size(plots / (name + ".png"), ec) > 0;
+    const bool svg = exists_file(plots / (name + ".svg")) && fs::file_size(plots / (name + ".svg"), ec) > 0;
+    if (rc != 0 || !png || !svg) {
+      log << "towsim plot: gnuplot failed on " << script.string();
+      if (rc < 0)
+        log << " (" << std::strerror(err) << ")";
+      else if (rc != 0)
+        log << " (exit status " << rc << ")";
+      log << ":\n";
+      std::ifstream in(gp_log);
+      in.seekg(static_cast<std::streamoff>(before));
+      log << in.rdbuf();
+      status = kGnuplotFailed;
+      continue;
+    }
+    log << "towsim plot: wrote " << (plots / (name + ".png")).string() << " and .svg\n";
+  }
+  return status;
 }
 
 }  // namespace plot_render

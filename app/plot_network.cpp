@@ -50,27 +50,29 @@ std::string time_figure(const std::string& model, const std::string& name, const
   return s.str();
 }
 
-/// The shape of every line at the last time of nodes.csv into `dat` (one
-/// block per line, two blank lines apart: x y z tension). A line starts where
-/// the node number goes back to 0. Returns the number of blocks (0: none).
-std::size_t write_last_shapes(const fs::path& nodes, const fs::path& dat, std::string& error) {
-  CsvTable nt;
-  if (!read_csv_table(nodes.string(), nt, error)) return 0;
-  const int ct = nt.col("time"), cn = nt.col("node"), cx = nt.col("x"), cy = nt.col("y"), cz = nt.col("z");
-  if (ct < 0 || cn < 0 || cx < 0 || cy < 0 || cz < 0 || nt.rows.empty()) {
-    error = nodes.string() + ": no time, node, x, y and z rows";
+/// The shape of every line at time t_last (the last row of timeseries.csv)
+/// into `dat` (one block per line, two blank lines apart: x y z tension),
+/// read from nodes.csv in one pass keeping that time only (read_node_frames).
+/// Returns the number of blocks (0: none, `error` says why).
+std::size_t write_last_shapes(const fs::path& nodes, double t_last, const fs::path& dat, std::string& error) {
+  std::vector<NodeFrame> frames;
+  if (!read_node_frames(nodes.string(), {t_last}, frames, error)) return 0;
+  if (frames.empty() || frames.front().x.empty()) {
+    error = nodes.string() + ": no rows at the last time of timeseries.csv";
     return 0;
   }
-  const double last = nt.at(nt.rows.size() - 1, ct);
+  const NodeFrame& f = frames.front();
   std::ofstream out(dat, std::ios::trunc);
-  std::size_t blocks = 0;
-  for (std::size_t r = 0; r < nt.rows.size(); ++r) {
-    if (nt.at(r, ct) != last) continue;
-    if (nt.at(r, cn) == 0) out << (blocks++ ? "\n\n" : "");
-    out << nt.at(r, cx) << ' ' << nt.at(r, cy) << ' ' << nt.at(r, cz) << ' ' << nt.at(r, "tension") << '\n';
+  std::size_t next = 0;  // the next line's start in f.line_starts
+  for (std::size_t k = 0; k < f.x.size(); ++k) {
+    if (next < f.line_starts.size() && k == f.line_starts[next]) out << "\n\n", ++next;
+    out << f.x[k] << ' ' << f.y[k] << ' ' << f.z[k] << ' ' << f.tension[k] << '\n';
   }
-  if (!out) error = "cannot write " + dat.string();
-  return out ? blocks : 0;
+  if (!out) {
+    error = "cannot write " + dat.string();
+    return 0;
+  }
+  return f.line_starts.size() + 1;
 }
 
 /// The network's lines at the last output time: x-z (side) or x-y (plan).
@@ -132,7 +134,8 @@ int plot_network_run(const fs::path& root, const CsvTable& ts, const std::string
     scripts.emplace_back("depths", time_figure(model, "depths", "depth of every body and junction", "depth [m]", depths,
                                                true, opt));
   std::string error;
-  const std::size_t blocks = write_last_shapes(root / "nodes.csv", plots / "network_shapes.dat", error);
+  const std::size_t blocks = write_last_shapes(root / "nodes.csv", ts.at(ts.rows.size() - 1, "time"),
+                                               plots / "network_shapes.dat", error);
   if (blocks == 0) {
     log << "towsim plot: skipped the network's shapes (" << error << ")\n";
   } else {
