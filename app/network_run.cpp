@@ -43,12 +43,6 @@ std::string network_end_line(const Network& net, const RunStats& stats, const Ne
 int run_network(const LoadedScenario& sc, const Network& net, const RunOptions& opts, std::ostream& out,
                 std::ostream& err, const volatile int* stop_flag) {
   // What a network's run does not do yet: refused before anything is written.
-  for (std::size_t i = 0; i < net.tree.lines.size(); ++i)
-    if (net.tree.lines[i].winch.active()) {
-      err << "towsim: run: line " << net.line_names[i]
-          << ": a winch on a network's line is not run yet (give the line its deployed length)\n";
-      return kExitInvalid;
-    }
   if (net.settings().initial.kind == Initial::Kind::Steady && net.settings().seabed) {
     err << "towsim: run: initial: steady: a network on a seabed has no steady start yet (its friction is relative "
            "to the bottom; use hanging or {direction: [x, y, z]})\n";

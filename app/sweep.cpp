@@ -185,12 +185,13 @@ std::vector<Figure> summary_figures(const nlohmann::ordered_json& s) {
 CaseResult run_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag,
                     const ProgressFn& progress) {
   CaseResult res;
-  if (!sc.ok() || sc.is_network()) {
+  if (!sc.ok()) {
     res.status = "invalid";
-    res.message = sc.ok() ? network_refusal(sc, "towsim sweep")->str() : sc.diags.str();
+    res.message = sc.diags.str();
     while (!res.message.empty() && res.message.back() == '\n') res.message.pop_back();
     return res;
   }
+  if (sc.is_network()) return run_network_case(sc, out_dir, stop_flag, progress);
   // One case per core already: each case on one thread (simulation.threads: 1).
   Model own = *sc.model;
   own.sim.threads = 1;
@@ -238,6 +239,7 @@ CaseResult statics_case(const LoadedScenario& sc, const std::string& out_dir, co
     while (!res.message.empty() && res.message.back() == '\n') res.message.pop_back();
     return res;
   }
+  if (sc.is_network()) return statics_network_case(sc, out_dir, stop_flag);
   try {
     const Model& model = *sc.model;
     const StaticsResult r = solve_statics(model, final_tow_velocity(model.tow), stop_flag);
@@ -609,10 +611,6 @@ bool check_sweep(const std::string& file, std::ostream& err, CheckedSweep& c, st
     err << moved.str();
     return false;
   }
-  if (const auto refusal = network_refusal(base, "towsim sweep")) {
-    err << refusal->str() << "\n";
-    return false;
-  }
   Diagnostics case_errors;
   case_errors.set_primary(file);
   std::set<std::string> reported;
@@ -662,7 +660,8 @@ int sweep_command(const SweepOptions& opts, std::ostream& out, std::ostream& err
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t jobs = std::min<std::size_t>(n, opts.jobs > 0 ? static_cast<std::size_t>(opts.jobs) : cores);
   try {
-    SweepTable table((std::filesystem::path(opts.out_dir) / "sweep.csv").string(), spec, figure_names(*base.model));
+    SweepTable table((std::filesystem::path(opts.out_dir) / "sweep.csv").string(), spec,
+                     base.is_network() ? network_figure_names(*base.network) : figure_names(*base.model));
     std::mutex mu;
     std::atomic<std::size_t> next{0};
     std::size_t completed = 0, failed = 0;

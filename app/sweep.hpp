@@ -54,6 +54,14 @@ CaseResult run_case(const scenario::LoadedScenario& sc, const std::string& out_d
 /// force mode). Never throws.
 CaseResult statics_case(const scenario::LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag);
 
+/// run_case and statics_case on a network (`lines:`): its figures those of
+/// the network's summary.json; network_figure_names: their names, in order.
+CaseResult run_network_case(const scenario::LoadedScenario& sc, const std::string& out_dir,
+                            const volatile int* stop_flag, const ProgressFn& progress = {});
+CaseResult statics_network_case(const scenario::LoadedScenario& sc, const std::string& out_dir,
+                                const volatile int* stop_flag);
+std::vector<std::string> network_figure_names(const Network& net);
+
 /// The columns of a towing table (DIR/towing_table.csv) after the case's
 /// overrides and status: tow speed [m/s] and [kn], depth of the end body (or
 /// the cable end) [m], layback [m], tow tension [N], top angle (the cable's

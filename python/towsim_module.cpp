@@ -12,14 +12,19 @@
 #include <exception>
 #include <future>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
 #include "sweep.hpp"
+#include "towsim/output/network_output.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/scenario/examples.hpp"
 #include "towsim/sim/discretisation.hpp"
+#include "towsim/sim/network_discretisation.hpp"
+#include "towsim/sim/network_target_depth.hpp"
+#include "towsim/sim/simulate_network.hpp"
 #include "towsim/sim/statics.hpp"
 
 namespace py = pybind11;
@@ -79,6 +84,46 @@ class ArraySink : public RunRecord {
   bool keep_nodes_;
 };
 
+/// A network's samples: every timeseries row, and each line's nodes.
+class NetworkArraySink : public NetworkRecord {
+ public:
+  NetworkArraySink(const Network& net, bool nodes)
+      : NetworkRecord(net), keep_nodes_(nodes), lines_(net.tree.lines.size()) {}
+  void write(const NetworkSample& s) override {
+    NetworkRecord::write(s);
+    // As written: the time as recorded, every other value tidied (as a chain's last_row()).
+    const std::vector<double>& row = raw_row();
+    series.push_back(row.front());
+    for (std::size_t i = 1; i < row.size(); ++i) series.push_back(tidy(row[i]));
+    if (!keep_nodes_) return;
+    for (std::size_t i = 0; i < s.lines.size(); ++i) {
+      std::vector<double> row;
+      for (std::size_t k = 0; k < s.lines[i].node_pos.size(); ++k) network_node_values(network(), s.lines[i], k, row);
+      lines_[i].joints = std::max(lines_[i].joints, s.lines[i].node_pos.size());
+      lines_[i].rows.push_back(std::move(row));
+    }
+  }
+  /// Line i's nodes as one time x joint x component block (NaN where a sample has fewer joints).
+  py::array_t<double> node_block(std::size_t i) const {
+    const std::size_t c = network_node_columns(network()).size(), j = lines_[i].joints;
+    const auto& rows = lines_[i].rows;
+    std::vector<double> out(rows.size() * j * c, kNaN);
+    for (std::size_t t = 0; t < rows.size(); ++t) std::copy(rows[t].begin(), rows[t].end(), out.begin() + t * j * c);
+    return to_array(std::move(out),
+                    {static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(j), static_cast<py::ssize_t>(c)});
+  }
+
+  std::vector<double> series;
+
+ private:
+  struct Line {
+    std::vector<std::vector<double>> rows;  // per sample: its joints' columns, one after the other
+    std::size_t joints = 0;
+  };
+  bool keep_nodes_;
+  std::vector<Line> lines_;
+};
+
 /// Polls Python's signal handlers from the main thread while the GIL is
 /// released, at most every 50 ms: Ctrl-C sets the run's stop flag.
 class SignalPoll {
@@ -123,6 +168,56 @@ py::str text(const std::string& s) {
   return py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(s.data(), static_cast<py::ssize_t>(s.size()), "replace"));
 }
 
+/// towsim.run on a network: as a chain's, the nodes a dict of line name ->
+/// time x joint x component.
+py::dict run_network_arrays(const LoadedScenario& sc, py::dict out) {
+  const Network& net = *sc.network;
+  const bool keep_nodes = net.settings().sim.write_nodes;
+  NetworkArraySink sink(net, keep_nodes);
+  volatile int stop = 0;
+  SignalPoll poll(stop);
+  RunStats stats;
+  double t0 = 0, t1 = 0;  // the integration's wall-clock interval [s, CLOCK_MONOTONIC]
+  if (net.settings().initial.kind == Initial::Kind::Steady && net.settings().seabed) {
+    out["errors"] =
+        "initial: steady: a network on a seabed has no steady start yet (its friction is relative to the "
+        "bottom; use hanging or {direction: [x, y, z]})\n";
+    return out;
+  }
+  {
+    py::gil_scoped_release release;
+    t0 = monotonic_seconds();
+    try {
+      stats = simulate_network(
+          net, sink, [&poll](double) { poll(); }, &stop);
+    } catch (const std::exception& e) {
+      stats.status = "failed";
+      stats.message = std::string("internal error: ") + e.what();
+    }
+    t1 = monotonic_seconds();
+    record_network_discretisation_estimate(net, stats, &stop);  // after the integration's interval
+  }
+  const auto summary = make_network_summary(to_json(sc.tree), stats, sink, keep_nodes);
+  const auto columns = network_timeseries_columns(net);
+  const auto rows = static_cast<py::ssize_t>(sink.samples());
+  out["columns"] = columns;
+  out["series"] = to_array(std::move(sink.series), {rows, static_cast<py::ssize_t>(columns.size())});
+  out["node_columns"] = network_node_columns(net);
+  if (keep_nodes) {
+    py::dict nodes;
+    for (std::size_t i = 0; i < net.line_names.size(); ++i) nodes[py::str(net.line_names[i])] = sink.node_block(i);
+    out["nodes"] = nodes;
+  } else {
+    out["nodes"] = py::none();
+  }
+  out["summary"] = json_text(summary);
+  out["status"] = stats.status;
+  out["message"] = text(stats.message);
+  out["keyboard_interrupt"] = poll.interrupted;
+  out["integration_interval"] = py::make_tuple(t0, t1);
+  return out;
+}
+
 /// towsim.run: simulate; series and nodes in memory; GIL released while integrating.
 py::dict run(const std::string& kind, const std::string& source, const std::string& label,
              const std::vector<std::string>& sets) {
@@ -132,10 +227,7 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
     out["errors"] = text(sc.diags.str());
     return out;
   }
-  if (const auto refusal = network_refusal(sc, "towsim.run")) {
-    out["errors"] = text(refusal->str() + "\n");
-    return out;
-  }
+  if (sc.is_network()) return run_network_arrays(sc, out);
   const Model& model = *sc.model;
   ArraySink sink(model, model.sim.write_nodes);
   volatile int stop = 0;
@@ -174,6 +266,78 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
   return out;
 }
 
+/// towsim.statics on a network: its steady tow (network_statics, or
+/// network_length_for_depth with target_depth > 0); the nodes a dict of line
+/// name -> joint x component; iterations: the relaxation's steps, residual:
+/// the joints' speed left [m/s]. Values NaN when it fails.
+py::dict statics_network_arrays(const LoadedScenario& sc, double target_depth, py::dict out) {
+  const Network& net = *sc.network;
+  const bool with_target = !std::isnan(target_depth);
+  NetworkSteady st;
+  std::optional<NetworkTargetDepth> target;
+  std::string invalid, message;
+  bool converged = true;
+  volatile int stop = 0;
+  SignalPoll poll(stop);
+  {
+    // The relaxation in a worker thread; this (main) thread polls Ctrl-C meanwhile.
+    py::gil_scoped_release release;
+    auto solve = std::async(std::launch::async, [&] {
+      try {
+        if (with_target) {
+          target = network_length_for_depth(net, target_depth, &stop);
+          if (!target->found) throw std::runtime_error(target->message);
+          st = target->steady;
+        } else {
+          st = network_statics(net, &stop);
+        }
+      } catch (const std::invalid_argument& e) {
+        invalid = e.what();
+      } catch (const std::exception& e) {
+        converged = false;
+        message = stop ? "interrupted" : e.what();
+      }
+    });
+    while (solve.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready) poll();
+    solve.get();
+  }
+  if (!invalid.empty()) {
+    out["errors"] = text("statics: " + invalid + "\n");
+    return out;
+  }
+  const Network& used = target && target->found ? target->network : net;
+  const auto columns = network_timeseries_columns(used);
+  const auto node_cols = network_node_columns(used);
+  std::vector<double> row(columns.size(), kNaN);
+  py::dict nodes;
+  if (converged) {
+    NetworkMemorySink mem;
+    write_network_steady(used, st, mem);
+    const NetworkSample& smp = mem.samples.front();
+    network_timeseries_values(used, smp, row);
+    for (std::size_t i = 1; i < row.size(); ++i) row[i] = tidy(row[i]);  // as written
+    for (std::size_t i = 0; i < smp.lines.size(); ++i) {
+      std::vector<double> v;
+      for (std::size_t k = 0; k < smp.lines[i].node_pos.size(); ++k) network_node_values(used, smp.lines[i], k, v);
+      nodes[py::str(used.line_names[i])] = to_array(std::move(v),
+                                                    {static_cast<py::ssize_t>(smp.lines[i].node_pos.size()),
+                                                     static_cast<py::ssize_t>(node_cols.size())});
+    }
+  }
+  if (with_target) out["deployed_length"] = target && target->found ? target->length : kNaN;
+  out["columns"] = columns;
+  out["values"] = to_array(std::move(row), {static_cast<py::ssize_t>(columns.size())});
+  out["node_columns"] = node_cols;
+  out["nodes"] = nodes;
+  out["converged"] = converged;
+  out["iterations"] = static_cast<long>(st.steps);
+  out["residual"] = converged ? st.residual_speed : kNaN;
+  out["message"] = text(message);
+  out["tow_velocity"] = std::vector<double>{st.velocity.x(), st.velocity.y(), st.velocity.z()};
+  out["keyboard_interrupt"] = poll.interrupted;
+  return out;
+}
+
 /// towsim.statics: the steady-tow equilibrium at the tow law's final speed.
 /// With target_depth > 0 (NaN: none), first the deployed length for that depth
 /// (`towsim statics --target-depth`).
@@ -185,10 +349,7 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
     out["errors"] = text(sc.diags.str());
     return out;
   }
-  if (const auto refusal = network_refusal(sc, "towsim.statics")) {
-    out["errors"] = text(refusal->str() + "\n");
-    return out;
-  }
+  if (sc.is_network()) return statics_network_arrays(sc, target_depth, out);
   const Model& model = *sc.model;
   if (model.tow.mode != Tow::Mode::Motion) {
     out["errors"] = "tow.mode: statics needs mode: motion (the steady speed comes from the tow law)\n";

@@ -61,7 +61,8 @@ class Result(Mapping):
 
     nodes: array time x joint x component (components `node_columns`: the
     nodes.csv columns x, y, z, vx, vy, vz, tension, axial_force, strain), or None when
-    simulation.write_nodes is false. summary: summary.json as a dict.
+    simulation.write_nodes is false; for a network (`lines:`) a dict of line
+    name -> that line's array. summary: summary.json as a dict.
     status and message: as in summary.json. integration_interval: (start,
     end) of the integration on time.monotonic()'s clock [s]."""
 
@@ -88,10 +89,14 @@ class Result(Mapping):
         return len(self.columns)
 
     def node(self, component):
-        """One nodes.csv column as an array time x joint (e.g. r.node("tension"))."""
+        """One nodes.csv column as an array time x joint (e.g. r.node("tension"));
+        for a network a dict of line name -> that array."""
         if self.nodes is None:
             raise KeyError("no nodes recorded (simulation.write_nodes is false)")
-        return self.nodes[:, :, self.node_columns.index(component)]
+        c = self.node_columns.index(component)
+        if isinstance(self.nodes, dict):
+            return {line: a[:, :, c] for line, a in self.nodes.items()}
+        return self.nodes[:, :, c]
 
     @property
     def figures(self):
@@ -106,7 +111,10 @@ class Result(Mapping):
 class StaticsResult(Mapping):
     """A steady-tow equilibrium. As a mapping: its one timeseries row by
     column name (floats); nodes: array joint x component (node_columns);
-    converged, iterations, residual [rad/s^2], message, tow_velocity [m/s]."""
+    converged, iterations, residual [rad/s^2], message, tow_velocity [m/s].
+    For a network (`lines:`): nodes is a dict of line name -> that array,
+    iterations the relaxation's steps and residual the joints' speed left
+    relative to the tow [m/s]."""
 
     def __init__(self, raw):
         self.columns = list(raw["columns"])

@@ -1,6 +1,8 @@
 // One chain's rows of a flat state in the default formulation.
 #include "chain_rows.hpp"
 
+#include <algorithm>
+
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/model/depth_control.hpp"
 #include "towsim/model/winch.hpp"
@@ -36,6 +38,48 @@ void add_jump(const Model& m, const Accelerations& jump, double t, bool tow_law,
 PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws) {
   tow_velocity_jump(m, s, dv, ws);
   add_jump(m, ws.acc, t, true, s);
+  return s;
+}
+
+double winch_jump(const Model& m, const PhysicalState& s, double t) {
+  if (m.winch.mode != Winch::Mode::Imposed) return 0;
+  return winch_kinematics(m.winch, t).rate - payout_rate(m, s);
+}
+
+Vec3 sheave_jump(const Model& m, const PhysicalState& s, double dL) {
+  if (!elastic_winch(m)) return dL * s.e[0];
+  return s.length_of(m, 0) / s.top_unstretched * dL * s.e[0];
+}
+
+void winch_rates_after_jump(const Model& m, double t, const Vec3& dsheave, PhysicalState& s) {
+  if (!m.winch.active() || m.winch.mode != Winch::Mode::Imposed) return;
+  if (elastic_winch(m)) {
+    // l_1' = (d_1' relative to the sheave's material) + the sheave's pay-out.
+    s.length_rate[0] += dsheave.dot(s.e[0]);
+    s.top_unstretched_rate = winch_kinematics(m.winch, t).rate;
+  } else {
+    s.length_rate[0] = winch_kinematics(m.winch, t).rate;
+  }
+}
+
+void winch_rates_after_stop(const Model& m, const Vec3& dv, PhysicalState& s) {
+  if (elastic_winch(m)) {
+    s.length_rate[0] += dv.dot(s.e[0]);
+    s.top_unstretched_rate = 0;
+  } else {
+    s.length_rate[0] = 0;
+  }
+}
+
+PhysicalState stopped(const Model& m, PhysicalState s, double rate, Workspace& ws) {
+  const Vec3 dv = -sheave_jump(m, s, rate);
+  tow_velocity_jump(m, s, dv, ws);
+  for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += ws.acc.alpha[k];
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += ws.acc.alpha_b[b];
+  // The elements' stretch rates jump too (over an elastic top element).
+  if (elastic_winch(m))
+    for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += ws.acc.length_acc[k];
+  winch_rates_after_stop(m, dv, s);
   return s;
 }
 
@@ -115,6 +159,26 @@ void ChainRows::impose_winch(double t, PhysicalState& s) const {
   const WinchKinematics k = winch_kinematics(model_.winch, t);
   s.length[0] = k.length - fixed_length_;
   s.length_rate[0] = k.rate;
+}
+
+double ChainRows::project_winch(double t, double* y) const {
+  if (!winch_) return 0;
+  if (model_.winch.mode == Winch::Mode::Imposed) {
+    const WinchKinematics k = winch_kinematics_before(model_.winch, t);
+    y[layout_.winch.offset] = k.length - fixed_length_;
+    y[layout_.winch.offset + 1] = k.rate;
+    return 0;
+  }
+  // Tension control: the speed limit, then the stops at min_length and max_length.
+  double& l = y[layout_.winch.offset];
+  double& rate = y[layout_.winch.offset + 1];
+  rate = std::clamp(rate, -model_.winch.max_speed, model_.winch.max_speed);
+  const double L = l + fixed_length_;
+  const bool at_max = L >= model_.winch.max_length && rate > 0;
+  const bool at_min = L <= model_.winch.min_length && rate < 0;
+  if (!at_max && !at_min) return 0;
+  l = (at_max ? model_.winch.max_length : model_.winch.min_length) - fixed_length_;
+  return rate;
 }
 
 void ChainRows::rates(const PhysicalState& s, const Workspace& ws, double* dy) const {

@@ -21,6 +21,26 @@ void add_jump(const Model& m, const Accelerations& jump, double t, bool tow_law,
 /// at t (tow_velocity_jump; ws: its storage), the tow point at its motion's right limit.
 PhysicalState jumped(const Model& m, PhysicalState s, const Vec3& dv, double t, Workspace& ws);
 
+/// Jump of the imposed pay-out speed at t from the state's (the left limit,
+/// or at rest at t = 0) to the schedule's right limit L'(t+) [m/s] (zero
+/// unless length control).
+double winch_jump(const Model& m, const PhysicalState& s, double t);
+/// Velocity jump of the material at the sheave for a pay-out speed jump dL:
+/// dL e_1, or (l_1/L_1) dL e_1 over an elastic top element [m/s, R_g].
+Vec3 sheave_jump(const Model& m, const PhysicalState& s, double dL);
+/// After the impulsive response to a tow jump with the sheave's jump
+/// `dsheave` at t: a length-controlled winch's own rates on its schedule's
+/// right limit (over an elastic top element l_1' also takes the sheave's jump).
+void winch_rates_after_jump(const Model& m, double t, const Vec3& dsheave, PhysicalState& s);
+/// After the impulsive response to a tension-controlled winch's stop
+/// (the sheave's jump dv = -sheave_jump(rate)): the pay-out speed is zero;
+/// over an elastic top element l_1' takes the sheave's jump besides.
+void winch_rates_after_stop(const Model& m, const Vec3& dv, PhysicalState& s);
+/// Physical state after a tension-controlled winch stops from pay-out speed
+/// `rate` [m/s]: the impulsive response to the sheave's jump -sheave_jump(rate)
+/// (tow_velocity_jump; ws: its storage), then winch_rates_after_stop.
+PhysicalState stopped(const Model& m, PhysicalState s, double rate, Workspace& ws);
+
 /// A chain's rows, at a pointer to the first row of its block.
 class ChainRows {
  public:
@@ -42,6 +62,12 @@ class ChainRows {
   void unpack(const double* y, PhysicalState& s) const;
   /// Length control: the top element's length and rate at t from the schedule.
   void impose_winch(double t, PhysicalState& s) const;
+  /// After a step ending at t, the winch's rows on its law: length control
+  /// on its schedule's piece before t (a jump, if any, comes next); tension
+  /// control at most max_speed, and held at min_length or max_length, where
+  /// it returns the pay-out speed that stops there (an impulse the caller
+  /// applies: -sheave_jump of it), else 0 [m/s].
+  double project_winch(double t, double* y) const;
   /// dy/dt's rows from the evaluation ws of s (forward dynamics done).
   void rates(const PhysicalState& s, const Workspace& ws, double* dy) const;
   /// After a step: unit directions, angular velocities normal to them, unit quaternions.

@@ -31,7 +31,6 @@ constexpr double kLoopAssembly = 1e-9;
 NetworkSystem::NetworkSystem(const Network& net)
     : net_(net), tree_(net.tree), ws_(net.tree), jws_(net.tree), iw_(net.tree, ws_) {
   for (const Model& m : tree_.lines) {
-    if (m.winch.active()) throw std::invalid_argument("towsim: network: a line with a winch is not run yet");
     offset_.push_back(size_);
     rows_.push_back(std::make_unique<ChainRows>(m));
     size_ += rows_.back()->size();
@@ -46,6 +45,7 @@ NetworkSystem::NetworkSystem(const Network& net)
     rhs_[i].dl.assign(n, 0.0), rhs_[i].dlr.assign(n, 0.0);
   }
   course_.resize(tree_.lines.size());
+  stop_rate_.assign(tree_.lines.size(), 0.0);
 }
 
 NetworkSystem::~NetworkSystem() = default;
@@ -62,7 +62,14 @@ StateVector NetworkSystem::initial_tree(const TreeState& s) const {
 }
 
 void NetworkSystem::tree_state_into(const StateVector& y, TreeState& out) const {
-  if (out.size() != rows_.size()) out = shapes(rows_);
+  // Storage of another shape (another network's, before a winch event): resized.
+  const auto fits = [&] {
+    for (std::size_t i = 0; i < rows_.size(); ++i)
+      if (out[i].e.size() != rows_[i]->shape().e.size() || out[i].length.size() != rows_[i]->shape().length.size())
+        return false;
+    return true;
+  };
+  if (out.size() != rows_.size() || !fits()) out = shapes(rows_);
   for (std::size_t i = 0; i < rows_.size(); ++i) rows_[i]->unpack(y.data() + offset_[i], out[i]);
 }
 
@@ -72,7 +79,9 @@ void NetworkSystem::rates(const StateVector& y, StateVector& dy, double t, const
   const double tl = window.law_time(t);
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     const Model& m = tree_.lines[i];
-    if (tree_.tops[i].line >= 0 || m.tow.mode != Tow::Mode::Motion) continue;
+    if (tree_.tops[i].line >= 0) continue;
+    rows_[i]->impose_winch(tl, s_[i]);
+    if (m.tow.mode != Tow::Mode::Motion) continue;
     const TowKinematics k = tow_kinematics(m.tow, tl, ws_.lines[i].course);
     s_[i].r0 = k.pos, s_[i].v0 = k.vel;
   }
@@ -100,6 +109,7 @@ void NetworkSystem::derivative(const StateVector& y, StateVector& dy, double t, 
 }
 
 void NetworkSystem::project(StateVector& y, double t) {
+  bool stops = false;
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     double* yi = y.data() + offset_[i];
     const Model& m = tree_.lines[i];
@@ -109,12 +119,39 @@ void NetworkSystem::project(StateVector& y, double t) {
       set3(yi + 3, k.vel);
     }
     rows_[i]->normalise(yi);
+    // The winch on its law; stop_rate_: a tension winch's speed at its stop.
+    stop_rate_[i] = rows_[i]->project_winch(t, yi);
+    stops = stops || stop_rate_[i] != 0;
   }
+  if (stops) stop_winches(y);
   // Loops: the state put back onto their position and velocity constraints.
   if (tree_.loops.empty()) return;
   tree_state_into(y, js_close_);
   tree_close_loops(tree_, js_close_);
   for (std::size_t i = 0; i < rows_.size(); ++i) rows_[i]->pack(js_close_[i], y.data() + offset_[i]);
+}
+
+void NetworkSystem::stop_winches(StateVector& y) {
+  tree_state_into(y, js_close_);
+  TreeState& s = js_close_;
+  if (!has_nodes()) {
+    // Lines joined only through the vessel: each line's own impulse.
+    for (std::size_t i = 0; i < rows_.size(); ++i)
+      if (stop_rate_[i] != 0) s[i] = stopped(tree_.lines[i], s[i], stop_rate_[i], ws_.lines[i]);
+  } else {
+    std::vector<Vec3> dv(rows_.size(), Vec3::Zero());
+    for (std::size_t i = 0; i < rows_.size(); ++i)
+      if (stop_rate_[i] != 0) dv[i] = -sheave_jump(tree_.lines[i], s[i], stop_rate_[i]);
+    sheave_jumps(s, dv);
+    for (std::size_t i = 0; i < rows_.size(); ++i)
+      if (stop_rate_[i] != 0) winch_rates_after_stop(tree_.lines[i], dv[i], s[i]);
+  }
+  for (std::size_t i = 0; i < rows_.size(); ++i) rows_[i]->pack(s[i], y.data() + offset_[i]);
+}
+
+void NetworkSystem::sheave_jumps(TreeState& s, const std::vector<Vec3>& dv) {
+  tree_tow_velocity_jump(tree_, s, dv, ws_);
+  for (std::size_t i = 0; i < rows_.size(); ++i) add_jump(tree_.lines[i], ws_.lines[i].acc, 0.0, false, s[i]);
 }
 
 double NetworkSystem::tow_jump(double t) const {
@@ -129,20 +166,32 @@ bool NetworkSystem::has_nodes() const {
 }
 
 double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
-  // Each root line's jump; none: nothing to do.
-  std::vector<Vec3> dv(rows_.size(), Vec3::Zero());
+  // Each root line's jump: its tow point's plus its sheave's (a jump dl' of
+  // the pay-out speed is a jump dl' e_1 of the top material's velocity);
+  // none: nothing to do.
+  std::vector<Vec3> dv(rows_.size(), Vec3::Zero()), dsheave(rows_.size(), Vec3::Zero());
+  const bool winches = std::any_of(rows_.begin(), rows_.end(), [](const auto& r) { return r->winch(); });
+  if (winches) tree_state_into(y, js_close_);
   double size = 0;
-  for (std::size_t i = 0; i < rows_.size(); ++i)
-    if (tree_.tops[i].line < 0) dv[i] = towsim::tow_jump(tree_.lines[i], t), size = std::max(size, dv[i].norm());
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    if (tree_.tops[i].line >= 0) continue;
+    const Model& m = tree_.lines[i];
+    if (rows_[i]->winch()) dsheave[i] = sheave_jump(m, js_close_[i], winch_jump(m, js_close_[i], t));
+    dv[i] = towsim::tow_jump(m, t) + dsheave[i];
+    size = std::max(size, dv[i].norm());
+  }
   if (size == 0) return 0;
   // Below kRoundOffJump on a tree with nodes the jump is the difference
   // quotient's round-off at a change of acceleration (a ramp's end): left out.
   if (has_nodes() && size <= NetworkSystem::kRoundOffJump) return 0;
   tree_state_into(y, s_);
   if (!has_nodes()) {
-    // Lines joined only through the vessel: each line's own impulsive response.
+    // Lines joined only through the vessel: each line's own impulsive
+    // response (none where its top does not jump: a winch's breakpoint on another line).
     for (std::size_t i = 0; i < rows_.size(); ++i) {
+      if (dv[i] == Vec3::Zero()) continue;
       s_[i] = jumped(tree_.lines[i], s_[i], dv[i], t, ws_.lines[i]);
+      winch_rates_after_jump(tree_.lines[i], t, dsheave[i], s_[i]);
       rows_[i]->pack(s_[i], y.data() + offset_[i]);
     }
     return size;
@@ -153,6 +202,7 @@ double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
   tree_tow_velocity_jump(tree_, s_, dv, ws_);
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     add_jump(tree_.lines[i], ws_.lines[i].acc, t, tree_.tops[i].line < 0, s_[i]);
+    winch_rates_after_jump(tree_.lines[i], t, dsheave[i], s_[i]);
     rows_[i]->pack(s_[i], y.data() + offset_[i]);
   }
   return size;

@@ -34,21 +34,6 @@ void impose_tow(const Model& m, double t, Vec3& r0, Vec3& v0, CourseCursor& cour
   v0 = k.vel;
 }
 
-/// Jump of the imposed pay-out speed at t from the state's (the left limit,
-/// or at rest at t = 0) to the schedule's right limit L'(t+) [m/s] (zero
-/// unless length control).
-double winch_jump(const Model& m, const PhysicalState& s, double t) {
-  if (m.winch.mode != Winch::Mode::Imposed) return 0;
-  return winch_kinematics(m.winch, t).rate - payout_rate(m, s);
-}
-
-/// Velocity jump of the material at the sheave for a pay-out speed jump dL:
-/// dL e_1, or (l_1/L_1) dL e_1 over an elastic top element [m/s, R_g].
-Vec3 sheave_jump(const Model& m, const PhysicalState& s, double dL) {
-  if (!elastic_winch(m)) return dL * s.e[0];
-  return s.length_of(m, 0) / s.top_unstretched * dL * s.e[0];
-}
-
 /// The default system's workspace: the storage its evaluations write and
 /// the cache of the stage solves (the Jacobian point). What derivative()
 /// returns never depends on it: each evaluation rewrites what it reads, and
@@ -181,40 +166,12 @@ class DefaultSystem final : public System {
       set3(y, 3, k.vel);
     }
     rows_.normalise(y.data());
-    if (!winch_) return;
-    if (model_.winch.mode == Winch::Mode::Imposed) {
-      // A step ending on a breakpoint ends on the piece before it (the
-      // jump, if any, comes next: apply_tow_jump).
-      const WinchKinematics k = winch_kinematics_before(model_.winch, t);
-      y[layout_.winch.offset] = k.length - fixed_length_;
-      y[layout_.winch.offset + 1] = k.rate;
-      return;
-    }
-    // Tension control: the winch stops at min_length and max_length (an
-    // impulse: the pay-out speed drops to zero) and at the speed limit.
-    double& l = y[layout_.winch.offset];
-    double& rate = y[layout_.winch.offset + 1];
-    rate = std::clamp(rate, -model_.winch.max_speed, model_.winch.max_speed);
-    const double L = l + fixed_length_;
-    const bool at_max = L >= model_.winch.max_length && rate > 0;
-    const bool at_min = L <= model_.winch.min_length && rate < 0;
-    if (!at_max && !at_min) return;
-    l = (at_max ? model_.winch.max_length : model_.winch.min_length) - fixed_length_;
-    PhysicalState s = physical(y);
-    const Vec3 dv = -sheave_jump(model_, s, rate);
+    // The winch on its law; a tension winch at its stop: the pay-out speed
+    // drops to zero (an impulse).
+    const double rate = rows_.project_winch(t, y.data());
+    if (rate == 0) return;
     work_.ws_from_s = false;
-    tow_velocity_jump(model_, s, dv, work_.ws);
-    for (std::size_t k = 0; k < s.w.size(); ++k) s.w[k] += work_.ws.acc.alpha[k];
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) s.bodies[b].w += work_.ws.acc.alpha_b[b];
-    if (elastic_top_) {
-      // The elements' stretch rates jump too; l_1' by the sheave's jump besides.
-      for (std::size_t k = 0; k < s.length_rate.size(); ++k) s.length_rate[k] += work_.ws.acc.length_acc[k];
-      s.length_rate[0] += dv.dot(s.e[0]);
-      s.top_unstretched_rate = 0;
-    } else {
-      s.length_rate[0] = 0;
-    }
-    y = initial(s, t);
+    y = initial(stopped(model_, physical(y), rate, work_.ws), t);
   }
 
   const Workspace& evaluate(const StateVector& y, double t) override {
@@ -233,13 +190,7 @@ class DefaultSystem final : public System {
     if (dv.norm() == 0) return 0;
     work_.ws_from_s = false;
     s = jumped(model_, s, dv, t, work_.ws);
-    if (elastic_top_ && model_.winch.mode == Winch::Mode::Imposed) {
-      // l_1' = (d_1' relative to the sheave's material) + the sheave's pay-out.
-      s.length_rate[0] += dsheave.dot(s.e[0]);
-      s.top_unstretched_rate = winch_kinematics(model_.winch, t).rate;
-    } else if (winch_ && model_.winch.mode == Winch::Mode::Imposed) {
-      s.length_rate[0] = winch_kinematics(model_.winch, t).rate;
-    }
+    winch_rates_after_jump(model_, t, dsheave, s);
     y = initial(s, t);
     return dv.norm();
   }

@@ -39,6 +39,10 @@ bool any_breaking_load(const Network& net) {
   });
 }
 
+bool any_winch(const Network& net) {
+  return std::any_of(net.tree.lines.begin(), net.tree.lines.end(), [](const Model& m) { return m.winch.active(); });
+}
+
 bool any_bending(const Network& net) {
   return std::any_of(net.tree.lines.begin(), net.tree.lines.end(), [](const Model& m) { return has_bending(m); });
 }
@@ -50,9 +54,12 @@ std::vector<std::string> network_timeseries_columns(const Network& net) {
   const auto add = [&c](const std::string& p, std::initializer_list<const char*> names) {
     for (const char* n : names) c.push_back(p + n);
   };
-  for (const std::string& l : net.line_names)
+  for (std::size_t i = 0; i < net.line_names.size(); ++i) {
+    const std::string& l = net.line_names[i];
     add(l, {"_top_x", "_top_y", "_top_z", "_top_force_x", "_top_force_y", "_top_force_z", "_top_tension", "_end_x",
             "_end_y", "_end_z", "_end_depth", "_deployed_length"});
+    if (net.tree.lines[i].winch.active()) add(l, {"_payout_speed"});
+  }
   for (const NamedBody& b : bodies_of(net)) {
     add(b.name, {"_x", "_y", "_z", "_roll_deg", "_pitch_deg", "_yaw_deg", "_depth", "_link_force_x", "_link_force_y",
                  "_link_force_z", "_link_tension"});
@@ -70,13 +77,15 @@ void network_timeseries_values(const Network& net, const NetworkSample& s, std::
   v.clear();
   const auto add3 = [&v](const Vec3& a) { v.insert(v.end(), {a.x(), a.y(), a.z()}); };
   v.push_back(tidy_time(s.t));
-  for (const Sample& l : s.lines) {
+  for (std::size_t i = 0; i < s.lines.size(); ++i) {
+    const Sample& l = s.lines[i];
     add3(l.tow_pos);
     add3(l.tow_force);
     v.push_back(l.tow_force.norm());
     add3(l.node_pos.back());
     v.push_back(-l.node_pos.back().z());
     v.push_back(l.deployed_length);
+    if (net.tree.lines[i].winch.active()) v.push_back(l.payout_speed);
   }
   for (const NamedBody& b : bodies_of(net)) {
     const BodySample& bs = s.lines[b.line].bodies[b.body];
@@ -108,6 +117,13 @@ std::vector<std::string> network_node_columns(const Network& net) {
   return c;
 }
 
+void network_node_values(const Network& net, const Sample& line, std::size_t k, std::vector<double>& values) {
+  node_values(line, k, values);
+  if (any_breaking_load(net)) values.push_back(k < line.utilisation.size() ? tidy(line.utilisation[k]) : 0.0);
+  if (net.settings().seabed) values.push_back(k < line.node_seabed.size() ? tidy(line.node_seabed[k].norm()) : 0.0);
+  if (any_bending(net)) values.push_back(k < line.bending.size() ? tidy(line.bending[k]) : 0.0);
+}
+
 NetworkRecord::NetworkRecord(const Network& net) : net_(net), extremes_(net.tree.lines.size()) {}
 
 void NetworkRecord::write(const NetworkSample& s) {
@@ -131,7 +147,7 @@ NetworkWriter::NetworkWriter(const std::string& dir, const Network& net, bool wr
   series_->append(h + "\n");
   if (!write_nodes) return;
   nodes_ = std::make_unique<RowFile>((std::filesystem::path(dir) / "nodes.csv").string());
-  h = "line,time,node";
+  h = any_winch(net) ? "line,time,node,node_id" : "line,time,node";
   for (const std::string& c : network_node_columns(net)) h += "," + c;
   nodes_->append(h + "\n");
 }
@@ -148,22 +164,21 @@ void NetworkWriter::write(const NetworkSample& s) {
   // nodes.csv: per line, per node; a column a line lacks is 0.
   if (nodes_ != nullptr) {
     const Network& net = network();
-    const bool util = any_breaking_load(net), seabed = net.settings().seabed.has_value(), bend = any_bending(net);
+    const bool ids = any_winch(net);
     std::string time;
     put_time(time, s.t);
     for (std::size_t i = 0; i < s.lines.size(); ++i) {
       const Sample& l = s.lines[i];
       for (std::size_t k = 0; k < l.node_pos.size(); ++k) {
         values_.clear();
-        node_values(l, k, values_);
-        if (util) values_.push_back(k < l.utilisation.size() ? tidy(l.utilisation[k]) : 0.0);
-        if (seabed) values_.push_back(k < l.node_seabed.size() ? tidy(l.node_seabed[k].norm()) : 0.0);
-        if (bend) values_.push_back(k < l.bending.size() ? tidy(l.bending[k]) : 0.0);
+        network_node_values(net, l, k, values_);
         nodes_buf_ += net.line_names[i];
         nodes_buf_ += ',';
         nodes_buf_ += time;
         nodes_buf_ += ',';
         nodes_buf_ += std::to_string(k);
+        if (ids)
+          nodes_buf_ += ',', nodes_buf_ += std::to_string(k < l.node_id.size() ? l.node_id[k] : static_cast<long>(k));
         for (double v : values_) nodes_buf_ += ',', put_number(nodes_buf_, v);
         nodes_buf_ += '\n';
       }
@@ -223,6 +238,25 @@ nlohmann::ordered_json make_network_summary(const nlohmann::ordered_json& scenar
       e[b.name + names[k]] = {{"min", json_of(be.min_deg[k])}, {"max", json_of(be.max_deg[k])}};
   }
   j["extremes"] = e;
+  // With winches: their events (all lines), each line's largest top tension against its rating.
+  if (any_winch(net)) {
+    nlohmann::ordered_json w;
+    w["splits"] = stats.winch_splits;
+    w["removals"] = stats.winch_removals;
+    w["energy_lost"] = num(tidy(std::max(0.0, stats.winch_energy_lost)));
+    w["energy_gained"] = num(tidy(std::max(0.0, -stats.winch_energy_lost)));
+    nlohmann::ordered_json lines = nlohmann::ordered_json::object();
+    for (std::size_t i = 0; i < net.tree.lines.size(); ++i) {
+      const Winch& wi = net.tree.lines[i].winch;
+      if (!wi.active()) continue;
+      const double top = record.extremes()[i].max_tow_tension.value;
+      lines[net.line_names[i]] = {{"rating", wi.rating > 0 ? num(wi.rating) : nlohmann::ordered_json(nullptr)},
+                                  {"max_load_ratio",
+                                   wi.rating > 0 ? num(tidy(top / wi.rating)) : nlohmann::ordered_json(nullptr)}};
+    }
+    w["lines"] = lines;
+    j["winch"] = w;
+  }
   j["final"] = record.final_row();
   j["scenario"] = scenario;
   return j;

@@ -85,13 +85,6 @@ void finish_loading(LoadedScenario& s, const std::string& name, const std::strin
 
 }  // namespace
 
-std::optional<Diagnostic> network_refusal(const LoadedScenario& s, const std::string& command) {
-  if (!s.is_network()) return std::nullopt;
-  return Diagnostic{s.spec.lines_where.loc, "lines",
-                    "networks are run by towsim run, towsim statics and towsim check (" + command +
-                        " does not take them yet)"};
-}
-
 LoadedScenario load_scenario_file(const std::string& path, const std::vector<std::string>& sets) {
   LoadedScenario s;
   s.diags.set_primary(path);

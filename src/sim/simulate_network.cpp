@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -12,60 +13,144 @@
 #include "run_loop.hpp"
 #include "towsim/integrators/network_system.hpp"
 #include "towsim/sim/statics.hpp"
+#include "towsim/sim/winch_events.hpp"
 #include "towsim/waves/vessel.hpp"
 
 namespace towsim {
 
 namespace {
 
-/// The network's rig for the run loop (src/sim/run_loop.hpp).
+/// The network's rig for the run loop (src/sim/run_loop.hpp): its system,
+/// checks, each line's winch events and samples with stable node identities.
 struct NetworkRig {
-  NetworkRig(const Network& n, NetworkSink& sink) : net(n), sink(sink), system(n) {
+  NetworkRig(const Network& n, NetworkSink& sink)
+      : net(n), sink(sink), system_(std::make_unique<NetworkSystem>(n)), node_id(n.tree.lines.size()) {
     out.lines.resize(n.tree.lines.size());
+    next_id.assign(n.tree.lines.size(), 0);
   }
-  const Network& net;
+  const Network& net;  // the run's settings and names (a line's model changes at its winch's events)
   NetworkSink& sink;
-  NetworkSystem system;
-  std::string refusal;  // a refusal from the rk4 stability check
-  TreeState checked;    // the state of the last step checked (storage reused)
-  NetworkSample out;    // the sample being written (its storage reused)
+  std::unique_ptr<Network> owned;          // the network derived by winch events, when there is one
+  std::unique_ptr<NetworkSystem> system_;  // the current network's system
+  std::string refusal;                     // a refusal from the rk4 stability check
+  TreeState checked;                       // the state of the last step checked (storage reused)
+  NetworkSample out;                       // the sample being written (its storage reused)
+  std::vector<std::vector<long>> node_id;  // per line, per output node row: stable across events [-]
+  std::vector<long> next_id;               // per line: the next new node's identity [-]
 
+  /// The network now: the given one, or the one winch events made of it.
+  const Network& current() const { return owned ? *owned : net; }
+  NetworkSystem& system() const { return *system_; }
   const Simulation& sim() const { return net.settings().sim; }
-  bool winch() const { return false; }
+  bool winch() const {
+    return std::any_of(net.tree.lines.begin(), net.tree.lines.end(), [](const Model& m) { return m.winch.active(); });
+  }
   bool sea() const { return net.settings().fluid.waves != nullptr; }  // waves (a tow point alone gives a vessel)
   double force_scale() const {
     double w = 0;
-    for (const Model& m : net.tree.lines) w += run::force_scale(m);
+    for (const Model& m : current().tree.lines) w += run::force_scale(m);
     return w;
   }
-  std::vector<double> breakpoints() const { return tow_breakpoints(net.settings().tow); }
-  System& sys() { return system; }
+  std::vector<double> breakpoints() const {
+    std::vector<double> breaks = tow_breakpoints(net.settings().tow);
+    for (const Model& m : net.tree.lines)
+      for (double b : winch_breakpoints(m.winch)) breaks.push_back(b);
+    return breaks;
+  }
+  System& sys() const { return *system_; }
   /// Every row finite, every line sound (the line named).
   std::string check(const System& sys, const StateVector& y) {
     if (std::string err = run::check_finite(sys, y); !err.empty()) return err;
-    system.tree_state_into(y, checked);
+    system_->tree_state_into(y, checked);
     for (std::size_t i = 0; i < checked.size(); ++i)
-      if (std::string err = run::check_chain(net.tree.lines[i], checked[i]); !err.empty())
+      if (std::string err = run::check_chain(current().tree.lines[i], checked[i]); !err.empty())
         return "line " + net.line_names[i] + ": " + err;
     return {};
   }
-  bool event_due(const System&, const StateVector&) const { return false; }
+  /// A line's winch is due to split or remove its top element.
+  bool event_due(const System&, const StateVector& y) {
+    if (!winch()) return false;
+    system_->tree_state_into(y, checked);
+    const TreeModel& tree = current().tree;
+    for (std::size_t i = 0; i < checked.size(); ++i)
+      if (tree.lines[i].winch.active() && winch_event(tree.lines[i], checked[i]) != WinchEvent::None) return true;
+    return false;
+  }
   void track(const System&, const StateVector&, double, RunStats&) const {}
-  void event(StateVector&, double, RunStats&) {}
-  /// Each line's sample at (y, t), from one evaluation of the tree.
+  void event(StateVector& y, double t, RunStats& stats);
+  /// Each line's sample at (y, t), from one evaluation of the tree, its nodes with their identities.
   void write(const StateVector& y, double t, RunStats& stats) {
-    const TreeWorkspace& ws = system.evaluate_tree(y, t);
-    const TreeState& s = system.evaluated_state();
+    const TreeWorkspace& ws = system_->evaluate_tree(y, t);
+    const TreeState& s = system_->evaluated_state();
     out.t = t;
     for (std::size_t i = 0; i < s.size(); ++i) {
       std::string err;
-      run::sample_checks(net.tree.lines[i], s[i], ws.lines[i], t, stats, out.lines[i], &err);
+      Sample& l = out.lines[i];
+      run::sample_checks(current().tree.lines[i], s[i], ws.lines[i], t, stats, l, &err);
       if (!err.empty() && refusal.empty()) refusal = "line " + net.line_names[i] + ": " + err;
+      if (node_id[i].empty()) node_id[i] = l.node_id, next_id[i] = static_cast<long>(l.node_id.size());
+      l.node_id = node_id[i];
     }
     sink.write(out);
   }
   void flush() { sink.flush(); }
 };
+
+/// True when line i carries more of the tree: a line hangs from it or a loop closes on it.
+bool carries(const TreeModel& tree, std::size_t i) {
+  const auto li = static_cast<int>(i);
+  return std::any_of(tree.tops.begin(), tree.tops.end(), [li](const LineTop& t) { return t.line == li; }) ||
+         std::any_of(tree.loops.begin(), tree.loops.end(),
+                     [li](const LoopJoint& j) { return j.line == li || j.node_line == li; });
+}
+
+/// Split or remove the top element of every line whose winch is due at t;
+/// y becomes the state of the network derived. A removal's impulse (the
+/// pay-out speed brought back to the winch's) is the line's own, or the
+/// tree's when the line carries more of it.
+void NetworkRig::event(StateVector& y, double t, RunStats& stats) {
+  TreeState s;
+  system_->tree_state_into(y, s);
+  auto next = std::make_unique<Network>(current());
+  std::vector<Vec3> jump(s.size(), Vec3::Zero());
+  std::vector<double> rate(s.size(), 0.0);
+  bool changed = false;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const Model& m = current().tree.lines[i];
+    if (!m.winch.active()) continue;
+    const WinchEvent e = winch_event(m, s[i]);
+    if (e == WinchEvent::None) continue;
+    changed = true;
+    if (e == WinchEvent::Split) {
+      next->tree.lines[i] = split_model(m);
+      s[i] = split_state(m, s[i]);
+      node_id[i].insert(node_id[i].begin() + 1, next_id[i]++);
+      ++stats.winch_splits;
+      continue;
+    }
+    rate[i] = m.winch.mode == Winch::Mode::Imposed ? winch_kinematics(m.winch, t).rate : payout_rate(m, s[i]);
+    Removal r = remove_top(m, s[i], t, rate[i]);
+    const bool tree_impulse = carries(current().tree, i) && r.jump != Vec3::Zero();
+    next->tree.lines[i] = std::move(r.model);
+    s[i] = tree_impulse ? std::move(r.before_impulse) : std::move(r.state);
+    if (tree_impulse) jump[i] = r.jump;
+    node_id[i].erase(node_id[i].begin() + 1);
+    ++stats.winch_removals;
+    stats.winch_energy_lost += r.energy_lost;
+  }
+  if (!changed) return;
+  stats.rhs_evaluations += system_->rhs_evaluations;
+  auto sys = std::make_unique<NetworkSystem>(*next);  // before the old network goes: the old system refers to it
+  system_ = std::move(sys);
+  owned = std::move(next);
+  // The removals' impulses through the tree; each such line's pay-out speed then its winch's.
+  if (std::any_of(jump.begin(), jump.end(), [](const Vec3& j) { return j != Vec3::Zero(); })) {
+    system_->sheave_jumps(s, jump);
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (jump[i] != Vec3::Zero()) s[i].length_rate[0] = rate[i];
+  }
+  y = system_->initial_tree(s);
+}
 
 /// Watches a relaxation's samples: stops it (through `stop`) at the first
 /// whose joints and bodies all move by less than kNetworkSettledSpeed (a
@@ -117,7 +202,7 @@ std::string fmt_g(double x) {
 /// The network seen from its tow points at velocity V: each root line's
 /// tow held at its position at t = 0 turned by `yaw` about the vertical
 /// through the first tow point, the current less V, calm water, the
-/// hanging start, the relaxation's settings.
+/// hanging start, the relaxation's settings, every winch held.
 Network tow_frame(const Network& net, const Vec3& V, double yaw) {
   Network r = net;
   const Eigen::AngleAxisd turn(yaw, Vec3::UnitZ());
@@ -137,6 +222,7 @@ Network tow_frame(const Network& net, const Vec3& V, double yaw) {
     if (f.current_velocity.empty()) f.current_depth = {0.0}, f.current_velocity = {Vec3::Zero()};
     for (Vec3& u : f.current_velocity) u -= V;
     if (m.initial.kind == Initial::Kind::Steady) m.initial.kind = Initial::Kind::Hanging;
+    m.winch = Winch{};  // held at its initial deployed length
     m.sim.integrator = Integrator::Rosenbrock;
     m.sim.tolerance = 1e-6;
     m.sim.time_step = 0.01;
@@ -181,8 +267,8 @@ NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw
       s0[i].v0.setZero();
     }
   }
-  StateVector y = rig.system.initial_tree(s0);
-  rig.system.project(y, 0.0);
+  StateVector y = rig.system().initial_tree(s0);
+  rig.system().project(y, 0.0);
   RunStats stats;
   rig.write(y, 0.0, stats);
   stats = run::run_loop(rig, y, std::move(stats), std::chrono::steady_clock::now(), {}, &watch.stop);
@@ -197,8 +283,11 @@ NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw
   out.residual_speed = watch.speed;
   out.steps = stats.steps;
   // At rest relative to the tow, every point moving at V.
-  rig.system.tree_state_into(y, out.state);
-  for (PhysicalState& s : out.state) {
+  rig.system().tree_state_into(y, out.state);
+  for (std::size_t i = 0; i < out.state.size(); ++i) {
+    PhysicalState& s = out.state[i];
+    const Model& m = net.tree.lines[i];
+    if (elastic_winch(m)) s.top_unstretched = m.cable.elements.front().length;  // the winch's paid-out L_1
     s.v0 = V;
     for (Vec3& w : s.w) w.setZero();
     for (double& r : s.length_rate) r = 0;
@@ -244,8 +333,8 @@ RunStats write_network_steady(const Network& net, const NetworkSteady& st, Netwo
   NetworkRig rig(frame, mem);
   TreeState s = st.state;
   for (PhysicalState& p : s) p.v0.setZero();
-  StateVector y = rig.system.initial_tree(s);
-  rig.system.project(y, 0.0);
+  StateVector y = rig.system().initial_tree(s);
+  rig.system().project(y, 0.0);
   rig.write(y, 0.0, stats);
   // Seen from the water: everything moves at V.
   NetworkSample out = mem.samples.front();
@@ -272,10 +361,10 @@ RunStats simulate_network(const Network& net, NetworkSink& sink, const ProgressF
   try {
     if (settings.initial.kind == Initial::Kind::Steady) {
       const NetworkSteady st = network_steady_state(net, stop_flag);
-      y = rig.system.initial_tree(st.state);  // moving at the tow's velocity: no jump
+      y = rig.system().initial_tree(st.state);  // moving at the tow's velocity: no jump
     } else {
-      y = rig.system.initial_tree(network_initial_state(net));
-      rig.system.apply_tow_jump(y, 0.0);  // at rest, tow at speed
+      y = rig.system().initial_tree(network_initial_state(net));
+      rig.system().apply_tow_jump(y, 0.0);  // at rest, tow at speed
     }
   } catch (const std::exception& e) {
     stats.status = "failed";
@@ -283,7 +372,7 @@ RunStats simulate_network(const Network& net, NetworkSink& sink, const ProgressF
     sink.flush();
     return stats;
   }
-  rig.system.project(y, 0.0);
+  rig.system().project(y, 0.0);
   rig.write(y, 0.0, stats);
   return run::run_loop(rig, y, std::move(stats), wall0, progress, stop_flag);
 }

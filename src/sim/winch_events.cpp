@@ -164,6 +164,7 @@ Removal remove_top(const Model& model, const PhysicalState& s, double t, double 
   Workspace ws(r.model);
   r.energy_before_impulse = energy(r.model, n, ws);
   const Vec3 jump = (rate - r_star) * e;
+  r.before_impulse = n, r.jump = jump;
   tow_velocity_jump(r.model, n, jump, ws);
   r.impulse = ws.acc.tow_force;
   for (std::size_t k = 0; k < n.w.size(); ++k) n.w[k] += ws.acc.alpha[k];
@@ -202,6 +203,7 @@ Removal remove_elastic_top(const Model& model, const PhysicalState& s, double ra
   Workspace ws(r.model);
   r.energy_before_impulse = energy(r.model, n, ws);
   r.energy_lost = top.E_old - r.energy_before_impulse;
+  r.before_impulse = n;
   return r;
 }
 

@@ -130,7 +130,10 @@ TEST_F(Cli, BridleTargetDepthIsTheHangingLength) {
   EXPECT_NEAR(L, 15 - std::sqrt(3.0) - 0.2, 2e-3) << r.out;
 }
 
-TEST_F(Cli, NetworkWinchIsRefusedBeforeAnythingIsWritten) {
+// A winch on a network's line runs: the line's pay-out speed in
+// timeseries.csv, the joints' identities in nodes.csv (the winch adds
+// joints at the top), the events counted in summary.json.
+TEST_F(Cli, NetworkWinchPaysOutTheLine) {
   const auto file = dir_ / "winch.yaml";
   std::ofstream(file) << R"(lines:
   - {name: main, from: vessel.top, to: free, length: 10, elements: 5, mass_per_length: 1.0, diameter: 0.02,
@@ -140,12 +143,21 @@ vessel:
 tow: {motion: []}
 simulation: {duration: 10}
 )";
-  const auto r = run_towsim("run " + quoted(file) + " -o " + quoted(dir_ / "out"));
-  EXPECT_EQ(r.status, 2) << r.out;
-  EXPECT_EQ(r.out,
-            "towsim: run: line main: a winch on a network's line is not run yet (give the line its deployed "
-            "length)\n");
-  EXPECT_FALSE(std::filesystem::exists(dir_ / "out" / "timeseries.csv"));
+  const auto r = run_towsim("run " + quoted(file) + " -o " + quoted(dir_ / "out") + " -q");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto ts = read_csv(dir_ / "out" / "timeseries.csv");
+  const int length = ts.column("main_deployed_length"), speed = ts.column("main_payout_speed");
+  ASSERT_GE(length, 0);
+  ASSERT_EQ(speed, length + 1);
+  // 5 m paid out at 0.5 m/s over 10 s (1e-9 m: the schedule's sums).
+  EXPECT_NEAR(ts.rows.back()[static_cast<std::size_t>(length)], 15.0, 1e-9);
+  EXPECT_EQ(ts.rows.back()[static_cast<std::size_t>(speed)], 0.5);
+  EXPECT_EQ(slurp(dir_ / "out" / "nodes.csv").rfind("line,time,node,node_id,x,y,z", 0), 0u);
+  // Elements of 2 m split above 3 m: at 3, 5 and 7 m paid out at least.
+  const std::string summary = slurp(dir_ / "out" / "summary.json");
+  const auto at = summary.find("\"splits\": ");
+  ASSERT_NE(at, std::string::npos) << summary;
+  EXPECT_GE(std::stoi(summary.substr(at + 10)), 2) << summary;
 }
 
 }  // namespace

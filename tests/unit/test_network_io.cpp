@@ -357,15 +357,3 @@ TEST_F(ScenarioFile, NetworkKeysNeedLines) {
   const auto s = load(towsim::testing::kCable + towsim::testing::kSim + "junctions: [{name: a}]\n");
   EXPECT_EQ(s.diags.str(), at("8:1: junctions: needs lines: (junctions join the lines of a network)"));
 }
-
-TEST_F(ScenarioFile, NetworkIsRefusedByCommandsForChains) {
-  const auto s = load(kRig);
-  ASSERT_TRUE(s.ok()) << s.diags.str();
-  const auto r = towsim::scenario::network_refusal(s, "towsim sweep");
-  ASSERT_TRUE(r.has_value());
-  EXPECT_EQ(r->str(), path_ +
-                          ":17:1: lines: networks are run by towsim run, towsim statics and towsim check (towsim "
-                          "sweep does not take them yet)");
-  const auto chain = load(towsim::testing::kCable + towsim::testing::kSim);
-  EXPECT_FALSE(towsim::scenario::network_refusal(chain, "towsim sweep").has_value());
-}

@@ -15,6 +15,7 @@
 #include "towsim/dynamics/dynamics.hpp"
 #include "towsim/dynamics/implicit.hpp"
 #include "towsim/dynamics/tree.hpp"
+#include "towsim/model/winch.hpp"
 
 namespace towsim {
 namespace {
@@ -187,20 +188,22 @@ std::array<double, 4> chain_against_tree(const Model& chain, const PhysicalState
   return err;
 }
 
-// Every acceleration and force of every line equals the KKT solution of the
-// whole tree. Tolerance 1e-9 relative to the largest force (and angular and
-// length acceleration), as for the chains (test_chain_reference.cpp): the
-// dense LU of ~250 unknowns loses ~1e-10; a wrong node term shows at 1e-5
-// or more (breaking the body's child centripetal term or a line's top force
-// fails it).
-TEST(TreeReference, BranchedTreeEqualsDenseMultiplierSolution) {
-  const TreeModel tree = branched_tree();
+/// Largest differences of the tree's forward dynamics from the KKT
+/// solution of the whole tree over 4 random states at t, each relative to
+/// its largest value: {forces, angular accelerations, length (and pay-out)
+/// accelerations}. A winch on line 0: its top element between 0.6 and 1.4
+/// of its nominal length, paid out at up to 0.8 m/s.
+std::array<double, 3> tree_against_reference(const TreeModel& tree, std::mt19937& rng, double t) {
   TreeWorkspace ws(tree);
-  std::mt19937 rng(2027);
-  const double t = 4.2;  // [s]
-  double worst_f = 0, worst_a = 0, worst_l = 0;
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  std::array<double, 3> worst{};
   for (int trial = 0; trial < 4; ++trial) {
-    const TreeState s = random_tree_state(tree, rng, t);
+    TreeState s = random_tree_state(tree, rng, t);
+    const Model& m0 = tree.lines[0];
+    if (m0.winch.active()) {
+      s[0].length[0] = m0.cable.elements[0].length * (1.0 + 0.4 * U(rng));
+      s[0].length_rate[0] = 0.8 * U(rng);
+    }
     tree_forward_dynamics(tree, s, t, ws);
     std::vector<Vec3> a0;
     for (const Model& m : tree.lines) a0.push_back(tow_kinematics(m.tow, t).acc);
@@ -225,17 +228,58 @@ TEST(TreeReference, BranchedTreeEqualsDenseMultiplierSolution) {
         el = std::max(el, std::abs(acc.length_acc[e] - ref.length_acc(e, l)));
       }
     }
-    worst_f = std::max(worst_f, ef / fs);
-    worst_a = std::max(worst_a, ea / as);
-    worst_l = std::max(worst_l, el / ls);
+    // The winch's pay-out acceleration (imposed, or the drum's).
+    if (m0.winch.active()) el = std::max(el, std::abs(ws.lines[0].acc.top_length_acc - ref.pay_acc()));
+    worst[0] = std::max(worst[0], ef / fs);
+    worst[1] = std::max(worst[1], ea / as);
+    worst[2] = std::max(worst[2], el / ls);
   }
+  return worst;
+}
+
+// Every acceleration and force of every line equals the KKT solution of the
+// whole tree. Tolerance 1e-9 relative to the largest force (and angular and
+// length acceleration), as for the chains (test_chain_reference.cpp): the
+// dense LU of ~250 unknowns loses ~1e-10; a wrong node term shows at 1e-5
+// or more (breaking the body's child centripetal term or a line's top force
+// fails it).
+TEST(TreeReference, BranchedTreeEqualsDenseMultiplierSolution) {
+  std::mt19937 rng(2027);
+  const auto worst = tree_against_reference(branched_tree(), rng, 4.2);
   std::printf(
       "[measured] tree of 6 lines (a body with two lines below, a junction with two, an elastic line, two roots): "
       "force rel err %.2e, alpha rel err %.2e, length acc rel err %.2e\n",
-      worst_f, worst_a, worst_l);
-  EXPECT_LT(worst_f, 1e-9);
-  EXPECT_LT(worst_a, 1e-9);
-  EXPECT_LT(worst_l, 1e-9);
+      worst[0], worst[1], worst[2]);
+  EXPECT_LT(worst[0], 1e-9);
+  EXPECT_LT(worst[1], 1e-9);
+  EXPECT_LT(worst[2], 1e-9);
+}
+
+// The same tree with a winch on its main line (a network's winch: on a line
+// from the vessel), length-controlled and tension-controlled: the paid-out
+// top element and the drum carry the whole tree below. Same tolerances.
+TEST(TreeReference, WinchOnARootLineEqualsDenseMultiplierSolution) {
+  for (const Winch::Mode mode : {Winch::Mode::Imposed, Winch::Mode::Tension}) {
+    TreeModel tree = branched_tree();
+    Model& m = tree.lines[0];
+    m.cable.sections.push_back({"cable", 0, m.cable.n(), 60.0, 0});
+    m.winch.mode = mode;
+    m.winch.nominal_length = m.cable.elements[0].length;
+    if (mode == Winch::Mode::Imposed) {
+      m.winch.schedule = schedule_from_rate({0, 10}, {0.2, 1.2}, 60.0, 0, m.winch.max_length);
+    } else {
+      m.winch.tension = 1500;     // [N]
+      m.winch.drum_inertia = 80;  // [kg]
+      m.winch.damping = 300;      // [N s/m]
+    }
+    std::mt19937 rng(2029);
+    const auto worst = tree_against_reference(tree, rng, 4.2);
+    std::printf("[measured] the tree with a%s winch on its main line: force %.2e, alpha %.2e, length acc %.2e\n",
+                mode == Winch::Mode::Imposed ? "n imposed" : " tension", worst[0], worst[1], worst[2]);
+    EXPECT_LT(worst[0], 1e-9);
+    EXPECT_LT(worst[1], 1e-9);
+    EXPECT_LT(worst[2], 1e-9);
+  }
 }
 
 // Lines that hang only from the vessel are independent chains: each line's

@@ -26,8 +26,9 @@ class NetworkSystem final : public System {
 
   /// Flat state of the tree's state s.
   StateVector initial_tree(const TreeState& s) const;
-  /// The tree's state of y into `out` (sized by an earlier call or by
-  /// initial_tree's state): each line's top joint as its rows hold it.
+  /// The tree's state of y into `out` (resized unless it has this network's
+  /// shape, e.g. storage from before a winch event): each line's top joint
+  /// as its rows hold it.
   void tree_state_into(const StateVector& y, TreeState& out) const;
   /// Full evaluation for output at (y, t) (the right limit at a
   /// breakpoint), every line's top joint its node's; not counted.
@@ -51,13 +52,18 @@ class NetworkSystem final : public System {
   StateVector initial(const PhysicalState& s, double t) override;
   void derivative(const StateVector& y, StateVector& dy, double t, const StepWindow& window) override;
   /// Every root line's tow rows to its imposed motion, unit vectors and
-  /// quaternions renormalised, the loops closed (tree_close_loops).
+  /// quaternions renormalised, each winch on its law (a tension winch's
+  /// stop an impulse), the loops closed (tree_close_loops).
   void project(StateVector& y, double t) override;
-  /// The tow velocity's jump at t as the tree's impulsive response: each
+  /// The tow velocity's jump at t (with each winch's sheave's) as the tree's impulsive response: each
   /// line's own (jumped) when the lines meet only at the vessel, else the
   /// tree's (tree_tow_velocity_jump, loops closed by impulses), where a jump
   /// of at most kRoundOffJump is left out.
   double apply_tow_jump(StateVector& y, double t) override;
+  /// The tree's impulsive response to a jump dv[i] of each root line's
+  /// material at its sheave (zero: none) added to s, the loops closed by
+  /// impulses (tree_tow_velocity_jump); the winches' own rates are the caller's.
+  void sheave_jumps(TreeState& s, const std::vector<Vec3>& dv);
   /// Line 0's physical state (physical_into likewise).
   PhysicalState physical(const StateVector& y) const override;
   /// evaluate_tree's workspace of line 0.
@@ -74,6 +80,9 @@ class NetworkSystem final : public System {
  private:
   void rates(const StateVector& y, StateVector& dy, double t, const StepWindow& window);
   void gather_forces();
+  /// The tension winches that stop (stop_rate_, set by project): the
+  /// impulse of their pay-out speeds dropping to zero.
+  void stop_winches(StateVector& y);
 
   const Network& net_;
   const TreeModel& tree_;
@@ -86,7 +95,8 @@ class NetworkSystem final : public System {
   std::vector<StageRhs> rhs_;                     // per line: one stage's right-hand side
   std::vector<CourseCursor> course_;              // per line: the tow law's cursor for project()
   Accelerations forces_;                          // gather_forces()
-  TreeState js_close_;                            // project()'s state while closing loops (storage)
+  TreeState js_close_;                            // project()'s and the jumps' scratch state (storage)
+  std::vector<double> stop_rate_;                 // per line: project()'s tension winch speed at its stop [m/s]
 };
 
 /// Initial state of a network's tree (hanging, or along a direction: every

@@ -17,7 +17,8 @@ namespace towsim::output {
 
 /// The columns of a network's timeseries.csv, in order: time; per line
 /// (tree order) <line>_top_x/y/z, <line>_top_force_x/y/z, <line>_top_tension,
-/// <line>_end_x/y/z, <line>_end_depth, <line>_deployed_length; per body
+/// <line>_end_x/y/z, <line>_end_depth, <line>_deployed_length (a line with
+/// a winch: <line>_payout_speed); per body
 /// <body>_x/y/z, _roll_deg, _pitch_deg, _yaw_deg, _depth, _link_force_x/y/z,
 /// _link_tension (in-line bodies also _lower_link_force_x/y/z,
 /// _lower_link_tension); per junction <junction>_x/y/z, _depth; with waves
@@ -25,9 +26,12 @@ namespace towsim::output {
 std::vector<std::string> network_timeseries_columns(const Network& net);
 /// One sample's values in the order of network_timeseries_columns (not tidied; the time tidied).
 void network_timeseries_values(const Network& net, const NetworkSample& s, std::vector<double>& v);
-/// The per-node columns of a network's nodes.csv after `line,time,node`:
-/// node_columns(), then utilisation, seabed_force, bending_moment where a line has them.
+/// The per-node columns of a network's nodes.csv after `line,time,node`
+/// (and `node_id` when a line has a winch): node_columns(), then
+/// utilisation, seabed_force, bending_moment where a line has them.
 std::vector<std::string> network_node_columns(const Network& net);
+/// Joint k of a line's sample in the columns of network_node_columns, appended to `values`.
+void network_node_values(const Network& net, const Sample& line, std::size_t k, std::vector<double>& values);
 
 /// A network sink that keeps what summary.json needs: each line's extremes,
 /// the number of samples and the last row.
@@ -43,7 +47,8 @@ class NetworkRecord : public NetworkSink {
   /// The last row by column name (null before any row).
   nlohmann::ordered_json final_row() const;
 
- protected:
+ public:
+  /// The last row as written (before tidy; the time tidied).
   const std::vector<double>& raw_row() const { return row_; }
 
  private:

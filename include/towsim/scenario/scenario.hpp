@@ -27,11 +27,6 @@ struct LoadedScenario {
   bool is_network() const { return spec.is_network(); }
 };
 
-/// The refusal of a network by a command that takes single chains only: the
-/// error "FILE:LINE:COL: lines: networks are run by towsim run and towsim
-/// check (COMMAND does not take them yet)"; nullopt for a single chain.
-std::optional<Diagnostic> network_refusal(const LoadedScenario& s, const std::string& command);
-
 /// Load a scenario file: parse it, apply the `--set KEY=VALUE` overrides in
 /// order, read and check it, compile it. Relative track files are read from
 /// the file's directory; the model's default name is the file's stem.

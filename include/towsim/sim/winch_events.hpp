@@ -44,6 +44,8 @@ struct Removal {
   double energy_before_impulse = 0;  // kinetic energy of the mapped state before the impulse [J]
   double impulse_work = 0;           // work of the impulse at the sheave, lambda . (v_before + v_after) / 2 [J]
   Vec3 impulse = Vec3::Zero();       // impulse of the sheave on the cable [N s, R_g]
+  PhysicalState before_impulse;      // the mapped state before the impulse (pay-out speed r*)
+  Vec3 jump = Vec3::Zero();          // the sheave's velocity jump the impulse makes, (rate - r*) e [m/s, R_g]
 };
 
 /// Remove the top element (length l_1 small) of state s at t: the next
