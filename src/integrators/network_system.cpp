@@ -23,6 +23,11 @@ TreeState shapes(const std::vector<std::unique_ptr<ChainRows>>& rows) {
   return s;
 }
 
+/// A line below a node: its top joint's rows (r0, v0) are not part of the
+/// state (its node's motion is): their rates and stage increments are
+/// zero, so they neither move nor enter the step's error estimate.
+void hold_top_rows(double* rows) { std::fill(rows, rows + 6, 0.0); }
+
 /// A loop's initial gap left by its assembly at most this [m].
 constexpr double kLoopAssembly = 1e-9;
 
@@ -91,6 +96,7 @@ void NetworkSystem::rates(const StateVector& y, StateVector& dy, double t, const
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     if (tree_.tops[i].line >= 0) s_[i].r0 = ws_.top[i], s_[i].v0 = ws_.top_velocity[i];
     rows_[i]->rates(s_[i], ws_.lines[i], dy.data() + offset_[i]);
+    if (tree_.tops[i].line >= 0) hold_top_rows(dy.data() + offset_[i]);
   }
   gather_forces();
 }
@@ -240,8 +246,10 @@ void NetworkSystem::stage_solve(double hg, const StateVector& r, StateVector& k)
   for (std::size_t i = 0; i < rows_.size(); ++i) rows_[i]->stage_rhs(r.data() + offset_[i], js_[i], rhs_[i]);
   tree_stage_solve(tree_, js_, jws_, hg, rhs_, iw_);
   k.resize(r.size());
-  for (std::size_t i = 0; i < rows_.size(); ++i)
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
     rows_[i]->stage_result(r.data() + offset_[i], js_[i], rhs_[i], iw_.lines[i], hg, k.data() + offset_[i]);
+    if (tree_.tops[i].line >= 0) hold_top_rows(k.data() + offset_[i]);
+  }
 }
 
 TreeState network_initial_state(const Network& net) {

@@ -15,8 +15,10 @@ namespace towsim {
 class ChainRows;
 
 /// The tree of a network as a System. A line below a node keeps rows for
-/// its top joint (r0, v0) like every line: they follow the node (set from
-/// it at each evaluation and projection), the dynamics never read them.
+/// its top joint (r0, v0) like every line, but they are not its state: the
+/// dynamics take its node's motion, their rates and stage increments are
+/// zero (they hold their start and stay out of the step's error estimate),
+/// and evaluations report the node's (evaluated_state).
 class NetworkSystem final : public System {
  public:
   explicit NetworkSystem(const Network& net);
