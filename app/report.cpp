@@ -275,6 +275,74 @@ std::vector<std::size_t> network_starts(const std::vector<NodeFrame>& frames) {
   return f0.line_starts;
 }
 
+/// A body's shapes at their true size, body axes, metres, from its scenario
+/// echo: the load spheres, the hull cylinders and the fins (`surfaces`,
+/// drawn as squares of their area); none when the echo has none or cannot
+/// be read (the viewer then draws a marker ball and says so).
+json body_shapes(const json& b) {
+  json spheres = json::array(), cylinders = json::array(), surfaces = json::array();
+  try {
+    if (b.is_object() && b.contains("spheres"))
+      for (const auto& s : b.at("spheres")) spheres.push_back({{"center", s.at("center")}, {"radius", s.at("radius")}});
+    if (b.is_object() && b.contains("cylinders"))
+      for (const auto& c : b.at("cylinders"))
+        cylinders.push_back({{"center", c.at("center")},
+                             {"axis", c.at("axis")},
+                             {"length", c.at("length")},
+                             {"diameter", c.at("diameter")}});
+    if (b.is_object() && b.contains("surfaces"))
+      for (const auto& f : b.at("surfaces"))
+        surfaces.push_back(
+            {{"center", f.at("center")}, {"chord", f.at("chord")}, {"normal", f.at("normal")}, {"area", f.at("area")}});
+  } catch (const std::exception&) {
+    spheres = cylinders = surfaces = json::array();
+  }
+  return {{"spheres", spheres}, {"cylinders", cylinders}, {"surfaces", surfaces}};
+}
+
+/// The viewer's body: its poses per frame, then its shapes.
+json with_pose(const json& pos, const json& rpy, const json& shapes) {
+  json b = {{"pos", pos}, {"rpy", rpy}};
+  for (const auto& [k, v] : shapes.items()) b[k] = v;
+  return b;
+}
+
+/// A network's body in timeseries.csv: its name, its pose's columns (x, y,
+/// z, roll, pitch, yaw) and its scenario echo (null when none is found).
+struct NetworkBodyTrack {
+  std::string name;
+  std::array<int, 6> col{};
+  json echo;
+};
+
+/// Every body of a network's run (summary.json's scenario has `lines`):
+/// the `bodies:` list, then the in-line bodies of the lines' sections, in
+/// the order their columns come; those without pose columns are left out.
+std::vector<NetworkBodyTrack> network_bodies(const CsvTable& ts, const json& sm) {
+  std::vector<NetworkBodyTrack> out;
+  if (!sm.contains("scenario") || !sm.at("scenario").is_object() || !sm.at("scenario").contains("lines")) return out;
+  const json& sc = sm.at("scenario");
+  std::vector<std::pair<std::string, json>> named;
+  if (sc.contains("bodies") && sc.at("bodies").is_array())
+    for (const auto& b : sc.at("bodies"))
+      if (b.is_object() && b.contains("name") && b.at("name").is_string()) named.emplace_back(b.at("name"), b);
+  if (sc.at("lines").is_array())
+    for (const auto& l : sc.at("lines"))
+      if (l.is_object() && l.contains("sections") && l.at("sections").is_array())
+        for (const auto& sec : l.at("sections"))
+          if (sec.is_object() && sec.contains("body") && sec.at("body").is_object() &&
+              sec.at("body").contains("name") && sec.at("body").at("name").is_string())
+            named.emplace_back(sec.at("body").at("name"), sec.at("body"));
+  for (const auto& [name, echo] : named) {
+    NetworkBodyTrack t{name, {}, echo};
+    const char* suffix[6] = {"_x", "_y", "_z", "_roll_deg", "_pitch_deg", "_yaw_deg"};
+    bool all = true;
+    for (int k = 0; k < 6; ++k) all = all && (t.col[static_cast<std::size_t>(k)] = ts.col(name + suffix[k])) >= 0;
+    if (all) out.push_back(std::move(t));
+  }
+  return out;
+}
+
 bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, const ReportOptions& opt, json& data,
                     std::string& error) {
   const int ct = ts.col("time");
@@ -359,32 +427,28 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
   data["info"] = jinfo;
   data["body"] = nullptr;
   if (body) {
-    // The body's shapes at their true size, body axes, metres, from the
-    // scenario echo: the load spheres, the hull cylinders and the fins
-    // (`surfaces`, drawn as squares of their area).
-    json spheres = json::array(), cylinders = json::array(), surfaces = json::array();
-    try {
-      const auto& b = sm.at("scenario").at("body");
-      if (b.contains("spheres"))
-        for (const auto& s : b.at("spheres"))
-          spheres.push_back({{"center", s.at("center")}, {"radius", s.at("radius")}});
-      if (b.contains("cylinders"))
-        for (const auto& c : b.at("cylinders"))
-          cylinders.push_back({{"center", c.at("center")},
-                               {"axis", c.at("axis")},
-                               {"length", c.at("length")},
-                               {"diameter", c.at("diameter")}});
-      if (b.contains("surfaces"))
-        for (const auto& f : b.at("surfaces"))
-          surfaces.push_back({{"center", f.at("center")},
-                              {"chord", f.at("chord")},
-                              {"normal", f.at("normal")},
-                              {"area", f.at("area")}});
-    } catch (const std::exception&) {
-      spheres = cylinders = surfaces = json::array();  // no usable echo: one marker sphere (the viewer says so)
+    const json echo = sm.contains("scenario") && sm.at("scenario").contains("body") ? sm.at("scenario").at("body")
+                                                                                    : json();
+    data["body"] = with_pose(jpos, jrpy, body_shapes(echo));
+  }
+  // A network's bodies (`<name>_x`, ..., `<name>_yaw_deg` in timeseries.csv), each with its pose per frame.
+  const std::vector<NetworkBodyTrack> tracks = network_bodies(ts, sm);
+  if (!tracks.empty()) {
+    json bodies = json::array();
+    for (const NetworkBodyTrack& b : tracks) {
+      json pos = json::array(), rpy = json::array();
+      std::size_t wb = 0;
+      for (const auto& f : frames) {
+        while (wb < pick.size() && std::abs(times[pick[wb]] - f.t) > 1e-9 * std::max(1.0, std::abs(f.t))) ++wb;
+        const std::size_t r = wb < pick.size() ? rows[pick[wb]] : rows.back();
+        pos.push_back({jnum(ts.at(r, b.col[0])), jnum(ts.at(r, b.col[1])), jnum(ts.at(r, b.col[2]))});
+        rpy.push_back({jnum(ts.at(r, b.col[3])), jnum(ts.at(r, b.col[4])), jnum(ts.at(r, b.col[5]))});
+      }
+      json one = with_pose(pos, rpy, body_shapes(b.echo));
+      one["name"] = b.name;
+      bodies.push_back(one);
     }
-    data["body"] = {
-        {"pos", jpos}, {"rpy", jrpy}, {"spheres", spheres}, {"cylinders", cylinders}, {"surfaces", surfaces}};
+    data["bodies"] = bodies;
   }
   // The camera's framing: on the cable (and body) of the frame shown, at a
   // distance for the largest extent the cable takes in any frame (the
@@ -406,6 +470,12 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
         add(p[k].get<double>(), p[k + 1].get<double>(), p[k + 2].get<double>());
     if (body && jpos[i][0].is_number() && jpos[i][1].is_number() && jpos[i][2].is_number())
       add(jpos[i][0].get<double>(), jpos[i][1].get<double>(), jpos[i][2].get<double>());
+    if (data.contains("bodies"))
+      for (const auto& b : data["bodies"]) {
+        const auto& q = b["pos"][i];
+        if (q[0].is_number() && q[1].is_number() && q[2].is_number())
+          add(q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
+      }
     if (lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]) {
       centres.push_back(centres.empty() ? std::array<double, 3>{0, 0, 0} : centres.back());
       continue;

@@ -137,48 +137,53 @@ function main() {
     new THREE.MeshLambertMaterial({ color: 0xd62728 }));
   scene.add(tow);
 
-  // The body at its true size (metres, body axes): its load spheres, hull
-  // cylinders and fins (squares of their area); a dot of constant size on
-  // the screen marks where it is when it is too small to see.
-  let body = null, bodyMarker = null, bodyLength = 0, bodyShapes = false;
-  if (data.body) {
-    body = new THREE.Group();
-    const mat = new THREE.MeshLambertMaterial({ color: 0xff7f0e });
-    const finMat = new THREE.MeshLambertMaterial({ color: 0xb85c00, side: THREE.DoubleSide });
-    const B = (p) => v3(p[0], p[1], p[2]);
-    for (const s of data.body.spheres) {
+  // The bodies at their true size (metres, body axes): their load spheres,
+  // hull cylinders and fins (squares of their area); a dot of constant size
+  // on the screen marks where each is when it is too small to see. A chain
+  // has one (data.body), a network any number (data.bodies).
+  const bodyData = data.bodies || (data.body ? [data.body] : []);
+  const mat = new THREE.MeshLambertMaterial({ color: 0xff7f0e });
+  const finMat = new THREE.MeshLambertMaterial({ color: 0xb85c00, side: THREE.DoubleSide });
+  const B = (p) => v3(p[0], p[1], p[2]);
+  function makeBody(d) {
+    const group = new THREE.Group();
+    for (const s of d.spheres) {
       const m = new THREE.Mesh(new THREE.SphereGeometry(s.radius, 24, 16), mat);
       m.position.copy(B(s.center));
-      body.add(m);
+      group.add(m);
     }
-    for (const c of data.body.cylinders) {
+    for (const c of d.cylinders) {
       // CylinderGeometry runs along y: turn y onto the cylinder's axis.
       const m = new THREE.Mesh(new THREE.CylinderGeometry(0.5 * c.diameter, 0.5 * c.diameter, c.length, 24), mat);
       m.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), B(c.axis).normalize());
       m.position.copy(B(c.center));
-      body.add(m);
+      group.add(m);
     }
-    for (const f of data.body.surfaces) {
+    for (const f of d.surfaces) {
       // A square of the fin's area in its plane (chord and normal x chord).
       const side = Math.sqrt(f.area), x = B(f.chord).normalize(), n = B(f.normal).normalize();
       const y = new THREE.Vector3().crossVectors(n, x).normalize();
       const m = new THREE.Mesh(new THREE.PlaneGeometry(side, side), finMat);
       m.quaternion.setFromRotationMatrix(new THREE.Matrix4().makeBasis(x, y, n));
       m.position.copy(B(f.center));
-      body.add(m);
+      group.add(m);
     }
-    bodyShapes = body.children.length > 0;
-    if (!bodyShapes) body.add(new THREE.Mesh(new THREE.SphereGeometry(0.5, 24, 16), mat));  // no shapes: a 1 m ball
-    const size = new THREE.Box3().setFromObject(body).getSize(new THREE.Vector3());
-    // towsim axes of the body (three.js x, y, z = towsim x, z, -y).
-    root.setAttribute('data-body-size', [size.x, size.z, size.y].map((v) => v.toPrecision(6)).join(','));
-    bodyLength = Math.max(size.x, size.y, size.z);
-    body.add(new THREE.AxesHelper(0.75 * bodyLength));  // body axes: x red, y green, z blue (three.js frame)
-    scene.add(body);
+    const shapes = group.children.length > 0;
+    if (!shapes) group.add(new THREE.Mesh(new THREE.SphereGeometry(0.5, 24, 16), mat));  // no shapes: a 1 m ball
+    const size = new THREE.Box3().setFromObject(group).getSize(new THREE.Vector3());
+    const length = Math.max(size.x, size.y, size.z);
+    group.add(new THREE.AxesHelper(0.75 * length));  // body axes: x red, y green, z blue (three.js frame)
+    scene.add(group);
     const dot = new THREE.BufferGeometry().setFromPoints([new THREE.Vector3()]);
-    bodyMarker = new THREE.Points(dot, new THREE.PointsMaterial({ color: 0xff7f0e, size: 7, sizeAttenuation: false }));
-    scene.add(bodyMarker);
+    const marker = new THREE.Points(dot, new THREE.PointsMaterial({ color: 0xff7f0e, size: 7, sizeAttenuation: false }));
+    scene.add(marker);
+    return { d, group, marker, shapes, length, size };
   }
+  const bodies = bodyData.map(makeBody);
+  const body = bodies.length ? bodies[0] : null;
+  // towsim axes of the (first) body (three.js x, y, z = towsim x, z, -y).
+  if (body) root.setAttribute('data-body-size', [body.size.x, body.size.z, body.size.y].map((v) => v.toPrecision(6)).join(','));
+  const bodyShapes = body ? body.shapes : false, bodyLength = body ? body.length : 0;
   const tmax = Math.max(data.tension_max || 0, 1e-12);
   const c = new THREE.Color();
 
@@ -188,7 +193,8 @@ function main() {
   slider.max = String(F - 1);
   const fit = document.getElementById('fit');
   document.getElementById('scale-note').textContent =
-    (body ? (bodyShapes ? `Body drawn at its true size (${bodyLength.toPrecision(3)} m), marked by an orange dot. `
+    (bodies.length > 1 ? `${bodies.length} bodies drawn at their true size, each marked by an orange dot. ` :
+      body ? (bodyShapes ? `Body drawn at its true size (${bodyLength.toPrecision(3)} m), marked by an orange dot. `
       : 'Body: the scenario gives no shape; drawn as a 1 m ball, marked by an orange dot. ') : '') +
     `Cable coloured by tension, 0 to ${tmax.toPrecision(4)} N (dark blue to yellow). ` +
     'The view follows the cable; "Whole run" shows the whole track. Drag to rotate, scroll to zoom.';
@@ -205,11 +211,11 @@ function main() {
     cableGeom.attributes.color.needsUpdate = true;
     cableGeom.computeBoundingSphere();
     tow.position.copy(v3(fr[0], fr[1], fr[2]));
-    if (body) {
-      const b = data.body.pos[i], a = data.body.rpy[i];
-      body.position.copy(v3(b[0], b[1], b[2]));
-      body.quaternion.copy(attitude(a[0], a[1], a[2]));
-      bodyMarker.position.copy(body.position);
+    for (const b of bodies) {
+      const p = b.d.pos[i], a = b.d.rpy[i];
+      b.group.position.copy(v3(p[0], p[1], p[2]));
+      b.group.quaternion.copy(attitude(a[0], a[1], a[2]));
+      b.marker.position.copy(b.group.position);
     }
     if (following) {  // keep the camera where the user turned it, relative to the cable
       const d = centreAt(i).sub(controls.target);

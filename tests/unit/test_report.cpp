@@ -316,6 +316,32 @@ TEST(Report, ANetworkRunBreaksTheDrawnLineBetweenLines) {
       for (std::size_t d = 0; d < 3; ++d)
         EXPECT_NEAR(p[3 * start + d].get<double>(), p[3 * (legs - 1) + d].get<double>(), 1e-3) << start << " " << d;
   }
+  // The fish drawn with its own shapes (a hull cylinder, two fins) at its
+  // pose of each frame: timeseries.csv's fish_x, ..., fish_yaw_deg at that
+  // time (1e-6 relative: the page prints 7 significant digits).
+  ASSERT_TRUE(data.at("body").is_null());
+  const auto& bodies = data.at("bodies");
+  ASSERT_EQ(bodies.size(), 1u);
+  const auto& fish = bodies[0];
+  EXPECT_EQ(fish.at("name"), "fish");
+  EXPECT_EQ(fish.at("cylinders").size(), 1u);
+  EXPECT_EQ(fish.at("surfaces").size(), 2u);
+  const auto ts = towsim::testing::read_csv(dir / "timeseries.csv");
+  const int ct = ts.column("time");
+  const auto& times = data.at("times");
+  ASSERT_EQ(fish.at("pos").size(), times.size());
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    const auto row = std::find_if(ts.rows.begin(), ts.rows.end(), [&](const std::vector<double>& r) {
+      return std::abs(r[static_cast<std::size_t>(ct)] - times[i].get<double>()) < 1e-9;
+    });
+    ASSERT_NE(row, ts.rows.end());
+    const char* cols[6] = {"fish_x", "fish_y", "fish_z", "fish_roll_deg", "fish_pitch_deg", "fish_yaw_deg"};
+    for (std::size_t k = 0; k < 6; ++k) {
+      const double want = (*row)[static_cast<std::size_t>(ts.column(cols[k]))];
+      const double got = (k < 3 ? fish.at("pos")[i][k] : fish.at("rpy")[i][k - 3]).get<double>();
+      EXPECT_NEAR(got, want, 1e-6 * std::max(1.0, std::abs(want))) << cols[k] << " at " << times[i];
+    }
+  }
   fs::remove_all(dir);
 }
 
