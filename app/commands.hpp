@@ -49,6 +49,7 @@ struct StaticsOptions {
   std::optional<double> target_depth;  // --target-depth D: find the deployed length for this depth [m]
   std::string trim_body;               // --trim NAME: find the link point x for the body's pitch ("" = none)
   double trim_pitch = 0;               // --trim-pitch DEG: the pitch --trim looks for [deg]
+  std::string line;                    // --line NAME: a network's line from the vessel that --target-depth varies
 };
 
 /// Load, override, check and compile the scenario named by `in` (exactly one

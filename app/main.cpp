@@ -120,6 +120,9 @@ void add_statics_command(CLI::App& app, int& status) {
                   "Find the link point (link_point x) that gives this body (an in-line body's name, or 'body') "
                   "the pitch of --trim-pitch");
   cmd->add_option("--trim-pitch", opts->trim_pitch, "The pitch --trim looks for [deg] (default 0: level)");
+  cmd->add_option("--line", opts->line,
+                  "A network's line from the vessel whose length --target-depth varies (for the deepest body below "
+                  "it); needed when several lines hang from the vessel");
   cmd->callback([opts, &status] {
     require_one_input(opts->input);
     std::signal(SIGINT, on_stop_signal);

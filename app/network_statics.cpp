@@ -1,6 +1,7 @@
 // `towsim statics` on a network of lines (docs/scenario.md "Statics of a
 // network"): the steady tow at the tow law's final velocity, printed per
 // line, body and junction, and written as a one-sample run with --out.
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -82,18 +83,42 @@ int statics_network(const LoadedScenario& sc, const Network& net, const StaticsO
     err << "towsim: statics: --target-depth must be > 0 (got " << fmt_num(*opts.target_depth) << ")\n";
     return kExitInvalid;
   }
+  int line = -1;
+  if (!opts.line.empty()) {
+    if (!opts.target_depth) {
+      err << "towsim: statics: --line goes with --target-depth (the line whose length it varies)\n";
+      return kExitInvalid;
+    }
+    std::string roots;
+    for (std::size_t i = 0; i < net.line_names.size(); ++i) {
+      if (net.tree.tops[i].line >= 0) continue;
+      roots += (roots.empty() ? "" : ", ") + net.line_names[i];
+      if (net.line_names[i] == opts.line) line = static_cast<int>(i);
+    }
+    if (line < 0) {
+      const auto it = std::find(net.line_names.begin(), net.line_names.end(), opts.line);
+      err << "towsim: statics: --line " << opts.line << ": "
+          << (it == net.line_names.end()
+                  ? "no such line"
+                  : "hangs from " + net.line_from[static_cast<std::size_t>(it - net.line_names.begin())] +
+                        ", not from the vessel")
+          << " (lines from the vessel: " << roots << ")\n";
+      return kExitInvalid;
+    }
+  }
   NetworkSteady st;
   std::optional<NetworkTargetDepth> target;
   try {
     if (opts.target_depth) {
-      target = network_length_for_depth(net, *opts.target_depth, stop_flag);
+      target = network_length_for_depth(net, *opts.target_depth, stop_flag, line);
       if (!target->found)
         throw std::runtime_error("--target-depth " + fmt_num(*opts.target_depth) + ": " + target->message);
       st = target->steady;
       out << std::setprecision(7) << "deployed length of line "
           << net.line_names[static_cast<std::size_t>(target->line)] << " for a depth of " << fmt_num(*opts.target_depth)
-          << " m: " << target->length << " m (deepest " << (net.bodies.empty() ? "line end" : "body") << " at "
-          << target->depth << " m; " << target->evaluations << " steady tows)\n";
+          << " m: " << target->length << " m (deepest " << (net.bodies.empty() ? "line end" : "body")
+          << (line >= 0 ? " below it" : "") << " at " << target->depth << " m; " << target->evaluations
+          << " steady tows)\n";
     } else {
       st = network_statics(net, stop_flag);
     }

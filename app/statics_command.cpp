@@ -176,6 +176,10 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
     return kExitInvalid;
   }
   if (sc.is_network()) return statics_network(sc, *sc.network, opts, out, err, stop_flag);
+  if (!opts.line.empty()) {
+    err << "towsim: statics: --line chooses a network's line (lines:); a single cable has one\n";
+    return kExitInvalid;
+  }
   const Model& model = *sc.model;
   // --target-depth: the deployed length for that depth, and the statics there.
   std::optional<Model> deployed;

@@ -270,9 +270,21 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
 /// network_length_for_depth with target_depth > 0); the nodes a dict of line
 /// name -> joint x component; iterations: the relaxation's steps, residual:
 /// the joints' speed left [m/s]. Values NaN when it fails.
-py::dict statics_network_arrays(const LoadedScenario& sc, double target_depth, py::dict out) {
+py::dict statics_network_arrays(const LoadedScenario& sc, double target_depth, const std::string& line_name,
+                                py::dict out) {
   const Network& net = *sc.network;
   const bool with_target = !std::isnan(target_depth);
+  // The line from the vessel that target_depth varies (-1: the network's one).
+  int line = -1;
+  if (!line_name.empty()) {
+    for (std::size_t i = 0; i < net.line_names.size(); ++i)
+      if (net.line_names[i] == line_name && net.tree.tops[i].line < 0) line = static_cast<int>(i);
+    if (line < 0 || !with_target) {
+      out["errors"] = text("line: " + line_name +
+                           (with_target ? ": no line of that name from the vessel\n" : ": goes with target_depth\n"));
+      return out;
+    }
+  }
   NetworkSteady st;
   std::optional<NetworkTargetDepth> target;
   std::string invalid, message;
@@ -285,7 +297,7 @@ py::dict statics_network_arrays(const LoadedScenario& sc, double target_depth, p
     auto solve = std::async(std::launch::async, [&] {
       try {
         if (with_target) {
-          target = network_length_for_depth(net, target_depth, &stop);
+          target = network_length_for_depth(net, target_depth, &stop, line);
           if (!target->found) throw std::runtime_error(target->message);
           st = target->steady;
         } else {
@@ -342,14 +354,18 @@ py::dict statics_network_arrays(const LoadedScenario& sc, double target_depth, p
 /// With target_depth > 0 (NaN: none), first the deployed length for that depth
 /// (`towsim statics --target-depth`).
 py::dict statics(const std::string& kind, const std::string& source, const std::string& label,
-                 const std::vector<std::string>& sets, double target_depth) {
+                 const std::vector<std::string>& sets, double target_depth, const std::string& line) {
   py::dict out;
   const LoadedScenario sc = load(kind, source, label, sets);
   if (!sc.ok()) {
     out["errors"] = text(sc.diags.str());
     return out;
   }
-  if (sc.is_network()) return statics_network_arrays(sc, target_depth, out);
+  if (sc.is_network()) return statics_network_arrays(sc, target_depth, line, out);
+  if (!line.empty()) {
+    out["errors"] = "line: chooses a network's line (lines:); a single cable has one\n";
+    return out;
+  }
   const Model& model = *sc.model;
   if (model.tow.mode != Tow::Mode::Motion) {
     out["errors"] = "tow.mode: statics needs mode: motion (the steady speed comes from the tow law)\n";
@@ -434,7 +450,7 @@ PYBIND11_MODULE(_towsim, m) {
   m.doc() = "towsim C++ core (use the `towsim` package)";
   m.def("run", &run, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"));
   m.def("statics", &statics, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"),
-        py::arg("target_depth") = std::numeric_limits<double>::quiet_NaN());
+        py::arg("target_depth") = std::numeric_limits<double>::quiet_NaN(), py::arg("line") = "");
   m.def("run_case", &run_case_py, py::arg("kind"), py::arg("source"), py::arg("label"), py::arg("sets"),
         py::arg("out_dir") = "", py::arg("statics") = false);
   m.def("towing_table_columns", &towing_table_columns);

@@ -222,19 +222,24 @@ def run(scenario, overrides=None):
     return result
 
 
-def statics(scenario, overrides=None, target_depth=None):
+def statics(scenario, overrides=None, target_depth=None, line=None):
     """The steady-tow equilibrium at the tow law's final speed (`towsim statics`).
 
     With target_depth [m]: first the deployed cable length that puts the body
     (or the cable end) at that depth (`--target-depth`), in .deployed_length;
-    the equilibrium is then the one at that length.
+    the equilibrium is then the one at that length. For a network with
+    several lines from the vessel, `line` names the one whose length varies
+    (`--line`), for the deepest body below it.
     Returns a StaticsResult; raises ScenarioError for invalid input and
     SimulationError (with .result) when the solver does not converge, and
     Interrupted (with .result, the last iterate) on Ctrl-C."""
     if target_depth is not None and not target_depth > 0:
         raise ScenarioError(f"--target-depth must be > 0 (got {target_depth})")
     args = (*_source(scenario), _sets(overrides))
-    raw = _core.statics(*args) if target_depth is None else _core.statics(*args, float(target_depth))
+    if target_depth is None:
+        raw = _core.statics(*args) if line is None else _core.statics(*args, line=str(line))
+    else:
+        raw = _core.statics(*args, float(target_depth), "" if line is None else str(line))
     if "errors" in raw:
         raise ScenarioError(raw["errors"])
     result = StaticsResult(raw)

@@ -19,7 +19,8 @@ constexpr int kMaxIterations = 40;        // regula falsi steps
 /// One steady tow at length L of line `line`: the depth's miss (> 0: too deep).
 struct Miss {
   const Network& net;
-  int line;
+  int line;   // the line whose length varies
+  int below;  // the depth of what hangs below this line only (-1: the whole network's)
   double depth;
   const volatile int* stop_flag;
   NetworkTargetDepth& out;
@@ -29,7 +30,7 @@ struct Miss {
                                                                         L);
     NetworkSteady st = network_statics(n, stop_flag);
     ++out.evaluations;
-    const double d = deepest_depth(n, st);
+    const double d = deepest_depth(n, st, below);
     out.length = L, out.depth = d, out.network = std::move(n), out.steady = std::move(st);
     return d - depth;
   }
@@ -37,32 +38,48 @@ struct Miss {
 
 }  // namespace
 
-double deepest_depth(const Network& net, const NetworkSteady& st) {
+double deepest_depth(const Network& net, const NetworkSteady& st, int below) {
   NetworkMemorySink mem;
   write_network_steady(net, st, mem);
   const NetworkSample& s = mem.samples.front();
+  // Each line's line from the vessel (lines come after the line they hang from).
+  const TreeModel& tree = net.tree;
+  std::vector<int> root(tree.lines.size());
+  for (std::size_t i = 0; i < root.size(); ++i)
+    root[i] = tree.tops[i].line < 0 ? static_cast<int>(i) : root[static_cast<std::size_t>(tree.tops[i].line)];
+  const auto counted = [&](int line) { return below < 0 || root[static_cast<std::size_t>(line)] == below; };
   double d = -1e300;
+  bool body = false;
   for (const NetworkBody& b : net.bodies)
-    d = std::max(d, -s.lines[static_cast<std::size_t>(b.line)].bodies[static_cast<std::size_t>(b.body)].pos.z());
-  if (net.bodies.empty())
-    for (const Sample& l : s.lines) d = std::max(d, -l.node_pos.back().z());
+    if (counted(b.line)) {
+      body = true;
+      d = std::max(d, -s.lines[static_cast<std::size_t>(b.line)].bodies[static_cast<std::size_t>(b.body)].pos.z());
+    }
+  if (!body)
+    for (std::size_t i = 0; i < s.lines.size(); ++i)
+      if (counted(static_cast<int>(i))) d = std::max(d, -s.lines[i].node_pos.back().z());
   return d;
 }
 
-NetworkTargetDepth network_length_for_depth(const Network& net, double depth, const volatile int* stop_flag) {
+NetworkTargetDepth network_length_for_depth(const Network& net, double depth, const volatile int* stop_flag, int line) {
   NetworkTargetDepth r;
-  for (std::size_t i = 0; i < net.tree.tops.size(); ++i)
+  r.line = line;
+  for (std::size_t i = 0; i < net.tree.tops.size() && line < 0; ++i)
     if (net.tree.tops[i].line < 0) {
       if (r.line >= 0) {
-        r.message = "the network has more than one line from the vessel (--target-depth varies the one line's length)";
+        r.message =
+            "the network has more than one line from the vessel (choose the one whose length varies: --line NAME)";
         return r;
       }
       r.line = static_cast<int>(i);
     }
+  if (r.line < 0 || static_cast<std::size_t>(r.line) >= net.tree.lines.size() ||
+      net.tree.tops[static_cast<std::size_t>(r.line)].line >= 0)
+    throw std::invalid_argument("network_length_for_depth: the line varied must hang from the vessel");
   const Model& top = net.tree.lines[static_cast<std::size_t>(r.line)];
   const double L0 = top.cable.total_length();
   const double below = top.cable.sections.empty() ? 0.0 : L0 - top.cable.sections.front().length;
-  Miss miss{net, r.line, depth, stop_flag, r};
+  Miss miss{net, r.line, line, depth, stop_flag, r};
   try {
     // Bracket: halve (towards the sections below) or double the length.
     double a = L0, fa = miss(a), b = a, fb = fa;

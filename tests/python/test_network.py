@@ -107,3 +107,30 @@ def test_network_sweep_rows_are_its_runs(tmp_path):
     for i, (_, overrides) in enumerate(cases):
         s = towsim.statics(BRIDLE, overrides)
         assert same_printed(s["fish_depth"], f"{steady['final_fish_depth'][i]:.12g}")
+
+
+TWO = """bodies:
+  - {name: a, mass: 50, inertia: [1, 1, 1], link_point: [0, 0, 0.2], points: {top: [0, 0, 0.2]},
+     spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]}
+  - {name: b, mass: 50, inertia: [1, 1, 1], link_point: [0, 0, 0.2], points: {top: [0, 0, 0.2]},
+     spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]}
+lines:
+  - {name: la, from: vessel.p, to: a.top, length: 10, elements: 5, mass_per_length: 1.0, diameter: 0.02}
+  - {name: lb, from: vessel.s, to: b.top, length: 20, elements: 5, mass_per_length: 1.0, diameter: 0.02}
+vessel:
+  tow_points: {p: [0, -5, 0], s: [0, 5, 0]}
+tow: {motion: []}
+simulation: {duration: 10}
+"""
+
+
+def test_network_target_depth_on_a_chosen_line():
+    # Each sphere hangs 0.2 m below its line's end: 14.8 m of line la for 15 m
+    # (2e-3 m: the search's 1 mm), line lb left at its 20 m.
+    s = towsim.statics(TWO, target_depth=15, line="la")
+    assert abs(s.deployed_length - 14.8) < 2e-3
+    assert abs(s["a_depth"] - 15) < 2e-3 and abs(s["lb_deployed_length"] - 20) < 1e-9
+    with pytest.raises(towsim.SimulationError, match="choose the one whose length varies: --line NAME"):
+        towsim.statics(TWO, target_depth=15)
+    with pytest.raises(towsim.ScenarioError, match="line: lc: no line of that name from the vessel"):
+        towsim.statics(TWO, target_depth=15, line="lc")

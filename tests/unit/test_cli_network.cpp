@@ -130,6 +130,43 @@ TEST_F(Cli, BridleTargetDepthIsTheHangingLength) {
   EXPECT_NEAR(L, 15 - std::sqrt(3.0) - 0.2, 2e-3) << r.out;
 }
 
+// Two spheres hung at rest from two tow points: --target-depth with --line
+// varies that line only, for the deepest body below it. Each sphere's
+// origin hangs 0.2 m below its line's end (its link point), so the length
+// for 15 m is 14.8 m, checked to 2e-3 m (the search's 1 mm plus the cable's
+// stretch-free sag: none at rest). Without --line, and with a wrong one,
+// the exact refusals.
+TEST_F(Cli, NetworkTargetDepthVariesTheChosenLine) {
+  const auto file = dir_ / "two.yaml";
+  std::ofstream(file) << R"(bodies:
+  - {name: a, mass: 50, inertia: [1, 1, 1], link_point: [0, 0, 0.2], points: {top: [0, 0, 0.2]},
+     spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]}
+  - {name: b, mass: 50, inertia: [1, 1, 1], link_point: [0, 0, 0.2], points: {top: [0, 0, 0.2]},
+     spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]}
+lines:
+  - {name: la, from: vessel.p, to: a.top, length: 10, elements: 5, mass_per_length: 1.0, diameter: 0.02}
+  - {name: lb, from: vessel.s, to: b.top, length: 20, elements: 5, mass_per_length: 1.0, diameter: 0.02}
+vessel:
+  tow_points: {p: [0, -5, 0], s: [0, 5, 0]}
+tow: {motion: []}
+simulation: {duration: 10}
+)";
+  const auto r = run_towsim("statics " + quoted(file) + " --target-depth 15 --line la");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::string head = "deployed length of line la for a depth of 15 m: ";
+  ASSERT_EQ(r.out.rfind(head, 0), 0u) << r.out;
+  EXPECT_NEAR(std::stod(r.out.substr(head.size())), 14.8, 2e-3) << r.out;
+  EXPECT_NE(r.out.find("(deepest body below it at 15 m;"), std::string::npos) << r.out;
+  const auto none = run_towsim("statics " + quoted(file) + " --target-depth 15");
+  EXPECT_EQ(none.status, 3);
+  EXPECT_EQ(none.out,
+            "towsim: statics: --target-depth 15: the network has more than one line from the vessel (choose the one "
+            "whose length varies: --line NAME)\n");
+  const auto wrong = run_towsim("statics " + quoted(file) + " --target-depth 15 --line lc");
+  EXPECT_EQ(wrong.status, 2);
+  EXPECT_EQ(wrong.out, "towsim: statics: --line lc: no such line (lines from the vessel: la, lb)\n");
+}
+
 // A winch on a network's line runs: the line's pay-out speed in
 // timeseries.csv, the joints' identities in nodes.csv (the winch adds
 // joints at the top), the events counted in summary.json.

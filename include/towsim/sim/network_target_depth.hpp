@@ -23,8 +23,9 @@ struct NetworkTargetDepth {
 };
 
 /// Depth of the network's deepest body origin (or, without bodies, of its
-/// deepest line end) in the steady tow st [m, positive down].
-double deepest_depth(const Network& net, const NetworkSteady& st);
+/// deepest line end) in the steady tow st [m, positive down]; with
+/// `below` >= 0, of those that hang below that line from the vessel.
+double deepest_depth(const Network& net, const NetworkSteady& st, int below = -1);
 
 /// The length of the network's one line from the vessel (its top section's
 /// elements stretched or shortened together, with_deployed_length) for which
@@ -32,6 +33,9 @@ double deepest_depth(const Network& net, const NetworkSteady& st);
 /// 1e-3 m: bracketed by halving or doubling the length, then regula falsi
 /// (Illinois). Not found (with the message) when the network has more than
 /// one line from the vessel, the depth is out of reach, or a steady tow fails.
-NetworkTargetDepth network_length_for_depth(const Network& net, double depth, const volatile int* stop_flag = nullptr);
+/// With `line` >= 0 (a line from the vessel, TreeModel::lines index): that
+/// line's length, for the deepest body (or line end) below it.
+NetworkTargetDepth network_length_for_depth(const Network& net, double depth, const volatile int* stop_flag = nullptr,
+                                            int line = -1);
 
 }  // namespace towsim
