@@ -104,13 +104,25 @@ bool carries(const TreeModel& tree, std::size_t i) {
                      [li](const LoopJoint& j) { return j.line == li || j.node_line == li; });
 }
 
+/// The network's kinetic energy at (y, t): every line's, each line below a
+/// node moving with it (its added mass and the bodies' included) [J].
+double tree_energy(NetworkSystem& sys, const StateVector& y, double t) {
+  const TreeWorkspace& ws = sys.evaluate_tree(y, t);
+  const TreeState& s = sys.evaluated_state();
+  double E = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) E += kinetic_energy(sys.network().tree.lines[i], s[i], ws.lines[i]);
+  return E;
+}
+
 /// Split or remove the top element of every line whose winch is due at t;
 /// y becomes the state of the network derived. A removal's impulse (the
 /// pay-out speed brought back to the winch's) is the line's own, or the
-/// tree's when the line carries more of it.
+/// tree's when the line carries more of it; the energy it takes is then
+/// the whole tree's change.
 void NetworkRig::event(StateVector& y, double t, RunStats& stats) {
   TreeState s;
   system_->tree_state_into(y, s);
+  double energy_before = 0, chains_lost = 0;  // [J]
   auto next = std::make_unique<Network>(current());
   std::vector<Vec3> jump(s.size(), Vec3::Zero());
   std::vector<double> rate(s.size(), 0.0);
@@ -131,25 +143,29 @@ void NetworkRig::event(StateVector& y, double t, RunStats& stats) {
     rate[i] = m.winch.mode == Winch::Mode::Imposed ? winch_kinematics(m.winch, t).rate : payout_rate(m, s[i]);
     Removal r = remove_top(m, s[i], t, rate[i]);
     const bool tree_impulse = carries(current().tree, i) && r.jump != Vec3::Zero();
+    if (tree_impulse && std::all_of(jump.begin(), jump.end(), [](const Vec3& j) { return j == Vec3::Zero(); }))
+      energy_before = tree_energy(*system_, y, t);
     next->tree.lines[i] = std::move(r.model);
     s[i] = tree_impulse ? std::move(r.before_impulse) : std::move(r.state);
     if (tree_impulse) jump[i] = r.jump;
     node_id[i].erase(node_id[i].begin() + 1);
     ++stats.winch_removals;
-    stats.winch_energy_lost += r.energy_lost;
+    chains_lost += r.energy_lost;
   }
   if (!changed) return;
+  const bool tree_impulses = std::any_of(jump.begin(), jump.end(), [](const Vec3& j) { return j != Vec3::Zero(); });
   stats.rhs_evaluations += system_->rhs_evaluations;
   auto sys = std::make_unique<NetworkSystem>(*next);  // before the old network goes: the old system refers to it
   system_ = std::move(sys);
   owned = std::move(next);
   // The removals' impulses through the tree; each such line's pay-out speed then its winch's.
-  if (std::any_of(jump.begin(), jump.end(), [](const Vec3& j) { return j != Vec3::Zero(); })) {
+  if (tree_impulses) {
     system_->sheave_jumps(s, jump);
     for (std::size_t i = 0; i < s.size(); ++i)
       if (jump[i] != Vec3::Zero()) s[i].length_rate[0] = rate[i];
   }
   y = system_->initial_tree(s);
+  stats.winch_energy_lost += tree_impulses ? energy_before - tree_energy(*system_, y, t) : chains_lost;
 }
 
 /// Watches a relaxation's samples: stops it (through `stop`) at the first

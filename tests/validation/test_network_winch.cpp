@@ -177,8 +177,13 @@ void expect_cut_chain_is_the_chain(const std::function<Winch(double)>& winch, co
     }
     df = std::max(df, (up.tow_force - c.tow_force).norm()), sf = std::max(sf, c.tow_force.norm());
   }
-  std::printf("[measured] %s: %ld splits, %ld removals; nodes %.2e, tow force %.2e of their peaks\n", what,
-              st.winch_splits, st.winch_removals, dn / sn, df / sf);
+  std::printf(
+      "[measured] %s: %ld splits, %ld removals; nodes %.2e, tow force %.2e of their peaks; removals' energy %.6g J "
+      "(chain %.6g J)\n",
+      what, st.winch_splits, st.winch_removals, dn / sn, df / sf, st.winch_energy_lost, sc.winch_energy_lost);
+  // The removals' kinetic energy change, the tree's against the chain's:
+  // 1e-6 relative (the states agree to 1e-10, the energies are sums over the tree).
+  EXPECT_NEAR(st.winch_energy_lost, sc.winch_energy_lost, 1e-6 * std::abs(sc.winch_energy_lost) + 1e-12);
   // The same system summed in another order at the junction (1e-12 per
   // evaluation, ChainCutAtAJunctionIsTheSameChain), over the steps of a
   // swinging chain (15000 steps): 1e-9 relative.
