@@ -168,6 +168,38 @@ py::str text(const std::string& s) {
   return py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(s.data(), static_cast<py::ssize_t>(s.size()), "replace"));
 }
 
+/// A run's integration with the GIL released: simulate(progress, stop)
+/// (an exception: a failed run), its wall-clock interval into (t0, t1)
+/// [s, CLOCK_MONOTONIC = Python's time.monotonic()], then estimate(stats, stop)
+/// (the discretisation estimate, after the interval).
+template <class Simulate, class Estimate>
+RunStats integrate(SignalPoll& poll, volatile int& stop, double& t0, double& t1, const Simulate& simulate_run,
+                   const Estimate& estimate) {
+  RunStats stats;
+  py::gil_scoped_release release;
+  t0 = monotonic_seconds();
+  try {
+    stats = simulate_run([&poll](double) { poll(); }, &stop);
+  } catch (const std::exception& e) {
+    stats.status = "failed";
+    stats.message = std::string("internal error: ") + e.what();
+  }
+  t1 = monotonic_seconds();
+  estimate(stats, &stop);
+  return stats;
+}
+
+/// The keys every towsim.run result has after its arrays: the summary,
+/// status, message, Ctrl-C and the integration's interval.
+void put_run_end(py::dict& out, const nlohmann::ordered_json& summary, const RunStats& stats, const SignalPoll& poll,
+                 double t0, double t1) {
+  out["summary"] = json_text(summary);
+  out["status"] = stats.status;
+  out["message"] = text(stats.message);
+  out["keyboard_interrupt"] = poll.interrupted;
+  out["integration_interval"] = py::make_tuple(t0, t1);
+}
+
 /// towsim.run on a network: as a chain's, the nodes a dict of line name ->
 /// time x joint x component.
 py::dict run_network_arrays(const LoadedScenario& sc, py::dict out) {
@@ -176,27 +208,17 @@ py::dict run_network_arrays(const LoadedScenario& sc, py::dict out) {
   NetworkArraySink sink(net, keep_nodes);
   volatile int stop = 0;
   SignalPoll poll(stop);
-  RunStats stats;
-  double t0 = 0, t1 = 0;  // the integration's wall-clock interval [s, CLOCK_MONOTONIC]
   if (net.settings().initial.kind == Initial::Kind::Steady && net.settings().seabed) {
     out["errors"] =
         "initial: steady: a network on a seabed has no steady start yet (its friction is relative to the "
         "bottom; use hanging or {direction: [x, y, z]})\n";
     return out;
   }
-  {
-    py::gil_scoped_release release;
-    t0 = monotonic_seconds();
-    try {
-      stats = simulate_network(
-          net, sink, [&poll](double) { poll(); }, &stop);
-    } catch (const std::exception& e) {
-      stats.status = "failed";
-      stats.message = std::string("internal error: ") + e.what();
-    }
-    t1 = monotonic_seconds();
-    record_network_discretisation_estimate(net, stats, &stop);  // after the integration's interval
-  }
+  double t0 = 0, t1 = 0;
+  const RunStats stats = integrate(
+      poll, stop, t0, t1,
+      [&](const ProgressFn& progress, const volatile int* flag) { return simulate_network(net, sink, progress, flag); },
+      [&](RunStats& st, const volatile int* flag) { record_network_discretisation_estimate(net, st, flag); });
   const auto summary = make_network_summary(to_json(sc.tree), stats, sink, keep_nodes);
   const auto columns = network_timeseries_columns(net);
   const auto rows = static_cast<py::ssize_t>(sink.samples());
@@ -210,11 +232,7 @@ py::dict run_network_arrays(const LoadedScenario& sc, py::dict out) {
   } else {
     out["nodes"] = py::none();
   }
-  out["summary"] = json_text(summary);
-  out["status"] = stats.status;
-  out["message"] = text(stats.message);
-  out["keyboard_interrupt"] = poll.interrupted;
-  out["integration_interval"] = py::make_tuple(t0, t1);
+  put_run_end(out, summary, stats, poll, t0, t1);
   return out;
 }
 
@@ -232,21 +250,11 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
   ArraySink sink(model, model.sim.write_nodes);
   volatile int stop = 0;
   SignalPoll poll(stop);
-  RunStats stats;
-  double t0 = 0, t1 = 0;  // the integration's wall-clock interval [s, CLOCK_MONOTONIC = Python's time.monotonic()]
-  {
-    py::gil_scoped_release release;
-    t0 = monotonic_seconds();
-    try {
-      stats = simulate(
-          model, sink, [&poll](double) { poll(); }, &stop);
-    } catch (const std::exception& e) {
-      stats.status = "failed";
-      stats.message = std::string("internal error: ") + e.what();
-    }
-    t1 = monotonic_seconds();
-    record_discretisation_estimate(model, stats, &stop);  // after the integration's interval
-  }
+  double t0 = 0, t1 = 0;
+  const RunStats stats = integrate(
+      poll, stop, t0, t1,
+      [&](const ProgressFn& progress, const volatile int* flag) { return simulate(model, sink, progress, flag); },
+      [&](RunStats& st, const volatile int* flag) { record_discretisation_estimate(model, st, flag); });
   const auto summary = make_summary(to_json(sc.tree), model.name, stats, sink, model.sim.write_nodes);
   const auto columns = timeseries_columns(model);
   const auto rows = static_cast<py::ssize_t>(sink.samples());
@@ -258,11 +266,7 @@ py::dict run(const std::string& kind, const std::string& source, const std::stri
                                                 static_cast<py::ssize_t>(node_columns(model).size())});
   else
     out["nodes"] = py::none();
-  out["summary"] = json_text(summary);
-  out["status"] = stats.status;
-  out["message"] = text(stats.message);
-  out["keyboard_interrupt"] = poll.interrupted;
-  out["integration_interval"] = py::make_tuple(t0, t1);
+  put_run_end(out, summary, stats, poll, t0, t1);
   return out;
 }
 

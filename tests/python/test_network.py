@@ -12,27 +12,10 @@ from conftest import SOURCE, read_csv, same_printed, towsim_cli
 BRIDLE = SOURCE / "examples" / "bridled-towfish.yaml"
 SHORT = {"simulation.duration": 5}
 
-# A 100 kg sphere of radius 0.2 m hung at rest from a junction by two light
-# legs (a = 2 m, hull points 2b = 2 m apart), as tests/unit/test_cli_network.cpp.
-AT_REST = """bodies:
-  - name: box
-    mass: 100
-    inertia: [10, 10, 10]
-    link_point: [1, 0, 0.2]
-    spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]
-    points: {a: [1, 0, 0.2], b: [-1, 0, 0.2]}
-junctions:
-  - {name: j, mass: 1}
-lines:
-  - {name: main, from: vessel.top, to: j, length: 10, elements: 5, mass_per_length: 1.0, diameter: 0.02}
-  - {name: leg_a, from: j, to: box.a, length: 2, elements: 1, mass_per_length: 0.001, diameter: 0.001}
-  - {name: leg_b, from: j, to: box.b, length: 2, elements: 1, mass_per_length: 0.001, diameter: 0.001}
-vessel:
-  tow_points: {top: [0, 0, 0]}
-tow: {motion: [{type: ramp, direction: [1, 0, 0], speed: 0, ramp_time: 1}]}
-initial: hanging
-simulation: {duration: 60, integrator: rosenbrock, output_interval: 1}
-"""
+# The bridle at rest: a 100 kg sphere of radius 0.2 m hung from a junction
+# by two light legs (a = 2 m, hull points 2b = 2 m apart), as in
+# tests/unit/test_cli_network.cpp.
+AT_REST = (SOURCE / "tests" / "support" / "bridle-at-rest.yaml").read_text()
 # W / (2 cos(asin(b / a))), W the box's apparent weight [N]; the legs weigh
 # 0.02 N in water: the tolerance.
 LEG = (100 - 1025 * 4.0 / 3 * math.pi * 0.008) * 9.81 / (2 * math.cos(math.asin(0.5)))
@@ -109,19 +92,7 @@ def test_network_sweep_rows_are_its_runs(tmp_path):
         assert same_printed(s["fish_depth"], f"{steady['final_fish_depth'][i]:.12g}")
 
 
-TWO = """bodies:
-  - {name: a, mass: 50, inertia: [1, 1, 1], link_point: [0, 0, 0.2], points: {top: [0, 0, 0.2]},
-     spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]}
-  - {name: b, mass: 50, inertia: [1, 1, 1], link_point: [0, 0, 0.2], points: {top: [0, 0, 0.2]},
-     spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]}
-lines:
-  - {name: la, from: vessel.p, to: a.top, length: 10, elements: 5, mass_per_length: 1.0, diameter: 0.02}
-  - {name: lb, from: vessel.s, to: b.top, length: 20, elements: 5, mass_per_length: 1.0, diameter: 0.02}
-vessel:
-  tow_points: {p: [0, -5, 0], s: [0, 5, 0]}
-tow: {motion: []}
-simulation: {duration: 10}
-"""
+TWO = (SOURCE / "tests" / "support" / "two-spheres-at-rest.yaml").read_text()
 
 
 def test_network_target_depth_on_a_chosen_line():

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
@@ -17,29 +18,12 @@ using towsim::testing::run_towsim;
 using towsim::testing::slurp;
 using Cli = towsim::testing::TempDirTest;
 
-// A 100 kg sphere of radius 0.2 m hung at rest from a junction by two light
-// legs (a = 2 m, hull points 2b = 2 m apart): each leg carries
-// W / (2 cos(asin(b/a))), W the sphere's apparent weight. The legs weigh
-// 2 g each: the tolerance 0.02 N is their weight in water.
-const char* kBridleAtRest = R"(bodies:
-  - name: box
-    mass: 100
-    inertia: [10, 10, 10]
-    link_point: [1, 0, 0.2]
-    spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]
-    points: {a: [1, 0, 0.2], b: [-1, 0, 0.2]}
-junctions:
-  - {name: j, mass: 1}
-lines:
-  - {name: main, from: vessel.top, to: j, length: 10, elements: 5, mass_per_length: 1.0, diameter: 0.02}
-  - {name: leg_a, from: j, to: box.a, length: 2, elements: 1, mass_per_length: 0.001, diameter: 0.001}
-  - {name: leg_b, from: j, to: box.b, length: 2, elements: 1, mass_per_length: 0.001, diameter: 0.001}
-vessel:
-  tow_points: {top: [0, 0, 0]}
-tow: {motion: []}
-initial: hanging
-simulation: {duration: 60, integrator: rosenbrock, output_interval: 1}
-)";
+// The bridle at rest (tests/support/bridle-at-rest.yaml): a 100 kg sphere
+// of radius 0.2 m hung from a junction by two light legs (a = 2 m, hull
+// points 2b = 2 m apart): each leg carries W / (2 cos(asin(b/a))), W the
+// sphere's apparent weight. The legs weigh 2 g each: the tolerance 0.02 N
+// is their weight in water.
+const std::string kBridleAtRest = slurp(TOWSIM_SOURCE_DIR "/tests/support/bridle-at-rest.yaml");
 
 /// Each leg's tension of the bridle at rest, W / (2 cos(asin(b/a))) [N],
 /// and its tolerance, the legs' weight in water [N].
@@ -137,20 +121,7 @@ TEST_F(Cli, BridleTargetDepthIsTheHangingLength) {
 // stretch-free sag: none at rest). Without --line, and with a wrong one,
 // the exact refusals.
 TEST_F(Cli, NetworkTargetDepthVariesTheChosenLine) {
-  const auto file = dir_ / "two.yaml";
-  std::ofstream(file) << R"(bodies:
-  - {name: a, mass: 50, inertia: [1, 1, 1], link_point: [0, 0, 0.2], points: {top: [0, 0, 0.2]},
-     spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]}
-  - {name: b, mass: 50, inertia: [1, 1, 1], link_point: [0, 0, 0.2], points: {top: [0, 0, 0.2]},
-     spheres: [{center: [0, 0, 0], radius: 0.2, drag: 1.0, added_mass: 0.5}]}
-lines:
-  - {name: la, from: vessel.p, to: a.top, length: 10, elements: 5, mass_per_length: 1.0, diameter: 0.02}
-  - {name: lb, from: vessel.s, to: b.top, length: 20, elements: 5, mass_per_length: 1.0, diameter: 0.02}
-vessel:
-  tow_points: {p: [0, -5, 0], s: [0, 5, 0]}
-tow: {motion: []}
-simulation: {duration: 10}
-)";
+  const std::filesystem::path file = TOWSIM_SOURCE_DIR "/tests/support/two-spheres-at-rest.yaml";
   const auto r = run_towsim("statics " + quoted(file) + " --target-depth 15 --line la");
   ASSERT_EQ(r.status, 0) << r.out;
   const std::string head = "deployed length of line la for a depth of 15 m: ";

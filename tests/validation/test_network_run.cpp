@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "../support/models.hpp"
+#include "../support/networks.hpp"
 #include "../support/physics.hpp"
 #include "towsim/sim/network_discretisation.hpp"
 #include "towsim/sim/simulate_network.hpp"
@@ -19,24 +20,8 @@ using testing::cable_energy;
 using testing::cable_model;
 using testing::CableSpec;
 using testing::Energy;
-
-/// A network of the given lines and tops, named l0, l1, ...
-Network network_of(std::vector<Model> lines, std::vector<LineTop> tops) {
-  Network net;
-  net.name = "net";
-  net.tree.lines = std::move(lines);
-  net.tree.tops = std::move(tops);
-  for (std::size_t i = 0; i < net.tree.lines.size(); ++i) net.line_names.push_back("l" + std::to_string(i));
-  return net;
-}
-
-/// Fixed-step rk4 settings for a run of `duration` [s] at step h [s].
-void rk4(Model& m, double duration, double h) {
-  m.sim.integrator = Integrator::RK4;
-  m.sim.time_step = h;
-  m.sim.duration = duration;
-  m.sim.output_interval = 0.5;
-}
+using testing::network_of;
+using testing::rk4;
 
 /// Largest |a - b| over the samples' nodes, relative to the largest |a| [-].
 double node_difference(const std::vector<Sample>& a, const std::vector<NetworkSample>& b, std::size_t line) {

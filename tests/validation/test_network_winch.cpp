@@ -12,6 +12,7 @@
 #include <functional>
 
 #include "../support/models.hpp"
+#include "../support/networks.hpp"
 #include "../support/physics.hpp"
 #include "towsim/sim/simulate_network.hpp"
 
@@ -20,25 +21,8 @@ namespace {
 
 using testing::cable_model;
 using testing::CableSpec;
-
-/// A network of the given lines and tops, named l0, l1, ...
-Network network_of(std::vector<Model> lines, std::vector<LineTop> tops, std::vector<LoopJoint> loops = {}) {
-  Network net;
-  net.name = "net";
-  net.tree.lines = std::move(lines);
-  net.tree.tops = std::move(tops);
-  net.tree.loops = std::move(loops);
-  for (std::size_t i = 0; i < net.tree.lines.size(); ++i) net.line_names.push_back("l" + std::to_string(i));
-  return net;
-}
-
-/// Fixed-step rk4 settings for a run of `duration` [s] at step h [s].
-void rk4(Model& m, double duration, double h) {
-  m.sim.integrator = Integrator::RK4;
-  m.sim.time_step = h;
-  m.sim.duration = duration;
-  m.sim.output_interval = 0.5;
-}
+using testing::network_of;
+using testing::rk4;
 
 /// A tension winch on the whole cable of m (n elements over `length` [m]):
 /// set tension T [N], drum inertia M_d [kg], stopped at max_length [m].
