@@ -43,11 +43,11 @@ std::string network_end_line(const Network& net, const RunStats& stats, const Ne
 int run_network(const LoadedScenario& sc, const Network& net, const RunOptions& opts, std::ostream& out,
                 std::ostream& err, const volatile int* stop_flag) {
   // What a network's run does not do yet: refused before anything is written.
-  if (net.settings().initial.kind == Initial::Kind::Steady && net.settings().seabed) {
-    err << "towsim: run: initial: steady: a network on a seabed has no steady start yet (its friction is relative "
-           "to the bottom; use hanging or {direction: [x, y, z]})\n";
-    return kExitInvalid;
-  }
+  if (net.settings().initial.kind == Initial::Kind::Steady)
+    if (const std::string why = network_steady_refusal(net); !why.empty()) {
+      err << "towsim: run: initial: steady: " << why << "\n";
+      return kExitInvalid;
+    }
   if (!create_output_dir(opts.out_dir, err)) return kExitError;
   try {
     const DirLock lock(opts.out_dir);  // one towsim at a time in a directory

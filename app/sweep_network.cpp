@@ -68,8 +68,9 @@ std::vector<std::string> network_figure_names(const Network& net) {
 CaseResult run_network_case(const LoadedScenario& sc, const std::string& out_dir, const volatile int* stop_flag,
                             const ProgressFn& progress) {
   const Network& net = *sc.network;
-  if (net.settings().initial.kind == Initial::Kind::Steady && net.settings().seabed)
-    return {"invalid", "initial: steady: a network on a seabed has no steady start yet", {}, {}};
+  if (net.settings().initial.kind == Initial::Kind::Steady)
+    if (const std::string why = network_steady_refusal(net); !why.empty())
+      return {"invalid", "initial: steady: " + why, {}, {}};
   try {
     const bool nodes = net.settings().sim.write_nodes;
     CaseFiles files(net, out_dir, nodes);

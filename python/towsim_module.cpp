@@ -208,12 +208,11 @@ py::dict run_network_arrays(const LoadedScenario& sc, py::dict out) {
   NetworkArraySink sink(net, keep_nodes);
   volatile int stop = 0;
   SignalPoll poll(stop);
-  if (net.settings().initial.kind == Initial::Kind::Steady && net.settings().seabed) {
-    out["errors"] =
-        "initial: steady: a network on a seabed has no steady start yet (its friction is relative to the "
-        "bottom; use hanging or {direction: [x, y, z]})\n";
-    return out;
-  }
+  if (net.settings().initial.kind == Initial::Kind::Steady)
+    if (const std::string why = network_steady_refusal(net); !why.empty()) {
+      out["errors"] = text("initial: steady: " + why + "\n");
+      return out;
+    }
   double t0 = 0, t1 = 0;
   const RunStats stats = integrate(
       poll, stop, t0, t1,

@@ -36,12 +36,14 @@ SeabedForce Seabed::contact(const Vec3& p, const Vec3& v, double length) const {
   if (!(h < 0) || length <= 0) return f;
   f.length = length;
   const Vec3 n = normal(p.x());
-  // Spring-damper along the normal, never pulling the point down.
-  const double vn = v.dot(n);
+  // Spring-damper along the normal, never pulling the point down (the
+  // velocity relative to the bottom's).
+  const Vec3 vr = v - velocity;
+  const double vn = vr.dot(n);
   const double Fn = length * std::max(0.0, -stiffness * h - damping * vn);
   f.normal = Fn * n;
   // Smoothed Coulomb friction against the slip velocity along the bottom.
-  const Vec3 ut = v - vn * n;
+  const Vec3 ut = vr - vn * n;
   f.friction = -friction * Fn / std::sqrt(ut.squaredNorm() + slip_speed * slip_speed) * ut;
   return f;
 }
@@ -57,7 +59,7 @@ void Seabed::contact_slopes(const Vec3& p, const Vec3& v, double length, const V
   const double fn = std::max(0.0, f.dot(nrm));
   if (friction <= 0 || fn <= 0) return;
   const Mat3 P = Mat3::Identity() - nn;
-  const Vec3 ut = P * v;
+  const Vec3 ut = P * (v - velocity);
   const double q2 = ut.squaredNorm() + slip_speed * slip_speed;
   C += friction * fn / std::sqrt(q2) * (P - ut * ut.transpose() / q2);
 }

@@ -28,9 +28,11 @@ constexpr double kGaussW3[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
 
 }  // namespace
 
-SegmentContact segment_contact(const Seabed& sb, const Vec3& a, const Vec3& va, const Vec3& b, const Vec3& vb,
+SegmentContact segment_contact(const Seabed& sb, const Vec3& a, const Vec3& va_g, const Vec3& b, const Vec3& vb_g,
                                double rest_sink) {
   SegmentContact out;
+  // The ends' velocities relative to the bottom's.
+  const Vec3 va = va_g - sb.velocity, vb = vb_g - sb.velocity;
   const Vec3 d = b - a, dv = vb - va;
   const double L = d.norm();  // [m]
   if (!(L > 0)) return out;

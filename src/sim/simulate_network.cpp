@@ -215,10 +215,60 @@ std::string fmt_g(double x) {
   return buf;
 }
 
+/// A flat bottom seen from the tow moving at V: it moves at -V. At rest
+/// (V = 0) the friction vanishes at the equilibrium and its viscous slope
+/// would only make the lying cable creep: left out. Slipping near the
+/// smoothing speed v_s the same slope makes the lying length creep: a
+/// sharper law, v_s' = |V| / 10, scaled to the same friction at the slip
+/// |V| (the same equilibrium). As the chain's relaxation (docs/theory.md §7).
+void seabed_in_tow_frame(Seabed& sb, const Vec3& V) {
+  constexpr double kSharpSlip = 0.1;  // v_s' / |V| at most [-]
+  const double U = V.norm();
+  sb.velocity = -V;
+  if (!(U > 0)) sb.friction = 0;
+  if (U > 0 && sb.slip_speed > kSharpSlip * U) {
+    const double sharp = kSharpSlip * U;
+    sb.friction *= std::hypot(U, sharp) / std::hypot(U, sb.slip_speed);
+    sb.slip_speed = sharp;
+  }
+}
+
+/// A start that does not cut into a flat bottom: down the tree, each
+/// line's elements hang straight down to the bottom's level, the one that
+/// would pass it slants onto it, and the rest lie on it behind the tow
+/// (along -V, or +x at rest). A line below a body starts from its node's
+/// cable end (the body's size is left to the contact). Nothing changes
+/// without a seabed.
+void lay_on_bottom(const Network& net, const Vec3& V, TreeState& s) {
+  const TreeModel& tree = net.tree;
+  Vec3 back = -Vec3(V.x(), V.y(), 0);
+  back = back.norm() > 0 ? Vec3(back.normalized()) : Vec3::UnitX();
+  std::vector<double> end_z(tree.lines.size(), 0.0);  // each line's cable end [m]
+  for (std::size_t i = 0; i < tree.lines.size(); ++i) {
+    const Model& m = tree.lines[i];
+    const int parent = tree.tops[i].line;
+    double z = parent < 0 ? s[i].r0.z() : end_z[static_cast<std::size_t>(parent)];
+    if (!m.seabed) {
+      for (std::size_t k = 0; k < s[i].e.size(); ++k) z += m.cable.elements[k].length * s[i].e[k].z();
+      end_z[i] = z;
+      continue;
+    }
+    const double bottom = m.seabed->bottom_z(s[i].r0.x());
+    for (std::size_t k = 0; k < s[i].e.size(); ++k) {
+      const double L = m.cable.elements[k].length, drop = std::max(0.0, std::min(L, z - bottom));
+      s[i].e[k] = drop >= L ? Vec3(-Vec3::UnitZ())
+                            : Vec3(std::sqrt(L * L - drop * drop) / L * back - drop / L * Vec3::UnitZ());
+      z -= drop;
+    }
+    end_z[i] = z;
+  }
+}
+
 /// The network seen from its tow points at velocity V: each root line's
 /// tow held at its position at t = 0 turned by `yaw` about the vertical
 /// through the first tow point, the current less V, calm water, the
-/// hanging start, the relaxation's settings, every winch held.
+/// hanging start, the relaxation's settings, every winch held, a flat
+/// bottom moving at -V.
 Network tow_frame(const Network& net, const Vec3& V, double yaw) {
   Network r = net;
   const Eigen::AngleAxisd turn(yaw, Vec3::UnitZ());
@@ -239,6 +289,7 @@ Network tow_frame(const Network& net, const Vec3& V, double yaw) {
     for (Vec3& u : f.current_velocity) u -= V;
     if (m.initial.kind == Initial::Kind::Steady) m.initial.kind = Initial::Kind::Hanging;
     m.winch = Winch{};  // held at its initial deployed length
+    if (m.seabed) seabed_in_tow_frame(*m.seabed, V);
     m.sim.integrator = Integrator::Rosenbrock;
     m.sim.tolerance = 1e-6;
     m.sim.time_step = 0.01;
@@ -248,20 +299,26 @@ Network tow_frame(const Network& net, const Vec3& V, double yaw) {
   return r;
 }
 
-/// What a steady tow of the network needs: every root line in motion mode, no seabed.
+/// What a steady tow of the network needs: every root line in motion mode,
+/// a flat bottom if any (network_steady_refusal).
 void check_steady(const Network& net) {
-  for (std::size_t i = 0; i < net.tree.lines.size(); ++i) {
-    const Model& m = net.tree.lines[i];
-    if (m.seabed)
-      throw std::invalid_argument(
-          "a network on a seabed has no steady tow yet (its friction is relative to the "
-          "bottom; use hanging or {direction: [x, y, z]})");
-    if (net.tree.tops[i].line < 0 && m.tow.mode != Tow::Mode::Motion)
-      throw std::invalid_argument("a steady tow needs tow.mode: motion (the steady velocity comes from the tow law)");
-  }
+  if (std::string why = network_steady_refusal(net); !why.empty()) throw std::invalid_argument(why);
 }
 
 }  // namespace
+
+std::string network_steady_refusal(const Network& net) {
+  for (std::size_t i = 0; i < net.tree.lines.size(); ++i) {
+    const Model& m = net.tree.lines[i];
+    if (m.seabed && std::any_of(m.seabed->depth.begin(), m.seabed->depth.end(),
+                                [&](double d) { return d != m.seabed->depth.front(); }))
+      return "a network's steady tow over a seabed needs a flat bottom (depth: D; a table of depths moves under "
+             "the tow; use hanging or {direction: [x, y, z]})";
+    if (net.tree.tops[i].line < 0 && m.tow.mode != Tow::Mode::Motion)
+      return "a steady tow needs tow.mode: motion (the steady velocity comes from the tow law)";
+  }
+  return {};
+}
 
 NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw, const volatile int* stop_flag,
                                    const TreeState* start) {
@@ -274,6 +331,7 @@ NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw
   SettleSink watch;
   NetworkRig rig(frame, watch);
   TreeState s0 = network_initial_state(frame);
+  if (start == nullptr) lay_on_bottom(frame, V, s0);
   if (start != nullptr) {
     // From the given shape, at rest in the frame; each line's top where the frame puts it.
     for (std::size_t i = 0; i < s0.size(); ++i) {

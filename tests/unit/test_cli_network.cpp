@@ -138,6 +138,28 @@ TEST_F(Cli, NetworkTargetDepthVariesTheChosenLine) {
   EXPECT_EQ(wrong.out, "towsim: statics: --line lc: no such line (lines from the vessel: la, lb)\n");
 }
 
+// A network's steady tow over a bottom that is not flat is refused before
+// anything is written: in the tow's frame a table of depths moves under it.
+TEST_F(Cli, NetworkSteadyOverASlopedBottomIsRefused) {
+  const auto file = dir_ / "sloped.yaml";
+  std::ofstream(file) << R"(lines:
+  - {name: main, from: vessel.top, to: free, length: 80, elements: 8, mass_per_length: 1.0, diameter: 0.02}
+vessel:
+  tow_points: {top: [0, 0, 0]}
+environment:
+  seabed: {depth: [[0, 50], [1000, 60]]}
+tow: {motion: [{type: ramp, direction: [1, 0, 0], speed: 0.5, ramp_time: 0}]}
+initial: steady
+simulation: {duration: 10}
+)";
+  const auto r = run_towsim("run " + quoted(file) + " -o " + quoted(dir_ / "out"));
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_EQ(r.out,
+            "towsim: run: initial: steady: a network's steady tow over a seabed needs a flat bottom (depth: D; a "
+            "table of depths moves under the tow; use hanging or {direction: [x, y, z]})\n");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out" / "timeseries.csv"));
+}
+
 // A winch on a network's line runs: the line's pay-out speed in
 // timeseries.csv, the joints' identities in nodes.csv (the winch adds
 // joints at the top), the events counted in summary.json.

@@ -44,6 +44,11 @@ struct Seabed {
   // segment (segment_contact, MODEL.md 10) [-]. Scenario key
   // environment.seabed.contact: joints | elements.
   bool along_elements = true;
+  // The bottom's own velocity [m/s, R_g]: zero, except where the dynamics
+  // run in a frame that moves over a flat bottom (a network's steady tow,
+  // relaxed in the tow's frame); the contact's damping and friction act on
+  // the velocity relative to it.
+  Vec3 velocity = Vec3::Zero();
 
   /// A flat bottom at depth d [m].
   static Seabed flat(double d, double stiffness = 1e5, double damping = 1e3, double friction = 0.5);

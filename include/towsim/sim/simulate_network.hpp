@@ -54,12 +54,18 @@ inline constexpr double kNetworkRelaxTime = 20000;
 /// Rosenbrock method until every joint moves by less than
 /// kNetworkSettledSpeed; then every line at rest relative to the tow,
 /// moving at V; from `start` instead of hanging when given (network_statics).
-/// Throws std::invalid_argument for what it cannot relax (a
-/// seabed: its friction is relative to the bottom, not to the tow; a tow in
-/// force mode), std::runtime_error when the relaxation fails, is stopped,
+/// Over a flat seabed, the bottom moves at -V in that frame (its friction
+/// and damping act on the velocity relative to it). Throws
+/// std::invalid_argument for what it cannot relax (network_steady_refusal),
+/// std::runtime_error when the relaxation fails, is stopped,
 /// stops decaying (a limit cycle) or does not settle within kNetworkRelaxTime.
 NetworkSteady network_steady_state(const Network& net, const Vec3& V, double yaw,
                                    const volatile int* stop_flag = nullptr, const TreeState* start = nullptr);
+
+/// Why the network has no steady tow to relax to ("" when it has): a
+/// seabed that is not flat (a table of depths moves under the tow), a line
+/// from the vessel in force mode.
+std::string network_steady_refusal(const Network& net);
 
 /// `initial: steady`: the steady tow at the tow law's velocity at t = 0+
 /// (every root line's the same, else std::invalid_argument), tow points as
