@@ -291,6 +291,14 @@ TEST(NetworkSteady, ACableDraggedOverTheBottomIsItsChainsStatics) {
   EXPECT_LT(de, 1e-5);
   EXPECT_LT(df, 1e-5);
   EXPECT_LT(drift, 1e-4);
+  // The element count's share of the error, from two such steady tows,
+  // against the chain's from two Newton statics: 1e-5 absolute, as for the
+  // lines in open water (NetworkDiscretisation.*).
+  const DiscretisationEstimate dc = estimate_discretisation_error(chain), dn = estimate_network_discretisation(net);
+  ASSERT_TRUE(dc.available() && dn.available()) << dc.message << " / " << dn.message;
+  std::printf("[measured] dragged over the bottom: discretisation estimate network %.6e, chain %.6e\n", dn.estimate,
+              dc.estimate);
+  EXPECT_NEAR(dn.estimate, dc.estimate, 1e-5);
 }
 
 // ---------------------------------------------------------------------------

@@ -19,8 +19,9 @@ inline constexpr int kNetworkEstimateMaxElements = 1000;
 /// p = kDiscretisationOrder, T its top tension in the network's steady tow
 /// at the tow law's final velocity (network_statics) with its elements and
 /// with every element of every line halved (refined_model); the largest.
-/// None (with the message) when a steady tow fails or is interrupted, on a
-/// seabed, or above kNetworkEstimateMaxElements elements.
+/// None (with the message) when a steady tow fails or is interrupted (a
+/// bottom that is not flat among the reasons), or above
+/// kNetworkEstimateMaxElements elements.
 DiscretisationEstimate estimate_network_discretisation(const Network& net, const volatile int* stop_flag = nullptr);
 
 /// The estimate into stats.discretisation_error_estimate and its warning
