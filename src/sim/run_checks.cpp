@@ -71,8 +71,10 @@ void check_stall(const Model& model, const Workspace& ws, double t, RunStats& st
       const LiftingSurface& ls = body.surfaces[j];
       const SurfaceFlow f = surface_flow(model.fluid, ls, current_deflection(body, j, ws.body[b], t), t, ws.body[b]);
       if (f.speed < 1e-6 || std::abs(f.alpha) <= ls.stall_angle) continue;
-      const std::string who = (body.inline_body ? "body " + body.name + "'s" : std::string("the body's")) +
-                              " surface " + std::to_string(j);
+      // A body by its name (an in-line body, a network's bodies), a chain's end body ("body") as "the body".
+      const bool named = body.inline_body || body.name != "body";
+      const std::string who = (named ? "body " + body.name + "'s" : std::string("the body's")) + " surface " +
+                              std::to_string(j);
       if (std::any_of(stats.warnings.begin(), stats.warnings.end(),
                       [&](const std::string& w) { return w.rfind(who + " stalled", 0) == 0; }))
         continue;

@@ -160,6 +160,21 @@ simulation: {duration: 10}
   EXPECT_FALSE(std::filesystem::exists(dir_ / "out" / "timeseries.csv"));
 }
 
+// Each of a network's bodies is warned about by its name: the two fish of
+// examples/two-fish-booms.yaml start hanging with the tow under way, and
+// each fish's tail plane stalls at t = 1 s (with the same text for both, the
+// second was taken for a repeat of the first and dropped).
+TEST_F(Cli, EachNetworkBodyIsWarnedAboutByName) {
+  const auto r = run_towsim("run " + quoted(std::filesystem::path(TOWSIM_SOURCE_DIR) / "examples/two-fish-booms.yaml") +
+                            " --set simulation.duration=2 -o " + quoted(dir_ / "out"));
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* fish : {"port_fish", "starboard_fish"})
+    EXPECT_NE(r.out.find(std::string("towsim: warning: body ") + fish + "'s surface 0 stalled at t = 1 s"),
+              std::string::npos)
+        << fish << "\n"
+        << r.out;
+}
+
 // A winch on a network's line runs: the line's pay-out speed in
 // timeseries.csv, the joints' identities in nodes.csv (the winch adds
 // joints at the top), the events counted in summary.json.
