@@ -10,6 +10,10 @@
 //   network/rig_run              the rig below, 600 s towed at 2 m/s
 //                                (rosenbrock, tolerance 5e-4), once; the
 //                                counter x_real_time = simulated / wall time
+//   network/rig_part_run/P       a part of the rig towed alone, the same way:
+//                                P = 0 the main line, 1 the line to the 200 kg
+//                                sphere, 2 that line with its tail (the steps
+//                                each part needs on its own)
 //
 // The rig: a 1200 m main tow (1200 elements of 1 m, the km-cable-1000
 // cable) to a 300 kg junction (a depressor's shackle), an 800 m sensor
@@ -94,8 +98,8 @@ struct CountingSink : NetworkSink {
   void flush() override {}
 };
 
-void BM_rig_run(benchmark::State& state) {
-  const Network net = rig(1200, 800, 1000, 1000);
+/// The network's run once, its counters into `state`.
+void run_once(benchmark::State& state, const Network& net) {
   RunStats stats;
   double wall = 0;
   for (auto _ : state) {
@@ -110,6 +114,32 @@ void BM_rig_run(benchmark::State& state) {
   state.counters["rhs_evaluations"] = static_cast<double>(stats.rhs_evaluations);
 }
 
+void BM_rig_run(benchmark::State& state) { run_once(state, rig(1200, 800, 1000, 1000)); }
+
+/// Part P of the rig alone (see the header), towed as the rig's main line is.
+void BM_rig_part_run(benchmark::State& state) {
+  const Network full = rig(1200, 800, 1000, 1000);
+  Network part = full;
+  const Tow& tow = full.tree.lines[0].tow;
+  switch (state.range(0)) {
+    case 0:  // the main line (its junction at its end)
+      part.tree.lines = {full.tree.lines[0]};
+      part.tree.tops = {LineTop{}};
+      break;
+    case 1:  // the line to the 200 kg sphere
+      part.tree.lines = {full.tree.lines[2]};
+      part.tree.tops = {LineTop{}};
+      break;
+    default:  // that line with its tail
+      part.tree.lines = {full.tree.lines[2], full.tree.lines[3]};
+      part.tree.tops = {LineTop{}, LineTop{0, 0, full.tree.tops[3].point}};
+      break;
+  }
+  part.tree.lines[0].tow = tow;
+  part.line_names.resize(part.tree.lines.size());
+  run_once(state, part);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -117,6 +147,10 @@ int main(int argc, char** argv) {
                   benchmark::RegisterBenchmark("network/chain_evaluation", BM_chain_evaluation)})
     b->Arg(400)->Arg(4000)->Complexity(benchmark::oN)->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("network/rig_run", BM_rig_run)->Iterations(1)->Unit(benchmark::kSecond);
+  benchmark::RegisterBenchmark("network/rig_part_run", BM_rig_part_run)
+      ->DenseRange(0, 2)
+      ->Iterations(1)
+      ->Unit(benchmark::kSecond);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
