@@ -266,13 +266,32 @@ bool chord_frames(const CsvTable& ts, const std::vector<std::size_t>& pick, cons
 }
 
 /// The animation data: frames of node positions and tensions, body pose.
-/// A network's line starts (NodeFrame::line_starts) when every frame has
-/// the same joints and lines; empty for a chain (or frames that differ).
-std::vector<std::size_t> network_starts(const std::vector<NodeFrame>& frames) {
-  const NodeFrame& f0 = frames.front();
+/// A network's frames (NodeFrame::line_starts) when every frame has the same
+/// lines (a winch may change a line's joints from frame to frame): each
+/// line's first joint in each frame, and its fewest joints over the frames.
+struct NetworkLines {
+  std::vector<std::vector<std::size_t>> first;  // per frame, per line: its first joint's index
+  std::vector<std::size_t> fewest;              // per line: its fewest joints in a frame
+  bool empty() const { return fewest.empty(); }
+};
+
+NetworkLines network_lines(const std::vector<NodeFrame>& frames) {
+  NetworkLines out;
+  const std::size_t nl = frames.front().line_starts.size() + 1;
+  if (nl < 2) return out;  // a chain
   for (const NodeFrame& f : frames)
-    if (f.x.size() != f0.x.size() || f.line_starts != f0.line_starts) return {};
-  return f0.line_starts;
+    if (f.line_starts.size() + 1 != nl) return {};
+  out.fewest.assign(nl, static_cast<std::size_t>(-1));
+  for (const NodeFrame& f : frames) {
+    std::vector<std::size_t> first{0};
+    first.insert(first.end(), f.line_starts.begin(), f.line_starts.end());
+    for (std::size_t i = 0; i < nl; ++i) {
+      const std::size_t end = i + 1 < nl ? first[i + 1] : f.x.size();
+      out.fewest[i] = std::min(out.fewest[i], end - first[i]);
+    }
+    out.first.push_back(std::move(first));
+  }
+  return out;
 }
 
 /// A body's shapes at their true size, body axes, metres, from its scenario
@@ -372,21 +391,33 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
   std::size_t n = frames.front().x.size();
   for (const auto& f : frames) n = std::min(n, f.x.size());
   const std::size_t n_keep = spread_indices(n, static_cast<std::size_t>(std::max(2, opt.max_nodes))).size();
-  // A network's lines (the same joints in every frame): each line's joints
-  // spread on their own, and the viewer breaks the drawn line between lines.
-  const std::vector<std::size_t> starts = network_starts(frames);
-  std::vector<std::size_t> network_keep;
-  if (!starts.empty()) {
-    const std::size_t per_line = std::max<std::size_t>(2,
-                                                       static_cast<std::size_t>(opt.max_nodes) / (starts.size() + 1));
+  // A network's lines: each line's joints spread on their own, as many in
+  // every frame (its fewest, within its share of the budget), and the
+  // viewer breaks the drawn line between lines.
+  const NetworkLines lines = network_lines(frames);
+  std::vector<std::size_t> per_line;
+  if (!lines.empty()) {
+    const std::size_t share = std::max<std::size_t>(2, static_cast<std::size_t>(opt.max_nodes) / lines.fewest.size());
     json breaks = json::array();
-    for (std::size_t i = 0; i <= starts.size(); ++i) {
-      const std::size_t a = i == 0 ? 0 : starts[i - 1], b = i < starts.size() ? starts[i] : n;
-      if (i > 0) breaks.push_back(network_keep.size());
-      for (std::size_t k : spread_indices(b - a, per_line)) network_keep.push_back(a + k);
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < lines.fewest.size(); ++i) {
+      per_line.push_back(spread_indices(lines.fewest[i], share).size());
+      if (i > 0) breaks.push_back(kept);
+      kept += per_line.back();
     }
     data["breaks"] = breaks;
   }
+  // Frame j's joints kept: a network's line by line, a chain's n_keep along it.
+  const auto kept_joints = [&](std::size_t j, const NodeFrame& f) {
+    if (lines.empty()) return spread_indices(f.x.size(), n_keep);
+    std::vector<std::size_t> keep;
+    const auto& first = lines.first[j];
+    for (std::size_t i = 0; i < per_line.size(); ++i) {
+      const std::size_t a = first[i], b = i + 1 < first.size() ? first[i + 1] : f.x.size();
+      for (std::size_t k : spread_indices(b - a, per_line[i])) keep.push_back(a + k);
+    }
+    return keep;
+  };
   const bool body = ts.col("body_x") >= 0;
   const int bx = ts.col("body_x"), by = ts.col("body_y"), bz = ts.col("body_z"), br = ts.col("body_roll_deg"),
             bp = ts.col("body_pitch_deg"), byaw = ts.col("body_yaw_deg"), cl = ts.col("layback"),
@@ -395,8 +426,9 @@ bool animation_data(const fs::path& root, const CsvTable& ts, const json& sm, co
        jinfo = json::array();
   double tmax = 0;
   std::size_t w = 0;  // index into `pick` of the frame's timeseries row
-  for (const auto& f : frames) {
-    const auto keep = starts.empty() ? spread_indices(f.x.size(), n_keep) : network_keep;
+  for (std::size_t j = 0; j < frames.size(); ++j) {
+    const NodeFrame& f = frames[j];
+    const auto keep = kept_joints(j, f);
     while (w < pick.size() && std::abs(times[pick[w]] - f.t) > 1e-9 * std::max(1.0, std::abs(f.t))) ++w;
     const std::size_t r = w < pick.size() ? rows[pick[w]] : rows.back();
     json p = json::array(), T = json::array();

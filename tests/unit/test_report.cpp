@@ -345,6 +345,34 @@ TEST(Report, ANetworkRunBreaksTheDrawnLineBetweenLines) {
   fs::remove_all(dir);
 }
 
+// A network whose main line is paid out by its winch: its joints change
+// from frame to frame, yet every frame keeps as many of each line's joints
+// (the line's fewest), so the drawn line breaks at the same places and both
+// legs start at the shackle, the main line's last joint kept, to 1e-3 m.
+TEST(Report, ANetworkRunWithAWinchKeepsItsLinesApart) {
+  const fs::path dir = fresh_dir("report");
+  const auto [rs, ro] = towsim_cli("run '" + std::string(TOWSIM_SOURCE_DIR) +
+                                   "/examples/bridled-towfish.yaml' --set simulation.duration=20 --set "
+                                   "'lines.0.winch={rate: 1.0}' --quiet --out '" +
+                                   dir.string() + "'");
+  ASSERT_EQ(rs, 0) << ro;
+  const std::string nodes = slurp(dir / "nodes.csv");
+  ASSERT_EQ(nodes.rfind("line,time,node,node_id,", 0), 0u);  // the winch's joint identities
+  const auto [status, out] = towsim_cli("report --no-plots '" + dir.string() + "'");
+  ASSERT_EQ(status, 0) << out;
+  const auto data = page_data(slurp(dir / "report.html"));
+  const auto& breaks = data.at("breaks");
+  ASSERT_EQ(breaks.size(), 2u);
+  const std::size_t legs = breaks[0].get<std::size_t>();
+  for (const auto& p : data.at("nodes")) {
+    ASSERT_EQ(p.size() / 3, legs + 4);  // the main line's joints kept, then 2 per leg
+    for (const std::size_t start : {legs, breaks[1].get<std::size_t>()})
+      for (std::size_t d = 0; d < 3; ++d)
+        EXPECT_NEAR(p[3 * start + d].get<double>(), p[3 * (legs - 1) + d].get<double>(), 1e-3) << start << " " << d;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(ReportInBrowser, ANetworkRunRenders) {
   expect_renders_in_chromium("report_network", "--set simulation.duration=20", nullptr,
                              std::string(TOWSIM_SOURCE_DIR) + "/examples/bridled-towfish.yaml");
