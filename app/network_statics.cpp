@@ -89,19 +89,14 @@ int statics_network(const LoadedScenario& sc, const Network& net, const StaticsO
       err << "towsim: statics: --line goes with --target-depth (the line whose length it varies)\n";
       return kExitInvalid;
     }
-    std::string roots;
-    for (std::size_t i = 0; i < net.line_names.size(); ++i) {
-      if (net.tree.tops[i].line >= 0) continue;
-      roots += (roots.empty() ? "" : ", ") + net.line_names[i];
-      if (net.line_names[i] == opts.line) line = static_cast<int>(i);
-    }
-    if (line < 0) {
-      const auto it = std::find(net.line_names.begin(), net.line_names.end(), opts.line);
+    line = net.line_index(opts.line);
+    if (line < 0 || net.tree.tops[static_cast<std::size_t>(line)].line >= 0) {
+      std::string roots;
+      for (std::size_t i = 0; i < net.line_names.size(); ++i)
+        if (net.tree.tops[i].line < 0) roots += (roots.empty() ? "" : ", ") + net.line_names[i];
       err << "towsim: statics: --line " << opts.line << ": "
-          << (it == net.line_names.end()
-                  ? "no such line"
-                  : "hangs from " + net.line_from[static_cast<std::size_t>(it - net.line_names.begin())] +
-                        ", not from the vessel")
+          << (line < 0 ? "no such line"
+                       : "hangs from " + net.line_from[static_cast<std::size_t>(line)] + ", not from the vessel")
           << " (lines from the vessel: " << roots << ")\n";
       return kExitInvalid;
     }

@@ -91,10 +91,8 @@ class NetworkArraySink : public NetworkRecord {
       : NetworkRecord(net), keep_nodes_(nodes), lines_(net.tree.lines.size()) {}
   void write(const NetworkSample& s) override {
     NetworkRecord::write(s);
-    // As written: the time as recorded, every other value tidied (as a chain's last_row()).
-    const std::vector<double>& row = raw_row();
-    series.push_back(row.front());
-    for (std::size_t i = 1; i < row.size(); ++i) series.push_back(tidy(row[i]));
+    const std::vector<double> row = last_row();  // as written
+    series.insert(series.end(), row.begin(), row.end());
     if (!keep_nodes_) return;
     for (std::size_t i = 0; i < s.lines.size(); ++i) {
       std::vector<double> row;
@@ -280,8 +278,8 @@ py::dict statics_network_arrays(const LoadedScenario& sc, double target_depth, c
   // The line from the vessel that target_depth varies (-1: the network's one).
   int line = -1;
   if (!line_name.empty()) {
-    for (std::size_t i = 0; i < net.line_names.size(); ++i)
-      if (net.line_names[i] == line_name && net.tree.tops[i].line < 0) line = static_cast<int>(i);
+    line = net.line_index(line_name);
+    if (line >= 0 && net.tree.tops[static_cast<std::size_t>(line)].line >= 0) line = -1;  // not from the vessel
     if (line < 0 || !with_target) {
       out["errors"] = text("line: " + line_name +
                            (with_target ? ": no line of that name from the vessel\n" : ": goes with target_depth\n"));
@@ -329,8 +327,9 @@ py::dict statics_network_arrays(const LoadedScenario& sc, double target_depth, c
     NetworkMemorySink mem;
     write_network_steady(used, st, mem);
     const NetworkSample& smp = mem.samples.front();
-    network_timeseries_values(used, smp, row);
-    for (std::size_t i = 1; i < row.size(); ++i) row[i] = tidy(row[i]);  // as written
+    NetworkRecord record(used);
+    record.write(smp);
+    row = record.last_row();  // as written
     for (std::size_t i = 0; i < smp.lines.size(); ++i) {
       std::vector<double> v;
       for (std::size_t k = 0; k < smp.lines[i].node_pos.size(); ++k) network_node_values(used, smp.lines[i], k, v);

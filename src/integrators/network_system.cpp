@@ -176,7 +176,7 @@ double NetworkSystem::apply_tow_jump(StateVector& y, double t) {
   // the pay-out speed is a jump dl' e_1 of the top material's velocity);
   // none: nothing to do.
   std::vector<Vec3> dv(rows_.size(), Vec3::Zero()), dsheave(rows_.size(), Vec3::Zero());
-  const bool winches = std::any_of(rows_.begin(), rows_.end(), [](const auto& r) { return r->winch(); });
+  const bool winches = net_.has_winch();
   if (winches) tree_state_into(y, js_close_);
   double size = 0;
   for (std::size_t i = 0; i < rows_.size(); ++i) {

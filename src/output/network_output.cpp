@@ -39,10 +39,6 @@ bool any_breaking_load(const Network& net) {
   });
 }
 
-bool any_winch(const Network& net) {
-  return std::any_of(net.tree.lines.begin(), net.tree.lines.end(), [](const Model& m) { return m.winch.active(); });
-}
-
 bool any_bending(const Network& net) {
   return std::any_of(net.tree.lines.begin(), net.tree.lines.end(), [](const Model& m) { return has_bending(m); });
 }
@@ -132,11 +128,18 @@ void NetworkRecord::write(const NetworkSample& s) {
   network_timeseries_values(net_, s, row_);
 }
 
+std::vector<double> NetworkRecord::last_row() const {
+  std::vector<double> row = row_;
+  for (std::size_t i = 1; i < row.size(); ++i) row[i] = tidy(row[i]);
+  return row;
+}
+
 nlohmann::ordered_json NetworkRecord::final_row() const {
   if (row_.empty()) return nullptr;
   nlohmann::ordered_json j;
   const auto names = network_timeseries_columns(net_);
-  for (std::size_t i = 0; i < names.size() && i < row_.size(); ++i) j[names[i]] = num(i == 0 ? row_[i] : tidy(row_[i]));
+  const std::vector<double> row = last_row();
+  for (std::size_t i = 0; i < names.size() && i < row.size(); ++i) j[names[i]] = num(row[i]);
   return j;
 }
 
@@ -147,7 +150,7 @@ NetworkWriter::NetworkWriter(const std::string& dir, const Network& net, bool wr
   series_->append(h + "\n");
   if (!write_nodes) return;
   nodes_ = std::make_unique<RowFile>((std::filesystem::path(dir) / "nodes.csv").string());
-  h = any_winch(net) ? "line,time,node,node_id" : "line,time,node";
+  h = net.has_winch() ? "line,time,node,node_id" : "line,time,node";
   for (const std::string& c : network_node_columns(net)) h += "," + c;
   nodes_->append(h + "\n");
 }
@@ -164,7 +167,7 @@ void NetworkWriter::write(const NetworkSample& s) {
   // nodes.csv: per line, per node; a column a line lacks is 0.
   if (nodes_ != nullptr) {
     const Network& net = network();
-    const bool ids = any_winch(net);
+    const bool ids = net.has_winch();
     std::string time;
     put_time(time, s.t);
     for (std::size_t i = 0; i < s.lines.size(); ++i) {
@@ -239,7 +242,7 @@ nlohmann::ordered_json make_network_summary(const nlohmann::ordered_json& scenar
   }
   j["extremes"] = e;
   // With winches: their events (all lines), each line's largest top tension against its rating.
-  if (any_winch(net)) {
+  if (net.has_winch()) {
     nlohmann::ordered_json w;
     w["splits"] = stats.winch_splits;
     w["removals"] = stats.winch_removals;

@@ -42,9 +42,7 @@ struct NetworkRig {
   const Network& current() const { return owned ? *owned : net; }
   NetworkSystem& system() const { return *system_; }
   const Simulation& sim() const { return net.settings().sim; }
-  bool winch() const {
-    return std::any_of(net.tree.lines.begin(), net.tree.lines.end(), [](const Model& m) { return m.winch.active(); });
-  }
+  bool winch() const { return net.has_winch(); }
   bool sea() const { return net.settings().fluid.waves != nullptr; }  // waves (a tow point alone gives a vessel)
   double force_scale() const {
     double w = 0;

@@ -5,6 +5,7 @@
 // body reached by a second line) closed by ball joints.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,15 @@ struct Network {
   std::vector<NetworkBody> bodies;  // every body of every line, in tree order
   /// The run's settings (simulation, initial, fluid): those of the first line.
   const Model& settings() const { return tree.lines.front(); }
+  /// True when a line has a winch (only a line from the vessel can).
+  bool has_winch() const {
+    return std::any_of(tree.lines.begin(), tree.lines.end(), [](const Model& m) { return m.winch.active(); });
+  }
+  /// The index of the line named `name` (TreeModel::lines), -1 when none is.
+  int line_index(const std::string& name) const {
+    const auto it = std::find(line_names.begin(), line_names.end(), name);
+    return it == line_names.end() ? -1 : static_cast<int>(it - line_names.begin());
+  }
 };
 
 }  // namespace towsim

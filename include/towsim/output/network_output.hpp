@@ -46,9 +46,11 @@ class NetworkRecord : public NetworkSink {
   long samples() const { return samples_; }
   /// The last row by column name (null before any row).
   nlohmann::ordered_json final_row() const;
+  /// The last row as written: every value tidied but the time (as RunRecord::last_row).
+  std::vector<double> last_row() const;
 
- public:
-  /// The last row as written (before tidy; the time tidied).
+ protected:
+  /// The last row before tidy (the time tidied).
   const std::vector<double>& raw_row() const { return row_; }
 
  private:
