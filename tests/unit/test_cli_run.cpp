@@ -121,7 +121,7 @@ TEST_F(Cli, RosenbrockRunReportsItsErrorEstimate) {
   EXPECT_NE(summary.find("\"warnings\": []"), std::string::npos);
 }
 
-// Without simulation.integrator: rosenbrock (tolerance 1e-5) with the default
+// Without simulation.integrator: rosenbrock (tolerance 1e-4) with the default
 // formulation, rk4 with the paper's; summary.json and towsim check say which.
 TEST_F(Cli, DefaultIntegratorIsReportedBySummaryAndCheck) {
   const std::string base = "--example cable-tow --set simulation.duration=2 --set simulation.write_nodes=false ";
@@ -132,7 +132,7 @@ TEST_F(Cli, DefaultIntegratorIsReportedBySummaryAndCheck) {
   EXPECT_NE(towsim::testing::slurp(paper / "summary.json").find("\"integrator\": \"rk4\""), std::string::npos);
   const CliResult check = run_towsim("check " + base);
   EXPECT_EQ(check.status, 0) << check.out;
-  EXPECT_NE(check.out.find("integrator                  rosenbrock, tolerance 1e-05, no max step\n"), std::string::npos)
+  EXPECT_NE(check.out.find("integrator                  rosenbrock, tolerance 0.0001, no max step\n"), std::string::npos)
       << check.out;
   EXPECT_NE(check.out.find("first step                  0.01 s\n"), std::string::npos) << check.out;
   const CliResult check_paper = run_towsim("check " + base + "--set simulation.formulation=paper");
@@ -220,13 +220,14 @@ TEST_F(Cli, LooseToleranceIsWarned) {
   EXPECT_EQ(tight.out.find("is loose"), std::string::npos) << tight.out;
 }
 
-// Above 3e-4 the time step's share of the tow force's error may pass 0.1 %
-// of its peak (measured with rosenbrock on the shipped examples: up to
-// 8.6e-4 at 3e-4, 3.5e-3 at 1e-3): warned about; 3e-4 is not.
+// Above 1e-4 (the default) the time step's share of the tow force's error
+// may pass 0.1 % of its peak (measured with rosenbrock on the shipped
+// examples: up to 8.4e-4 at 1e-4, 2.8e-3 at 3e-4): warned about; 1e-4 is not.
 TEST_F(Cli, ToleranceAbove01PercentIsWarned) {
   const std::string w =
-      "simulation.tolerance 0.001 is above 0.0003: the time step's error of the tow force may pass 0.1 % of its peak "
-      "(about 3 times the tolerance on the shipped examples); 0.0003 or less keeps it within 0.1 %";
+      "simulation.tolerance 0.001 is above 0.0001: the time step's error of the tow force may pass 0.1 % of its peak "
+      "(up to 28 times the tolerance on the shipped examples at 3e-4); 0.0001 (the default) or less keeps it within "
+      "0.1 %";
   const fs::path out = dir_ / "above";
   const CliResult r = run_towsim(
       "run --example cable-tow --set simulation.duration=1 --set simulation.integrator=rosenbrock "
@@ -237,7 +238,7 @@ TEST_F(Cli, ToleranceAbove01PercentIsWarned) {
   EXPECT_NE(towsim::testing::slurp(out / "summary.json").find("\"" + w + "\""), std::string::npos);
   const CliResult ok = run_towsim(
       "run --example cable-tow --set simulation.duration=1 --set simulation.integrator=rosenbrock "
-      "--set simulation.tolerance=3e-4 --out " +
+      "--set simulation.tolerance=1e-4 --out " +
       quoted(dir_ / "at"));
   EXPECT_EQ(ok.out.find("simulation.tolerance"), std::string::npos) << ok.out;
 }
