@@ -132,7 +132,8 @@ TEST_F(Cli, DefaultIntegratorIsReportedBySummaryAndCheck) {
   EXPECT_NE(towsim::testing::slurp(paper / "summary.json").find("\"integrator\": \"rk4\""), std::string::npos);
   const CliResult check = run_towsim("check " + base);
   EXPECT_EQ(check.status, 0) << check.out;
-  EXPECT_NE(check.out.find("integrator                  rosenbrock, tolerance 0.0001, no max step\n"), std::string::npos)
+  EXPECT_NE(check.out.find("integrator                  rosenbrock, tolerance 0.0001, no max step\n"),
+            std::string::npos)
       << check.out;
   EXPECT_NE(check.out.find("first step                  0.01 s\n"), std::string::npos) << check.out;
   const CliResult check_paper = run_towsim("check " + base + "--set simulation.formulation=paper");
