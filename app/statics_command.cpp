@@ -13,6 +13,7 @@
 #include "towsim/output/dir_lock.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/sim/statics.hpp"
+#include "towsim/sim/touchdown.hpp"
 
 namespace towsim::cli {
 
@@ -241,12 +242,16 @@ int statics_command_impl(const StaticsOptions& opts, std::ostream& out, std::ost
         << body_label(model, b) << ": x = " << trim->link_x << " m (pitch " << trim->pitch_deg << " deg; --set '"
         << set.str() << "')\n";
   }
-  const Model& used = deployed ? *deployed : model;
-  const StaticsResult r = target ? target->statics
-                          : trim ? trim->statics
-                                 : solve_statics(model, final_tow_velocity(model.tow), stop_flag);
+  // Over a flat seabed: the steady tow with a joint at its touchdown.
+  std::optional<TouchdownStatics> td;
+  if (!target && !trim) td = touchdown_statics(model, final_tow_velocity(model.tow), stop_flag);
+  const Model& used = deployed ? *deployed : td ? td->model : model;
+  const StaticsResult r = target ? target->statics : trim ? trim->statics : td->statics;
   const Sample& s = r.sample;
   print_statics(used, r, s, out);
+  if (td && td->split_element >= 0)
+    out << std::setprecision(7) << "  touchdown joint: element " << td->split_element + 1 << " split " << td->split_arc
+        << " m from its top, where the cable meets the bottom (" << used.cable.n() << " elements)\n";
   for (const std::string& w : equilibria_warnings(used, r)) err << "towsim: statics: warning: " << w << "\n";
   if (!opts.out_dir.empty()) {
     std::error_code ec;

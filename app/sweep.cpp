@@ -18,6 +18,7 @@
 #include "towsim/output/dir_lock.hpp"
 #include "towsim/output/output.hpp"
 #include "towsim/sim/discretisation.hpp"
+#include "towsim/sim/touchdown.hpp"
 
 namespace towsim::cli {
 
@@ -241,8 +242,10 @@ CaseResult statics_case(const LoadedScenario& sc, const std::string& out_dir, co
   }
   if (sc.is_network()) return statics_network_case(sc, out_dir, stop_flag);
   try {
-    const Model& model = *sc.model;
-    const StaticsResult r = solve_statics(model, final_tow_velocity(model.tow), stop_flag);
+    // Over a flat seabed with its touchdown joint, as `towsim statics`.
+    const TouchdownStatics td = touchdown_statics(*sc.model, final_tow_velocity(sc.model->tow), stop_flag);
+    const Model& model = td.model;
+    const StaticsResult& r = td.statics;
     std::unique_ptr<RunRecord> rec;
     if (out_dir.empty()) {
       rec = std::make_unique<RunRecord>(model);

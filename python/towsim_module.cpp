@@ -26,6 +26,7 @@
 #include "towsim/sim/network_target_depth.hpp"
 #include "towsim/sim/simulate_network.hpp"
 #include "towsim/sim/statics.hpp"
+#include "towsim/sim/touchdown.hpp"
 
 namespace py = pybind11;
 using namespace towsim;
@@ -368,11 +369,12 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
     out["errors"] = "line: chooses a network's line (lines:); a single cable has one\n";
     return out;
   }
-  const Model& model = *sc.model;
-  if (model.tow.mode != Tow::Mode::Motion) {
+  const Model& given = *sc.model;
+  if (given.tow.mode != Tow::Mode::Motion) {
     out["errors"] = "tow.mode: statics needs mode: motion (the steady speed comes from the tow law)\n";
     return out;
   }
+  std::optional<TouchdownStatics> td;  // without a target depth: the touchdown joint over a flat seabed
   StaticsResult r;
   Sample s;
   TargetDepthResult target;
@@ -384,17 +386,19 @@ py::dict statics(const std::string& kind, const std::string& source, const std::
     py::gil_scoped_release release;
     auto solve = std::async(std::launch::async, [&] {
       if (with_target) {
-        target = length_for_depth(model, final_tow_velocity(model.tow), target_depth, &stop);
+        target = length_for_depth(given, final_tow_velocity(given.tow), target_depth, &stop);
         r = target.statics;
         if (!target.found) r.converged = false, r.message = target.message;
       } else {
-        r = solve_statics(model, final_tow_velocity(model.tow), &stop);
+        td = touchdown_statics(given, final_tow_velocity(given.tow), &stop);
+        r = td->statics;
       }
     });
     while (solve.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready) poll();
     solve.get();
     s = r.sample;
   }
+  const Model& model = td ? td->model : given;
   if (with_target) out["deployed_length"] = target.length;
   std::vector<double> row;
   timeseries_values(model, s, row);

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "towsim/sim/statics.hpp"
+#include "towsim/sim/touchdown.hpp"
 #include "towsim/waves/vessel.hpp"
 
 namespace towsim {
@@ -69,9 +70,11 @@ DiscretisationEstimate estimate_discretisation_error(const Model& model, const v
   const Vec3 V = final_tow_velocity(model.tow);
   d.speed = V.norm();
   d.proxy = needs_steady_proxy(model);
-  // The steady tow with n elements, then with 2n.
-  const StaticsResult coarse = solve_statics(model, V, stop_flag);
-  const StaticsResult fine = coarse.converged ? solve_statics(refined_model(model, 2), V, stop_flag) : StaticsResult{};
+  // The steady tow with n elements, then with 2n (over a flat seabed each
+  // with its touchdown joint, as `towsim statics` and a steady start have it).
+  const StaticsResult coarse = touchdown_statics(model, V, stop_flag).statics;
+  const StaticsResult fine = coarse.converged ? touchdown_statics(refined_model(model, 2), V, stop_flag).statics
+                                              : StaticsResult{};
   d.interrupted = coarse.interrupted || fine.interrupted;
   if (d.interrupted) {
     d.message = "interrupted";
@@ -109,7 +112,7 @@ ElementAdvice advise_elements(const Model& model, const DiscretisationEstimate& 
   int f = 1;
   double T2 = d.refined_tension, est = d.estimate, below = -1;
   while (2 * f <= max_refinement && 4 * f * d.elements <= max_elements) {
-    const StaticsResult r = solve_statics(refined_model(model, 4 * f), V, stop_flag);
+    const StaticsResult r = touchdown_statics(refined_model(model, 4 * f), V, stop_flag).statics;
     if (!r.converged) return a;
     const double T4 = r.tow_force.norm();
     const double next = richardson(T2, T4);

@@ -1,10 +1,12 @@
 // The run loop: integrate, land on output times, check the state, write samples.
 #include "towsim/sim/simulate.hpp"
+#include "towsim/sim/touchdown.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "towsim/dynamics/bending.hpp"
@@ -289,8 +291,10 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
   const auto wall0 = std::chrono::steady_clock::now();
   // A steady start can fail or be interrupted: the run then ends before t = 0.
   PhysicalState s0;
+  std::optional<Model> split;  // a steady start over a flat seabed: the model with its touchdown joint
   if (model.initial.kind == Initial::Kind::Steady) {
-    const StaticsResult st = steady_state(model, stop_flag);
+    TouchdownStatics td = steady_touchdown_state(model, stop_flag);
+    const StaticsResult& st = td.statics;
     if (!st.converged) {
       stats.status = st.interrupted ? "interrupted" : "failed";
       stats.message = st.interrupted ? "interrupted by signal while solving the steady initial state"
@@ -300,11 +304,13 @@ RunStats simulate(const Model& model, OutputSink& sink, const ProgressFn& progre
       return stats;
     }
     s0 = st.state;
+    if (td.split_element >= 0) split = std::move(td.model);
   } else {
     s0 = initial_state(model);
     lean_upright(model, s0);
   }
-  ChainRig rig(model, sink);
+  const Model& run_model = split ? *split : model;
+  ChainRig rig(run_model, sink);
   StateVector y = rig.chain.sys->initial(s0, 0.0);
   if (model.initial.kind != Initial::Kind::Steady) rig.chain.sys->apply_tow_jump(y, 0.0);  // at rest, tow at speed
   rig.chain.sys->project(y, 0.0);

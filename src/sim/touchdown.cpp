@@ -1,0 +1,213 @@
+// The touchdown joint (towsim/sim/touchdown.hpp).
+#include "towsim/sim/touchdown.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace towsim {
+
+namespace {
+
+// A joint this close to the bottom's level, relative to its element's
+// length, lies on it (the contact's rest sink puts a lying axis on the
+// level, to round-off) [-].
+constexpr double kLyingHeight = 1e-7;
+// Bisection of the split ends when its bracket is this short, relative to
+// the element's length: the tension is then within w 1e-6 L of exact [-].
+constexpr double kSplitBracket = 1e-6;
+constexpr int kMaxSolves = 40;  // steady tows per touchdown, at most [-]
+// Neither part of a split element shorter than this of its length: a
+// joint this close above the bottom, or an element this close to lying
+// along the slope above, is left as it is [-].
+constexpr double kShortestPart = 1e-3;
+
+/// Joint k's position P_k, k = 0..n, of state s [m, R_g].
+Vec3 joint(const Model& m, const PhysicalState& s, int k) {
+  Vec3 p = s.r0;
+  for (int i = 0; i < k; ++i) p += s.length_of(m, static_cast<std::size_t>(i)) * s.e[static_cast<std::size_t>(i)];
+  return p;
+}
+
+/// Height of p above the flat bottom [m].
+double height(const Seabed& sb, const Vec3& p) { return p.z() - sb.bottom_z(p.x()); }
+
+/// The first element from the top that reaches from above the bottom (by
+/// more than kLyingHeight of its length) to a joint lying on it; -1: none.
+int crossing_element(const Model& m, const PhysicalState& s) {
+  Vec3 p = s.r0;
+  for (int k = 0; k < m.cable.n(); ++k) {
+    const double L = s.length_of(m, static_cast<std::size_t>(k));
+    const Vec3 q = p + L * s.e[static_cast<std::size_t>(k)];
+    if (height(*m.seabed, p) > kLyingHeight * L && height(*m.seabed, q) <= kLyingHeight * L) return k;
+    p = q;
+  }
+  return -1;
+}
+
+/// Whether element k may be split: rigid, no body at either of its joints.
+bool splittable(const Model& m, int k) {
+  if (m.cable.elements[static_cast<std::size_t>(k)].axial_stiffness > 0) return false;
+  return std::none_of(m.bodies.begin(), m.bodies.end(),
+                      [k](const Body& b) { return b.joint == k || b.joint == k + 1; });
+}
+
+/// What the split needs of the model: a flat bottom felt along elements, no winch.
+bool applies(const Model& m) {
+  if (!m.seabed || !m.seabed->along_elements || m.winch.active()) return false;
+  const std::vector<double>& d = m.seabed->depth;
+  return std::all_of(d.begin(), d.end(), [&](double v) { return v == d.front(); });
+}
+
+/// Elements [first, first + count) of the model remeshed into `lengths`,
+/// the touchdown at joint `touchdown` of the result.
+struct Remesh {
+  int first = 0, count = 0, touchdown = 0;
+  std::vector<double> lengths;  // [m]
+};
+
+/// Whether joint j (between elements j - 1 and j) carries nothing of its
+/// own and both elements are the same section's rigid cable: the two may
+/// be remeshed as one run.
+bool mergeable(const Model& m, int j) {
+  if (j < 1 || j >= m.cable.n()) return false;
+  const auto at_j = [j](const auto& x) { return x.joint == j; };
+  if (std::any_of(m.cable.attachments.begin(), m.cable.attachments.end(), at_j) ||
+      std::any_of(m.bodies.begin(), m.bodies.end(), at_j))
+    return false;
+  for (const Section& sec : m.cable.sections)
+    if (sec.first_element == j) return false;
+  return m.cable.elements[static_cast<std::size_t>(j - 1)].axial_stiffness == 0 &&
+         m.cable.elements[static_cast<std::size_t>(j)].axial_stiffness == 0;
+}
+
+/// The touchdown at arc a along element k (length L): element k split
+/// there, each part shorter than L / 2 shared with its neighbour instead
+/// (the two as equal halves), so that no element is shorter than half its
+/// neighbours (a shorter one would cut rk4's stable step).
+Remesh plan(const Model& m, int k, double a) {
+  const double L = m.cable.elements[static_cast<std::size_t>(k)].length;
+  Remesh r{k, 1, k + 1, {a, L - a}};
+  if (a < 0.5 * L && mergeable(m, k)) {
+    const double up = m.cable.elements[static_cast<std::size_t>(k - 1)].length + a;
+    r = {k - 1, 2, k + 1, {0.5 * up, 0.5 * up, L - a}};
+  } else if (L - a < 0.5 * L && mergeable(m, k + 1)) {
+    const double down = L - a + m.cable.elements[static_cast<std::size_t>(k + 1)].length;
+    r = {k, 2, k + 1, {a, 0.5 * down, 0.5 * down}};
+  }
+  return r;
+}
+
+}  // namespace
+
+Model remesh(const Model& model, int first, int count, const std::vector<double>& lengths) {
+  Model m = model;
+  auto& els = m.cable.elements;
+  const Element like = els[static_cast<std::size_t>(first)];  // the section's element: its properties per metre
+  els.erase(els.begin() + first, els.begin() + first + count);
+  std::vector<Element> parts;
+  parts.reserve(lengths.size());
+  for (double l : lengths) parts.push_back(scaled_element(like, l));
+  els.insert(els.begin() + first, parts.begin(), parts.end());
+  // The section holding the run gets the difference; those below start later; so do the joints below.
+  const int more = static_cast<int>(lengths.size()) - count, last = first + count - 1;
+  for (Section& sec : m.cable.sections) {
+    if (sec.first_element > last)
+      sec.first_element += more;
+    else if (first < sec.first_element + sec.elements)
+      sec.elements += more;
+  }
+  for (Attachment& a : m.cable.attachments)
+    if (a.joint > last) a.joint += more;
+  for (Body& b : m.bodies)
+    if (b.joint > last) b.joint += more;
+  return m;
+}
+
+TouchdownStatics touchdown_statics(const Model& model, const Vec3& V, const volatile int* stop_flag) {
+  return with_touchdown_joint(model, V, solve_statics(model, V, stop_flag), stop_flag);
+}
+
+TouchdownStatics steady_touchdown_state(const Model& model, const volatile int* stop_flag) {
+  TouchdownStatics out = with_touchdown_joint(model, tow_law_kinematics(model.tow, 0.0).vel,
+                                              steady_state(model, stop_flag), stop_flag);
+  // As steady_state: the tow point where and as the tow law has it at t = 0.
+  const TowKinematics k = tow_kinematics(model.tow, 0.0);
+  out.statics.state.r0 = k.pos;
+  out.statics.state.v0 = k.vel;
+  return out;
+}
+
+TouchdownStatics with_touchdown_joint(const Model& model, const Vec3& V, StaticsResult first,
+                                      const volatile int* stop_flag) {
+  TouchdownStatics out{model, std::move(first)};
+  // At rest only: the hanging part then meets the bottom vertically, where a
+  // crossing element is furthest from the cable's shape. A moving tow's
+  // catenary meets it at a shallow angle, the crossing element nearly along
+  // it (its top tension converges at second order without the joint,
+  // docs/validation.md §7), and each of its steady tows is a relaxation.
+  if (V.norm() > 0 || !applies(model) || !out.statics.converged) return out;
+  const PhysicalState& s = out.statics.state;
+  const int k = crossing_element(model, s);
+  if (k < 0 || !splittable(model, k)) return out;
+  const double L = s.length_of(model, static_cast<std::size_t>(k));
+  const double d = height(*model.seabed, joint(model, s, k));  // the upper joint's height [m]
+  // First guess of the touchdown's arc along element k: down the slope of the element above.
+  const Vec3 above = s.e[static_cast<std::size_t>(std::max(k - 1, 0))];
+  const double lo_cap = kShortestPart * L, hi_cap = (1 - kShortestPart) * L;
+  double a = d / std::max(-above.z(), 0.1);
+  // Reaching the bottom along the slope above: the element's lower joint is the touchdown already.
+  if (a >= hi_cap) return out;
+  a = std::clamp(a, lo_cap, hi_cap);
+  // The steady tow with the touchdown at arc a: hovering (above the bottom) or lying.
+  struct Try {
+    bool lying = false;
+    double height = 0, slope = 0;  // the touchdown joint's height [m]; the part above's slope [-]
+    Model model;
+    StaticsResult statics;
+  };
+  int solves = 1;
+  const auto attempt = [&](double arc) {
+    const Remesh r = plan(model, k, arc);
+    Try t{false, 0.0, 0.0, remesh(model, r.first, r.count, r.lengths), {}};
+    t.statics = solve_statics(t.model, V, stop_flag);
+    ++solves;
+    if (!t.statics.converged) return t;
+    t.height = height(*model.seabed, joint(t.model, t.statics.state, r.touchdown));
+    t.slope = -t.statics.state.e[static_cast<std::size_t>(r.touchdown - 1)].z();
+    t.lying = t.height <= kLyingHeight * L;
+    return t;
+  };
+  // Newton on the hovering height down the slope of the part above while
+  // it hovers; once one lies, just short of it (a hanging part that lands
+  // exactly lies there), then bisection between the longest hovering and
+  // the shortest lying part.
+  double lo = 0, hi = L;    // hovering at arc 0 (joint k), lying at L (joint k + 1)
+  std::optional<Try> best;  // the shortest lying part so far
+  while (solves < kMaxSolves && !(stop_flag && *stop_flag)) {
+    Try t = attempt(a);
+    if (!t.statics.converged) return out;
+    const bool lying = t.lying;
+    const double step = t.slope > 0.1 ? t.height / t.slope : -1;
+    if (lying) {
+      hi = a;
+      best = std::move(t);
+    } else {
+      lo = a;
+    }
+    if (hi - lo <= kSplitBracket * L) break;
+    a = lying ? hi - 0.5 * kSplitBracket * L : step >= 0 ? a + step : 0.5 * (lo + hi);
+    if (!(a > lo && a < hi)) a = 0.5 * (lo + hi);
+    a = std::clamp(a, lo_cap, hi_cap);
+  }
+  if (!best || hi < lo_cap || hi > hi_cap) return out;
+  out.model = std::move(best->model);
+  out.statics = std::move(best->statics);
+  out.split_element = k;
+  out.split_arc = hi;
+  return out;
+}
+
+}  // namespace towsim
