@@ -73,9 +73,9 @@ struct Network {
   bool has_winch() const {
     return std::any_of(tree.lines.begin(), tree.lines.end(), [](const Model& m) { return m.winch.active(); });
   }
-  /// The index of the line named `name` (TreeModel::lines), -1 when none is.
-  int line_index(const std::string& name) const {
-    const auto it = std::find(line_names.begin(), line_names.end(), name);
+  /// The index of the line named `line` (TreeModel::lines), -1 when none is.
+  int line_index(const std::string& line) const {
+    const auto it = std::find(line_names.begin(), line_names.end(), line);
     return it == line_names.end() ? -1 : static_cast<int>(it - line_names.begin());
   }
 };
