@@ -163,7 +163,7 @@ void tolerance_warnings(const Simulation& sim, RunStats& stats) {
     // (measured, rosenbrock on the shipped examples: 4.8e-5 to 8.4e-4 at 1e-4, up to 2.8e-3 at 3e-4).
     std::ostringstream os;
     os << "simulation.tolerance " << sim.tolerance << " is above " << kAccurateTolerance
-       << ": the time step's error of the tow force may pass 0.1 % of its peak (up to 28 times the tolerance on "
+       << ": the time step's error of the tow force may pass 0.1 % of its peak (up to 9 times the tolerance on "
           "the shipped examples at 3e-4); "
        << kAccurateTolerance << " (the default) or less keeps it within 0.1 %";
     stats.warnings.push_back(os.str());

@@ -24,25 +24,19 @@ constexpr int kMaxSolves = 40;  // steady tows per touchdown, at most [-]
 // along the slope above, is left as it is [-].
 constexpr double kShortestPart = 1e-3;
 
-/// Joint k's position P_k, k = 0..n, of state s [m, R_g].
-Vec3 joint(const Model& m, const PhysicalState& s, int k) {
-  Vec3 p = s.r0;
-  for (int i = 0; i < k; ++i) p += s.length_of(m, static_cast<std::size_t>(i)) * s.e[static_cast<std::size_t>(i)];
-  return p;
+/// Height of joint j of a steady tow above the flat bottom (its sample's node_pos) [m].
+double height(const Seabed& sb, const StaticsResult& r, int j) {
+  const Vec3& p = r.sample.node_pos[static_cast<std::size_t>(j)];
+  return p.z() - sb.bottom_z(p.x());
 }
 
-/// Height of p above the flat bottom [m].
-double height(const Seabed& sb, const Vec3& p) { return p.z() - sb.bottom_z(p.x()); }
-
-/// The first element from the top that reaches from above the bottom (by
-/// more than kLyingHeight of its length) to a joint lying on it; -1: none.
-int crossing_element(const Model& m, const PhysicalState& s) {
-  Vec3 p = s.r0;
+/// The first element from the top of steady tow r that reaches from above
+/// the bottom (by more than kLyingHeight of its length) to a joint lying
+/// on it; -1: none.
+int crossing_element(const Model& m, const StaticsResult& r) {
   for (int k = 0; k < m.cable.n(); ++k) {
-    const double L = s.length_of(m, static_cast<std::size_t>(k));
-    const Vec3 q = p + L * s.e[static_cast<std::size_t>(k)];
-    if (height(*m.seabed, p) > kLyingHeight * L && height(*m.seabed, q) <= kLyingHeight * L) return k;
-    p = q;
+    const double L = m.cable.elements[static_cast<std::size_t>(k)].length;
+    if (height(*m.seabed, r, k) > kLyingHeight * L && height(*m.seabed, r, k + 1) <= kLyingHeight * L) return k;
   }
   return -1;
 }
@@ -150,10 +144,10 @@ TouchdownStatics with_touchdown_joint(const Model& model, const Vec3& V, Statics
   // docs/validation.md §7), and each of its steady tows is a relaxation.
   if (V.norm() > 0 || !applies(model) || !out.statics.converged) return out;
   const PhysicalState& s = out.statics.state;
-  const int k = crossing_element(model, s);
+  const int k = crossing_element(model, out.statics);
   if (k < 0 || !splittable(model, k)) return out;
-  const double L = s.length_of(model, static_cast<std::size_t>(k));
-  const double d = height(*model.seabed, joint(model, s, k));  // the upper joint's height [m]
+  const double L = model.cable.elements[static_cast<std::size_t>(k)].length;
+  const double d = height(*model.seabed, out.statics, k);  // the upper joint's height [m]
   // First guess of the touchdown's arc along element k: down the slope of the element above.
   const Vec3 above = s.e[static_cast<std::size_t>(std::max(k - 1, 0))];
   const double lo_cap = kShortestPart * L, hi_cap = (1 - kShortestPart) * L;
@@ -175,7 +169,7 @@ TouchdownStatics with_touchdown_joint(const Model& model, const Vec3& V, Statics
     t.statics = solve_statics(t.model, V, stop_flag);
     ++solves;
     if (!t.statics.converged) return t;
-    t.height = height(*model.seabed, joint(t.model, t.statics.state, r.touchdown));
+    t.height = height(*model.seabed, t.statics, r.touchdown);
     t.slope = -t.statics.state.e[static_cast<std::size_t>(r.touchdown - 1)].z();
     t.lying = t.height <= kLyingHeight * L;
     return t;

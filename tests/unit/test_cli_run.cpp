@@ -227,7 +227,7 @@ TEST_F(Cli, LooseToleranceIsWarned) {
 TEST_F(Cli, ToleranceAbove01PercentIsWarned) {
   const std::string w =
       "simulation.tolerance 0.001 is above 0.0001: the time step's error of the tow force may pass 0.1 % of its peak "
-      "(up to 28 times the tolerance on the shipped examples at 3e-4); 0.0001 (the default) or less keeps it within "
+      "(up to 9 times the tolerance on the shipped examples at 3e-4); 0.0001 (the default) or less keeps it within "
       "0.1 %";
   const fs::path out = dir_ / "above";
   const CliResult r = run_towsim(
