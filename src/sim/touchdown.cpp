@@ -11,6 +11,8 @@ namespace towsim {
 
 namespace {
 
+inline std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+
 // A joint this close to the bottom's level, relative to its element's
 // length, lies on it (the contact's rest sink puts a lying axis on the
 // level, to round-off) [-].
@@ -77,20 +79,42 @@ bool mergeable(const Model& m, int j) {
          m.cable.elements[static_cast<std::size_t>(j)].axial_stiffness == 0;
 }
 
-/// The touchdown at arc a along element k (length L): element k split
-/// there, each part shorter than L / 2 shared with its neighbour instead
-/// (the two as equal halves), so that no element is shorter than half its
-/// neighbours (a shorter one would cut rk4's stable step).
-Remesh plan(const Model& m, int k, double a) {
-  const double L = m.cable.elements[static_cast<std::size_t>(k)].length;
-  Remesh r{k, 1, k + 1, {a, L - a}};
-  if (a < 0.5 * L && mergeable(m, k)) {
-    const double up = m.cable.elements[static_cast<std::size_t>(k - 1)].length + a;
-    r = {k - 1, 2, k + 1, {0.5 * up, 0.5 * up, L - a}};
-  } else if (L - a < 0.5 * L && mergeable(m, k + 1)) {
-    const double down = L - a + m.cable.elements[static_cast<std::size_t>(k + 1)].length;
-    r = {k, 2, k + 1, {a, 0.5 * down, 0.5 * down}};
-  }
+/// The run of element k: the elements around it, k's own included, that
+/// mergeable joints join (one section's rigid cable, nothing between them).
+struct Run {
+  int first = 0, last = 0;  // elements [first, last] [-]
+};
+Run run_of(const Model& m, int k) {
+  Run r{k, k};
+  while (mergeable(m, r.first)) --r.first;
+  while (mergeable(m, r.last + 1)) ++r.last;
+  return r;
+}
+
+/// How many elements the run holds above the touchdown at arc a along
+/// element k: the nearest whole number to the run's arc above it, in
+/// elements of k's length; at least 1.
+int elements_above(const Model& m, const Run& run, int k, double a) {
+  double above = a;  // [m]
+  for (int i = run.first; i < k; ++i) above += m.cable.elements[idx(i)].length;
+  return std::max(1, static_cast<int>(std::lround(above / m.cable.elements[idx(k)].length)));
+}
+
+/// The touchdown at arc a along element k: k's run remeshed as `up` equal
+/// elements above the touchdown and the rest of its count in equal
+/// elements below it (at least one). The mesh stays as even as it was:
+/// each element within 1 / (2 up) (above) or 1 / (2 down) (below) of the
+/// run's length, where a split of k alone would leave a part as short as
+/// the touchdown is close to a joint (and a fixed-step run of the dragged
+/// cable goes unstable at a third of the step it takes on an even mesh).
+Remesh plan(const Model& m, const Run& run, int k, double a, int up) {
+  double above = a, below = m.cable.elements[idx(k)].length - a;  // [m]
+  for (int i = run.first; i < k; ++i) above += m.cable.elements[idx(i)].length;
+  for (int i = k + 1; i <= run.last; ++i) below += m.cable.elements[idx(i)].length;
+  const int count = run.last - run.first + 1, down = std::max(1, count - up);
+  Remesh r{run.first, count, run.first + up, {}};
+  r.lengths.assign(idx(up), above / up);
+  r.lengths.insert(r.lengths.end(), idx(down), below / down);
   return r;
 }
 
@@ -162,9 +186,13 @@ TouchdownStatics with_touchdown_joint(const Model& model, const Vec3& V, Statics
     Model model;
     StaticsResult statics;
   };
+  // The run's count above the touchdown, from the first guess: fixed, so
+  // that the mesh moves continuously with the arc in the search below.
+  const Run run = run_of(model, k);
+  const int up = elements_above(model, run, k, a);
   int solves = 1;
   const auto attempt = [&](double arc) {
-    const Remesh r = plan(model, k, arc);
+    const Remesh r = plan(model, run, k, arc, up);
     Try t{false, 0.0, 0.0, remesh(model, r.first, r.count, r.lengths), {}};
     t.statics = solve_statics(t.model, V, stop_flag);
     ++solves;

@@ -76,6 +76,12 @@ TEST(TouchdownJoint, LaidCableHasTopTensionWhAtAnyElementCount) {
     const double T = td.statics.tow_force.norm(), e = std::abs(T - w * 60) / (w * 60);
     worst = std::max(worst, e);
     EXPECT_LT(e, 1e-5) << n << " elements (split element " << td.split_element << ")";
+    // The mesh stays even: the hanging 60 m and the lying 30 m each in
+    // equal elements, as many as the nearest whole number of L in each
+    // (at least 5 on the bottom), so every element within 1/10 of L, and
+    // the count n (n + 1 only with the touchdown in the last element).
+    EXPECT_LE(td.model.cable.n(), n + 1) << n;
+    for (const Element& el : td.model.cable.elements) EXPECT_NEAR(el.length / L, 1.0, 0.1 + 1e-12) << n;
     // Past the touchdown (60 m of arc) every joint lies and carries nothing.
     const Sample& s = td.statics.sample;
     double arc = 0;
@@ -103,7 +109,9 @@ TEST(TouchdownJoint, RunFromTheSteadyStartStaysAtWh) {
   RunStats st;
   const auto samples = testing::run(m, &st);
   ASSERT_EQ(st.status, "ok") << st.message;
-  EXPECT_EQ(samples.front().node_pos.size(), 18U);  // 16 elements and the touchdown joint's
+  // 16 elements still: 11 of 60/11 m down to the touchdown joint, 5 of 6 m on the bottom.
+  ASSERT_EQ(samples.front().node_pos.size(), 17U);
+  EXPECT_NEAR(samples.front().node_pos[11].z(), -60, 1e-6);
   for (const Sample& s : samples) EXPECT_NEAR(s.tow_force.norm(), w * 60, 1e-6 * w * 60) << s.t;
 }
 

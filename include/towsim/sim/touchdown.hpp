@@ -36,10 +36,13 @@ struct TouchdownStatics {
 /// touchdown: the
 /// element that reaches from above the bottom to it is split where the
 /// joint that ends the hanging part lands on the bottom (the shortest upper
-/// part whose lower joint lies, to 1e-6 of the element's length); a part
-/// shorter than half the element is shared with the neighbouring element
-/// (the two as equal halves), so no element is shorter than half the
-/// others. The cable then has one element more. No split:
+/// part whose lower joint lies, to 1e-6 of the element's length). The
+/// element's run (the elements of its section joined by joints that carry
+/// nothing) is remeshed as equal elements above the touchdown and equal
+/// elements below it, as many in all as it had (one more when the
+/// touchdown is in the run's first or last element): the mesh stays even,
+/// each element within half an element's length shared among its part's.
+/// No split:
 /// no seabed, a sloping bottom, contact at joints, an active winch, an
 /// elastic or a body's element, a cable that does not reach the bottom or
 /// already has a joint at its touchdown, or a steady tow that does not
