@@ -8,7 +8,7 @@
 //                                sphere's bottom to a small sphere): tree_forward_dynamics
 //   network/chain_evaluation/N   one chain of N elements: forward_dynamics
 //   network/rig_run              the rig below, 600 s towed at 2 m/s
-//                                (rosenbrock, tolerance 5e-4), once; the
+//                                (rosenbrock at its default tolerance), once; the
 //                                counter x_real_time = simulated / wall time
 //   network/rig_part_run/P       a part of the rig towed alone, the same way:
 //                                P = 0 the main line, 1 the line to the 200 kg
@@ -58,7 +58,7 @@ Network rig(int n0, int n1, int n2, int n3) {
   net.line_names = {"main", "sensor", "fish", "tail"};
   for (Model& m : net.tree.lines) {
     m.sim.integrator = Integrator::Rosenbrock;
-    m.sim.tolerance = 5e-4;
+    m.sim.tolerance = default_tolerance(Integrator::Rosenbrock);
     m.sim.duration = 600;
     m.sim.output_interval = 1;
     m.sim.max_step = std::numeric_limits<double>::infinity();

@@ -130,7 +130,17 @@ void body_load_derivatives(const Fluid& fluid, const Body& body, const BodyWork&
   KO = -d.dM;  // KO = -dM/dtheta
 }
 
-void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& C, Mat3& K) {
+Mat3 body_line_stiffness(const Body& body, const BodyWork& bw, const Vec3& lower_link_force) {
+  Mat3 K = Mat3::Zero();
+  // Each pull on the body f (minus the force on the cable below), arm r from Q.
+  const auto pull = [&](const Vec3& f, const Vec3& r) { K += f.dot(r) * Mat3::Identity() - f * r.transpose(); };
+  if (body.inline_body) pull(-lower_link_force, bw.rQ2 - bw.rQ);
+  for (const BodyChild& ch : bw.children) pull(-(ch.K * ch.a + ch.b), ch.r - bw.rQ);  // f_0 = K a + b on the line
+  return K;
+}
+
+void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& C, Mat3& K,
+                         const Mat3& lines) {
   // Analytic derivatives of the loads (body_load_derivatives).
   Mat6 D;
   Mat3 KO;
@@ -139,7 +149,7 @@ void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& b
   // About Q: the loads' resultant F, carried by the arm O_t - Q, adds
   // -(F.rQ) I + F rQ^T (potential -F.x with x - Q = (x - O_t) - rQ).
   const Vec3& F = bw.Fb;
-  K = psd_part(Mat3(KO - F.dot(bw.rQ) * Mat3::Identity() + F * bw.rQ.transpose()));
+  K = psd_part(Mat3(KO - F.dot(bw.rQ) * Mat3::Identity() + F * bw.rQ.transpose() + lines));
 }
 
 void element_local_jacobian(const Model& model, const Element& el, const Vec3& e, const Vec3& vG, const Vec3& xG,
@@ -229,7 +239,10 @@ void local_jacobian(const Model& model, const PhysicalState& s, const Workspace&
     }
   }
   for (std::size_t b = 0; b < model.bodies.size(); ++b)
-    body_local_jacobian(model.fluid, model.bodies[b], ws.body[b], t, jac.body_damping[b], jac.body_stiffness[b]);
+    body_local_jacobian(model.fluid, model.bodies[b], ws.body[b], t, jac.body_damping[b], jac.body_stiffness[b],
+                        model.sim.line_pull_stiffness
+                            ? body_line_stiffness(model.bodies[b], ws.body[b], ws.acc.lower_link_force[b])
+                            : Mat3::Zero());
   // The bodies' own seabed contact (hull points).
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (model.seabed) {

@@ -160,7 +160,7 @@ void tolerance_warnings(const Simulation& sim, RunStats& stats) {
     stats.warnings.push_back(os.str());
   } else if (sim.integrator != Integrator::RK4 && sim.tolerance > kAccurateTolerance) {
     // Above it the time step's share of the tow force's error may pass 0.1 % of its peak
-    // (measured, rosenbrock on the shipped examples: 4.8e-5 to 8.4e-4 at 1e-4, up to 2.8e-3 at 3e-4).
+    // (measured, rosenbrock on the shipped examples: 4.8e-5 to 7.8e-4 at 1e-4, up to 2.5e-3 at 3e-4).
     std::ostringstream os;
     os << "simulation.tolerance " << sim.tolerance << " is above " << kAccurateTolerance
        << ": the time step's error of the tow force may pass 0.1 % of its peak (up to 9 times the tolerance on "

@@ -60,8 +60,20 @@ Mat6 psd_part(const Mat6& A);
 
 /// Per-part hook, body: damping C (6x6 on v_O, omega_B) and rotational
 /// stiffness K about the link point Q, from body_load_derivatives (symmetric
-/// parts, negative eigenvalues dropped). bw: the body's evaluation.
-void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& C, Mat3& K);
+/// parts, negative eigenvalues dropped). bw: the body's evaluation;
+/// lines: the stiffness about Q of the lines' pull on its points
+/// (body_line_stiffness), added before the negative eigenvalues are dropped.
+void body_local_jacobian(const Fluid& fluid, const Body& body, const BodyWork& bw, double t, Mat6& C, Mat3& K,
+                         const Mat3& lines = Mat3::Zero());
+
+/// The rotational stiffness about the link point Q [N m/rad, R_g] of the
+/// cable below a body (below an in-line body's lower link, the lines of a
+/// tree from its points): turning the body by dtheta moves a point by
+/// dtheta x r (r = point - Q) against the cable's pull f held there, the
+/// second variation of -f.x: (f.r) I - f r^T (as an element's rocking
+/// stiffness -L f_bottom.e). `lower_link_force`: the force on the cable
+/// below an in-line body (Accelerations::lower_link_force).
+Mat3 body_line_stiffness(const Body& body, const BodyWork& bw, const Vec3& lower_link_force);
 
 /// Per-part hook, attachment at a joint: drag damping on the joint's velocity.
 Mat3 attachment_local_damping(const Model& model, const Attachment& a, const Vec3& x, const Vec3& v, double t);

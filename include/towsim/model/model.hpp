@@ -203,7 +203,7 @@ inline Integrator default_integrator(Formulation f) {
 /// The tolerance a scenario gets when it names none [-]: 1e-4 for
 /// rosenbrock, the default accuracy (docs/scenario.md "Accuracy: the time
 /// step's share"): every line's tow force within 0.1 % of its peak on the
-/// shipped examples and benchmark scenarios (measured 4.8e-5 to 8.4e-4);
+/// shipped examples and benchmark scenarios (measured 4.8e-5 to 7.8e-4);
 /// 1e-6 for dopri5 and cash_karp54 (whose error control sees only the
 /// state); rk4 does not use it.
 inline double default_tolerance(Integrator i) { return i == Integrator::Rosenbrock ? 1e-4 : 1e-6; }
@@ -222,6 +222,11 @@ struct Simulation {
   bool write_nodes = true;       // write nodes.csv
   double statistics_start = -1;  // sea-state statistics from this time; < 0: half the duration [s]
   int threads = 0;               // >= 1; 0: auto (evaluation_threads, towsim/integrators/system.hpp) [-]
+  // The stage solve's W takes the pull of the cable below a body (in-line,
+  // or a tree's lines from its points) into its rotational stiffness
+  // (body_line_stiffness); the statics' Newton-Krylov preconditioner leaves
+  // it out (docs/theory.md §6.3). No scenario key.
+  bool line_pull_stiffness = true;
 };
 
 /// The whole compiled system: a chain of linked parts from the tow point
