@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <iostream>
+#include <numbers>
 #include <vector>
 
 #include "../support/models.hpp"
@@ -34,7 +35,7 @@ Network sphere_with_tail(const Vec3& p, bool line_pull = true) {
   Model top = testing::cable_model(cs), tail = testing::cable_model(cs);
   testing::add_sphere_body(top, 200, 0.3);
   testing::add_sphere_body(tail);
-  const double w = (cs.mass_per_length - kRho * M_PI / 4 * cs.diameter * cs.diameter) * kG;  // [N/m]
+  const double w = (cs.mass_per_length - kRho * std::numbers::pi / 4 * cs.diameter * cs.diameter) * kG;  // [N/m]
   const Body& end = tail.bodies.front();
   const double pull = w * cs.length + (end.mass - kRho * end.displaced_volume) * kG;  // the tail's [N]
   Body& b = top.bodies.front();
@@ -74,7 +75,8 @@ double rotation_mismatch(const Network& net) {
   const Eigen::MatrixXd Wf = (Eigen::MatrixXd::Identity(M, M) - S.inverse()) / hg;
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(at(N), at(N));
   for (Eigen::Index i = 0; i < M; ++i)
-    for (Eigen::Index j = 0; j < M; ++j) W(at(free[static_cast<std::size_t>(i)]), at(free[static_cast<std::size_t>(j)])) = Wf(i, j);
+    for (Eigen::Index j = 0; j < M; ++j)
+      W(at(free[static_cast<std::size_t>(i)]), at(free[static_cast<std::size_t>(j)])) = Wf(i, j);
   const Quat q(y[ob], y[ob + 1], y[ob + 2], y[ob + 3]);
   double num = 0, den = 0;
   const double eps = 1e-7;
