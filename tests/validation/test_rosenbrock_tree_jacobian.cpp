@@ -90,9 +90,9 @@ double rotation_mismatch(const Network& net) {
     sys.derivative(yp, fp, 0.0, StepWindow{});
     sys.derivative(ym, fm, 0.0, StepWindow{});
     const Eigen::VectorXd Wx = W * x;
-    for (std::size_t r = ob + 4; r < ob + 7; ++r) {
-      const double jx = (fp[r] - fm[r]) / (2 * eps);
-      num += (Wx[at(r)] - jx) * (Wx[at(r)] - jx);
+    for (std::size_t row = ob + 4; row < ob + 7; ++row) {
+      const double jx = (fp[row] - fm[row]) / (2 * eps);
+      num += (Wx[at(row)] - jx) * (Wx[at(row)] - jx);
       den += jx * jx;
     }
   }
