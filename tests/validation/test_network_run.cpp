@@ -342,6 +342,25 @@ TEST(NetworkDiscretisation, LinesJoinedOnlyThroughTheVesselGiveTheirChainsEstima
   EXPECT_EQ(dn.elements, 16);
 }
 
+// Above kNetworkEstimateMaxElements elements in all the estimate is not
+// made (its relaxations' cost grows as the square of the count), and says
+// so: two lines of 126 elements, 252 in all.
+TEST(NetworkDiscretisation, LargeNetworkIsNotEstimatedAndSaysWhy) {
+  Model a = cable_model(testing::paper52_cable(126, 126));
+  a.tow.mode = Tow::Mode::Motion;
+  a.tow.pieces = {testing::ramp_piece(Vec3::UnitX(), 1.5, 0.0)};
+  finalize_tow(a.tow);
+  Model b = a;
+  b.tow.start = Vec3(0, 5, 0);
+  finalize_tow(b.tow);
+  const DiscretisationEstimate d = estimate_network_discretisation(network_of({a, b}, {LineTop{}, LineTop{}}));
+  EXPECT_FALSE(d.available());
+  EXPECT_EQ(d.elements, 252);
+  EXPECT_EQ(d.message,
+            "not made above 250 elements (this network has 252; its two steady tows by relaxation would cost more "
+            "than the run: towsim statics on the network with its elements doubled gives the refined tensions)");
+}
+
 // ---------------------------------------------------------------------------
 // A jump of the tow velocity on a tree with nodes (NetworkSystem's
 // apply_tow_jump: the tree's impulsive response) against the dynamics: the
