@@ -224,8 +224,9 @@ struct Simulation {
   int threads = 0;               // >= 1; 0: auto (evaluation_threads, towsim/integrators/system.hpp) [-]
   // The stage solve's W takes the pull of the cable below a body (in-line,
   // or a tree's lines from its points) into its rotational stiffness
-  // (body_line_stiffness); the statics' Newton-Krylov preconditioner leaves
-  // it out (docs/theory.md §6.3). No scenario key.
+  // (body_line_stiffness); the statics' relaxation and Newton-Krylov, which
+  // use the stage solve for their path, leave it out (docs/theory.md §6.3).
+  // No scenario key.
   bool line_pull_stiffness = true;
 };
 

@@ -32,9 +32,9 @@ bool newton_krylov(SteadyProblem& p, double floor, const volatile int* stop_flag
   constexpr double kCompression = 1e-9;  // an element's compression beyond round-off, of its forces [-]
   Model rm = p.model;
   rm.sim.formulation = Formulation::Default;
-  // The bodies' own stiffness only: with the pull of the cable below in it,
-  // the preconditioner led a depressor resting on the bottom away from its
-  // root (docs/theory.md §6.3).
+  // The bodies' own stiffness only, as in the relaxation (relax): with the
+  // pull of the cable below in W, a depressor resting on the bottom rolled
+  // over on the way to its steady state (docs/theory.md §6.3).
   rm.sim.line_pull_stiffness = false;
   const double U = p.V.norm();
   rm.tow.pieces.clear();

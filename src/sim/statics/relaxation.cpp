@@ -43,7 +43,9 @@ void relax(SteadyProblem& p, double target, const volatile int* stop_flag) {
   rm.tow.pieces.clear();
   if (U > 0) rm.tow.pieces.emplace_back(Ramp{p.V / U, U, 0.0});
   finalize_tow(rm.tow);
-  // The bodies' own stiffness only in W, as in newton_krylov (docs/theory.md §6.3).
+  // The bodies' own stiffness only in W: with the pull of the cable below
+  // in it, a depressor resting on the bottom rolled over on the way
+  // (docs/theory.md §6.3).
   rm.sim.line_pull_stiffness = false;
   const std::unique_ptr<System> sys = make_system(rm);
   if (!sys->has_stage_solve()) return;
