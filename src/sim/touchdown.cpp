@@ -91,13 +91,18 @@ Run run_of(const Model& m, int k) {
   return r;
 }
 
+/// The run's arc from its top to the touchdown at arc a along element k [m].
+double arc_above(const Model& m, const Run& run, int k, double a) {
+  double above = a;
+  for (int i = run.first; i < k; ++i) above += m.cable.elements[idx(i)].length;
+  return above;
+}
+
 /// How many elements the run holds above the touchdown at arc a along
 /// element k: the nearest whole number to the run's arc above it, in
 /// elements of k's length; at least 1.
 int elements_above(const Model& m, const Run& run, int k, double a) {
-  double above = a;  // [m]
-  for (int i = run.first; i < k; ++i) above += m.cable.elements[idx(i)].length;
-  return std::max(1, static_cast<int>(std::lround(above / m.cable.elements[idx(k)].length)));
+  return std::max(1, static_cast<int>(std::lround(arc_above(m, run, k, a) / m.cable.elements[idx(k)].length)));
 }
 
 /// The touchdown at arc a along element k: k's run remeshed as `up` equal
@@ -108,8 +113,8 @@ int elements_above(const Model& m, const Run& run, int k, double a) {
 /// the touchdown is close to a joint (and a fixed-step run of the dragged
 /// cable goes unstable at a third of the step it takes on an even mesh).
 Remesh plan(const Model& m, const Run& run, int k, double a, int up) {
-  double above = a, below = m.cable.elements[idx(k)].length - a;  // [m]
-  for (int i = run.first; i < k; ++i) above += m.cable.elements[idx(i)].length;
+  const double above = arc_above(m, run, k, a);        // [m]
+  double below = m.cable.elements[idx(k)].length - a;  // [m]
   for (int i = k + 1; i <= run.last; ++i) below += m.cable.elements[idx(i)].length;
   const int count = run.last - run.first + 1, down = std::max(1, count - up);
   Remesh r{run.first, count, run.first + up, {}};

@@ -53,16 +53,30 @@ inline void rk4_step(System& sys, StateVector& y, double t, double h, Rk4Scratch
 /// so W = (I - S^-1) / hg, S's columns the solves of unit right-hand sides
 /// (N the flat state's size). Uses the Jacobian point of the last
 /// sys.prepare_stage_solve().
-inline Eigen::MatrixXd stage_W(System& sys, std::size_t N, double hg) {
-  Eigen::MatrixXd S(N, N);
+/// `held`: rows the solve never moves (a network line's top rows below a
+/// node: zero in every solve), left out of S; their rows and columns of W
+/// are zero.
+inline Eigen::MatrixXd stage_W(System& sys, std::size_t N, double hg, const std::vector<std::size_t>& held = {}) {
+  std::vector<std::size_t> free;
+  for (std::size_t i = 0; i < N; ++i)
+    if (std::find(held.begin(), held.end(), i) == held.end()) free.push_back(i);
+  const auto M = static_cast<Eigen::Index>(free.size());
+  const auto at = [&free](Eigen::Index i) { return free[static_cast<std::size_t>(i)]; };
+  Eigen::MatrixXd S(M, M);
   StateVector r(N), k(N);
-  for (std::size_t j = 0; j < N; ++j) {
+  for (Eigen::Index j = 0; j < M; ++j) {
     std::fill(r.begin(), r.end(), 0.0);
-    r[j] = 1;
+    r[at(j)] = 1;
     sys.stage_solve(hg, r, k);
-    for (std::size_t i = 0; i < N; ++i) S(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = k[i];
+    for (Eigen::Index i = 0; i < M; ++i) S(i, j) = k[at(i)];
   }
-  return (Eigen::MatrixXd::Identity(S.rows(), S.cols()) - S.inverse()) / hg;
+  const Eigen::MatrixXd Wf = (Eigen::MatrixXd::Identity(M, M) - S.inverse()) / hg;
+  if (held.empty()) return Wf;
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(N));
+  for (Eigen::Index i = 0; i < M; ++i)
+    for (Eigen::Index j = 0; j < M; ++j)
+      W(static_cast<Eigen::Index>(at(i)), static_cast<Eigen::Index>(at(j))) = Wf(i, j);
+  return W;
 }
 
 /// The elements' tangent coordinates of a flat state y (n elements; the

@@ -15,6 +15,7 @@
 
 #include "../support/models.hpp"
 #include "../support/networks.hpp"
+#include "../support/rosenbrock.hpp"
 #include "towsim/integrators/network_system.hpp"
 
 namespace towsim {
@@ -57,26 +58,10 @@ double rotation_mismatch(const Network& net) {
   sys.derivative(y, f, 0.0, StepWindow{});
   sys.prepare_stage_solve(0.0, StepWindow{});
   const auto at = [](std::size_t i) { return static_cast<Eigen::Index>(i); };
-  // W = (I - S^-1) / hg on the rows the stage solve moves: the tail's top
-  // rows are its node's (held, zero in every solve), so S is taken without them.
-  const double hg = 0.01;
-  std::vector<std::size_t> free;
-  for (std::size_t i = 0; i < N; ++i)
-    if (i < sys.offset(1) || i >= sys.offset(1) + 6) free.push_back(i);
-  const auto M = at(free.size());
-  Eigen::MatrixXd S(M, M);
-  StateVector r(N), k(N);
-  for (Eigen::Index j = 0; j < M; ++j) {
-    std::fill(r.begin(), r.end(), 0.0);
-    r[free[static_cast<std::size_t>(j)]] = 1;
-    sys.stage_solve(hg, r, k);
-    for (Eigen::Index i = 0; i < M; ++i) S(i, j) = k[free[static_cast<std::size_t>(i)]];
-  }
-  const Eigen::MatrixXd Wf = (Eigen::MatrixXd::Identity(M, M) - S.inverse()) / hg;
-  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(at(N), at(N));
-  for (Eigen::Index i = 0; i < M; ++i)
-    for (Eigen::Index j = 0; j < M; ++j)
-      W(at(free[static_cast<std::size_t>(i)]), at(free[static_cast<std::size_t>(j)])) = Wf(i, j);
+  // W on the rows the stage solve moves: the tail's top rows are its node's (held).
+  std::vector<std::size_t> held;
+  for (std::size_t i = sys.offset(1); i < sys.offset(1) + 6; ++i) held.push_back(i);
+  const Eigen::MatrixXd W = testing::stage_W(sys, N, 0.01, held);
   const Quat q(y[ob], y[ob + 1], y[ob + 2], y[ob + 3]);
   double num = 0, den = 0;
   const double eps = 1e-7;
